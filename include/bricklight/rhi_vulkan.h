@@ -1,0 +1,74 @@
+// Vulkan reference backend of the stateless RHI (docs/backend_vulkan.md).
+// Standalone: the backend owns instance, device and queue. Embedded: the application owns them and the
+// backend records into the application's command buffers when asked to (setCommandBuffer).
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "bricklight/rhi.h"
+
+namespace bricklight::vulkan {
+
+struct DeviceOptions {
+    // VK_LAYER_KHRONOS_validation + a VK_EXT_debug_utils messenger; every validation message (warning or
+    // error) goes to errorCallback as Severity::Error prefixed "vulkan validation: ".
+    // Also on when the environment has BRICKLIGHT_VK_VALIDATION=1. BRICKLIGHT_VK_SYNC_VALIDATION=1 adds
+    // synchronization validation (off by default: it reports the write-after-write overlap that
+    // DispatchFlags::NoBarrierWithPreviousWriter asks for on purpose).
+    bool enableValidation = false;
+    bool enableSyncValidation = false;
+    bool preferSoftware = false;       // pick lavapipe/CPU even if a GPU exists
+    std::string deviceNameContains;    // optional filter; env BRICKLIGHT_VK_DEVICE overrides
+    // Test hook: use per-frame descriptor pools even when VK_KHR_push_descriptor is available
+    // (also env BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS=1).
+    bool disablePushDescriptors = false;
+    rhi::ErrorCallback errorCallback;  // if empty, errors go to stderr
+};
+
+// Standalone device; nullptr on failure (the reason goes to the callback, or stderr).
+std::unique_ptr<rhi::IDevice> createDevice(const DeviceOptions& options);
+
+// The application's objects. The device must be Vulkan 1.3 with synchronization2 and dynamicRendering
+// enabled; the queue must support graphics and compute. The optional fields say what else the
+// application enabled (the backend cannot query enabled features): leave them empty/false if unsure.
+struct EmbeddedDesc {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queueFamilyIndex = 0;
+    rhi::ErrorCallback errorCallback;
+    const VkPhysicalDeviceFeatures* enabledFeatures = nullptr;  // geometryShader, depthClamp, ...
+    bool pushDescriptorEnabled = false;  // VK_KHR_push_descriptor enabled on the device
+    bool debugUtilsEnabled = false;      // VK_EXT_debug_utils enabled on the instance
+};
+std::unique_ptr<rhi::IDevice> createEmbeddedDevice(const EmbeddedDesc& desc);
+
+// Embedded mode: record into the application's command buffer (recording state, outside any render
+// pass); until the next call all work goes there and the application submits it to desc.queue, then
+// calls endFrame(). VK_NULL_HANDLE returns to the backend's own command buffers. Read-backs are refused
+// while an application command buffer is set. Also valid on a standalone device.
+void setCommandBuffer(rhi::IDevice& device, VkCommandBuffer commandBuffer);
+
+VkDevice nativeDevice(rhi::IDevice& device);
+VkPhysicalDevice nativePhysicalDevice(rhi::IDevice& device);
+VkInstance nativeInstance(rhi::IDevice& device);
+VkQueue nativeQueue(rhi::IDevice& device);
+uint32_t nativeQueueFamily(rhi::IDevice& device);
+// The VkImage / VkBuffer behind a handle (VK_NULL_HANDLE if not live).
+VkImage nativeImage(rhi::IDevice& device, rhi::TextureHandle texture);
+VkBuffer nativeBuffer(rhi::IDevice& device, rhi::BufferHandle buffer);
+
+// Number of barrier structures (buffer + image + memory) recorded so far; tests use it to check that
+// read-after-read and similar sequences emit none.
+uint64_t barrierCount(rhi::IDevice& device);
+// Number of validation-layer messages received so far (all severities reported).
+uint64_t validationMessageCount(rhi::IDevice& device);
+// True when descriptors are pushed (VK_KHR_push_descriptor), false when per-frame pools are used.
+bool usesPushDescriptors(rhi::IDevice& device);
+
+}  // namespace bricklight::vulkan
