@@ -25,4 +25,14 @@
 #define BL_IMAGE(s, fmt) layout(binding = (s), fmt)
 #endif
 
+// Built-ins whose names differ between the two targets. BL_INSTANCE_INDEX includes firstInstance on Vulkan
+// but not on OpenGL (gl_InstanceID): use per-instance vertex attributes, which honour it on both.
+#ifdef VULKAN
+#define BL_VERTEX_INDEX gl_VertexIndex
+#define BL_INSTANCE_INDEX gl_InstanceIndex
+#else
+#define BL_VERTEX_INDEX gl_VertexID
+#define BL_INSTANCE_INDEX gl_InstanceID
+#endif
+
 #endif

@@ -1,0 +1,104 @@
+// Transfers and diagnostics: buffer writes/copies/clears and partial read-backs, texture copies and
+// clears per mip, markers with GPU timestamps.
+#include "case_helpers.h"
+
+namespace bricklight::conformance {
+using rhi::Format;
+
+BL_CONFORMANCE_CASE(transfer_buffer_write_copy_clear, "writeBuffer at offsets, copyBuffer between buffers, clearBuffer ranges, readBuffer subranges") {
+    std::vector<uint32_t> init(256);
+    for (uint32_t i = 0; i < 256; ++i) init[i] = i;
+    rhi::BufferHandle a = ctx.buffer(1024, kStorageUsage, init.data(), "a");
+    rhi::BufferHandle b = ctx.buffer(1024, kStorageUsage, nullptr, "b");
+    ctx.check(ctx.device.clearBuffer(b, {}, 0xABCDEF01u), "clear whole");
+    const uint32_t patch[4] = {1000, 1001, 1002, 1003};
+    ctx.check(ctx.device.writeBuffer(a, 64, patch, sizeof(patch)), "writeBuffer");
+    ctx.check(ctx.device.copyBuffer(b, 512, a, 0, 256), "copyBuffer");
+    ctx.check(ctx.device.clearBuffer(b, {900, 16}, 7), "clear range");
+    auto v = ctx.read<uint32_t>(b, 256);
+    ctx.check(v[0] == 0xABCDEF01u && v[127] == 0xABCDEF01u, "clear value kept outside the copy");
+    ctx.check(v[128] == 0 && v[128 + 15] == 15 && v[128 + 16] == 1000 && v[128 + 19] == 1003 && v[128 + 20] == 20,
+              "copied range includes the earlier write");
+    ctx.check(v[225] == 7 && v[228] == 7 && v[224] == 0xABCDEF01u && v[229] == 0xABCDEF01u, "cleared range");
+    auto part = ctx.read<uint32_t>(b, 4, 512 + 64);
+    ctx.check(part[0] == 1000 && part[3] == 1003, "readBuffer at an offset");
+    ctx.output("b", bytesOf(v));
+}
+
+BL_CONFORMANCE_CASE(transfer_texture_copy_clear, "copyTexture between mips/layers, clearTexture float per mip, writeTexture of one array layer") {
+    rhi::TextureDesc d = texture2D(Format::RGBA16_FLOAT, 8, 8, rhi::TextureUsage::Sampled, "src", 2);
+    d.dimension = rhi::TextureDimension::Texture2DArray;
+    d.depthOrLayers = 2;
+    rhi::TextureHandle src = ctx.texture(d);
+    d.debugName = "dst";
+    rhi::TextureHandle dst = ctx.texture(d);
+    rhi::ClearValue half{};
+    half.f[0] = 0.5f, half.f[1] = -2.0f, half.f[2] = 4.0f, half.f[3] = 1.0f;
+    ctx.check(ctx.device.clearTexture(src, 0, 2, half), "clear all mips");
+    ctx.check(ctx.device.clearTexture(dst, 0, 0, rhi::ClearValue{{0, 0, 0, 0}}), "clear dst");
+    std::vector<uint16_t> layer(4 * 4 * 4, floatToHalf(3.0f));
+    ctx.check(ctx.device.writeTexture(src, {1, 1, 1}, layer.data()), "write mip 1 layer 1");
+    ctx.check(ctx.device.copyTexture(dst, {1, 0, 1}, src, {1, 1, 1}), "copy mip 1 layer 1 -> layer 0");
+    auto got = ctx.readTexture(dst, {1, 0, 1});
+    std::vector<uint16_t> h(got.size() / 2);
+    std::memcpy(h.data(), got.data(), got.size());
+    ctx.check(halfToFloat(h[0]) == 3.0f && halfToFloat(h[h.size() - 1]) == 3.0f, "copied layer");
+    auto untouched = ctx.readTexture(dst, {1, 1, 1});
+    std::memcpy(h.data(), untouched.data(), untouched.size());
+    ctx.check(halfToFloat(h[0]) == 0.0f, "other layer untouched");
+    auto mip0 = ctx.readTexture(src, {0, 0, 0});
+    std::vector<uint16_t> m(mip0.size() / 2);
+    std::memcpy(m.data(), mip0.data(), mip0.size());
+    ctx.check(m.size() == 8 * 8 * 4 * 2 && halfToFloat(m[1]) == -2.0f && halfToFloat(m[m.size() - 2]) == 4.0f,
+              "clearTexture float value in both layers of mip 0");
+    ctx.output("copied", got);
+    ctx.output("mip0", mip0);
+}
+
+BL_CONFORMANCE_CASE(markers_and_timestamps, "beginMarker/endMarker nesting, setTimingEnabled, takeTimings after endFrame/waitIdle") {
+    const uint32_t n = 65536;
+    rhi::BufferHandle out = ctx.buffer(n * 4, kStorageUsage, nullptr, "values");
+    rhi::ShaderHandle sh = ctx.shader("rhi_tests/fill_buffer.comp");
+    ctx.device.setTimingEnabled(true);
+    for (int frame = 0; frame < 2; ++frame) {
+        ctx.device.beginMarker("frame");
+        for (int pass = 0; pass < 2; ++pass) {
+            ctx.device.beginMarker(pass ? "second" : "first");
+            struct { uint32_t count, scale, offset; } p{n, uint32_t(pass + 1), uint32_t(frame)};
+            rhi::DispatchState s;
+            s.shader = sh;
+            s.label = "fill";
+            s.bindings.constants.push(rhi::constants(0, p));
+            s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+            ctx.device.dispatch(s, n / 64, 1, 1);
+            ctx.device.endMarker();
+        }
+        ctx.device.endMarker();
+        ctx.device.endFrame();
+    }
+    ctx.device.waitIdle();
+    auto timings = ctx.device.takeTimings();
+    ctx.device.setTimingEnabled(false);
+    if (!ctx.device.capabilities().timestamps) {
+        ctx.check(timings.empty(), "no timestamps reported, so no timings expected");
+        return;
+    }
+    int frames = 0, firsts = 0, seconds = 0;
+    bool valid = true;
+    for (const auto& t : timings) {
+        frames += t.label == "frame";
+        firsts += t.label == "frame/first";
+        seconds += t.label == "frame/second";
+        valid &= t.milliseconds >= 0.0 && t.milliseconds < 10000.0;
+    }
+    ctx.check(frames == 2 && firsts == 2 && seconds == 2,
+              "expected 2 timings each of frame, frame/first, frame/second; got " + std::to_string(timings.size()));
+    ctx.check(valid, "timings must be non-negative milliseconds");
+    auto again = ctx.device.takeTimings();
+    ctx.check(again.empty(), "takeTimings returns each result once");
+    auto v = ctx.read<uint32_t>(out, 4);
+    ctx.check(v[3] == 3 * 2 + 1, "the timed work ran");
+    ctx.output("values", bytesOf(v));
+}
+
+}  // namespace bricklight::conformance

@@ -1,0 +1,184 @@
+// Texture views inline in the binding: mip ranges, array layers, 3D textures and cubes.
+#include <cmath>
+
+#include "case_helpers.h"
+
+namespace bricklight::conformance {
+namespace {
+using rhi::Format;
+
+rhi::SamplerHandle nearestSampler(CaseContext& ctx) {
+    rhi::SamplerDesc sd;
+    sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
+    sd.debugName = "nearest";
+    return ctx.sampler(sd);
+}
+
+// Fills texel (x, y) of mip m / layer l with a value that names it: x + 16 y + 256 m + 4096 l.
+float texelName(uint32_t x, uint32_t y, uint32_t mip, uint32_t layer) {
+    return float(x + 16 * y + 256 * mip + 4096 * layer);
+}
+}  // namespace
+
+BL_CONFORMANCE_CASE(view_mip_range, "TextureView.baseMip/mipCount on a sampled 2D texture; readTexture of each mip") {
+    rhi::TextureDesc d = texture2D(Format::R32_FLOAT, 8, 8, rhi::TextureUsage::Sampled, "mipped", 4);
+    std::vector<float> init;
+    for (uint32_t m = 0; m < 4; ++m)
+        for (uint32_t y = 0; y < (8u >> m); ++y)
+            for (uint32_t x = 0; x < (8u >> m); ++x) init.push_back(texelName(x, y, m, 0));
+    rhi::TextureHandle tex = ctx.texture(d, init.data());
+    for (uint32_t m = 0; m < 4; ++m) {
+        auto bytes = ctx.readTexture(tex, {m, 0, 0});
+        ctx.check(bytes.size() == size_t(8u >> m) * (8u >> m) * 4, "mip size");
+        float first;
+        std::memcpy(&first, bytes.data(), 4);
+        ctx.check(first == texelName(0, 0, m, 0), "readTexture mip " + std::to_string(m) + " returned another mip");
+    }
+    rhi::ShaderHandle sh = ctx.shader("rhi_tests/fetch_float.comp");
+    rhi::BufferHandle out = ctx.buffer(4 * 4 * 16, kStorageUsage, nullptr, "out");
+    // View of mips 1..2: lod 0 of the view is mip 1 of the texture.
+    rhi::TextureView view{tex};
+    view.baseMip = 1;
+    view.mipCount = 2;
+    struct { int32_t w, h, lod; } p{4, 4, 0};
+    rhi::DispatchState s;
+    s.shader = sh;
+    s.label = "fetch mip view";
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.textures.push({0, view, nearestSampler(ctx)});
+    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.device.dispatch(s, 1, 1, 1);
+    auto got = ctx.read<float>(out, 16 * 4);
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 0; x < 4; ++x)
+            ctx.check(got[(y * 4 + x) * 4] == texelName(x, y, 1, 0), "view lod 0 is not mip 1 at " + std::to_string(x) +
+                                                                         "," + std::to_string(y));
+    // lod 1 of the same view is mip 2.
+    p = {2, 2, 1};
+    s.bindings.constants[0] = rhi::constants(0, p);
+    ctx.device.dispatch(s, 1, 1, 1);
+    got = ctx.read<float>(out, 4 * 4);
+    ctx.check(got[0] == texelName(0, 0, 2, 0) && got[4] == texelName(1, 0, 2, 0), "view lod 1 is not mip 2");
+    ctx.output("mip2", bytesOf(got));
+}
+
+BL_CONFORMANCE_CASE(view_array_layers, "2D array textures: layer views (2D of one layer, 2D array of a range), layered storage writes") {
+    rhi::TextureDesc d = texture2D(Format::R32_FLOAT, 4, 4, rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage, "layers");
+    d.dimension = rhi::TextureDimension::Texture2DArray;
+    d.depthOrLayers = 4;
+    rhi::TextureHandle tex = ctx.texture(d);
+    // Write all layers with a layered storage image binding.
+    struct { int32_t w, h, layers, pad; float offset; } wp{4, 4, 4, 0, 0.5f};
+    rhi::DispatchState w;
+    w.shader = ctx.shader("rhi_tests/image_write_r32f.comp");
+    w.label = "write layers";
+    w.bindings.constants.push(rhi::constants(0, wp));
+    w.bindings.storageImages.push({0, rhi::textureMip(tex, 0), rhi::Access::Write});
+    ctx.device.dispatch(w, 1, 1, 4);
+    for (uint32_t l = 0; l < 4; ++l) {
+        auto bytes = ctx.readTexture(tex, {0, l, 1});
+        float v;
+        std::memcpy(&v, bytes.data() + (1 * 4 + 2) * 4, 4);  // x 2, y 1
+        ctx.check(v == 2.0f + 1000.0f + 1e6f * l + 0.5f, "layer " + std::to_string(l) + " not written");
+    }
+    // Sample layers 1..2 through a 2D array view: view layer 0 is texture layer 1.
+    rhi::TextureView view{tex};
+    view.baseLayer = 1;
+    view.layerCount = 2;
+    rhi::BufferHandle out = ctx.buffer(4 * 4 * 2 * 16, kStorageUsage, nullptr, "out");
+    struct { int32_t w, h, layers, pad; } sp{4, 4, 2, 0};
+    rhi::DispatchState s;
+    s.shader = ctx.shader("rhi_tests/sample_array.comp");
+    s.label = "fetch layers";
+    s.bindings.constants.push(rhi::constants(0, sp));
+    s.bindings.textures.push({0, view, nearestSampler(ctx)});
+    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.device.dispatch(s, 1, 1, 2);
+    auto got = ctx.read<float>(out, 32 * 4);
+    ctx.check(got[0] == 1e6f + 0.5f, "array view layer 0 should be texture layer 1");
+    ctx.check(got[16 * 4 + 5 * 4] == 1.0f + 1000.0f + 2e6f + 0.5f, "array view layer 1 should be texture layer 2");
+    ctx.output("layers", bytesOf(got));
+    // A single layer viewed as a plain 2D texture.
+    rhi::TextureView one{tex};
+    one.baseLayer = 3;
+    one.layerCount = 1;
+    struct { int32_t w, h, lod; } fp{4, 4, 0};
+    rhi::DispatchState f;
+    f.shader = ctx.shader("rhi_tests/fetch_float.comp");
+    f.label = "fetch one layer";
+    f.bindings.constants.push(rhi::constants(0, fp));
+    f.bindings.textures.push({0, one, nearestSampler(ctx)});
+    f.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.device.dispatch(f, 1, 1, 1);
+    got = ctx.read<float>(out, 16 * 4);
+    ctx.check(got[(3 * 4 + 3) * 4] == 3.0f + 3000.0f + 3e6f + 0.5f, "2D view of layer 3 returned another layer");
+}
+
+BL_CONFORMANCE_CASE(view_3d_storage_and_sampled, "3D textures: storage image of one mip (all slices), texelFetch of a 3D mip, readTexture of all slices") {
+    rhi::TextureDesc d;
+    d.dimension = rhi::TextureDimension::Texture3D;
+    d.format = Format::R32_UINT;
+    d.width = 8;
+    d.height = 4;
+    d.depthOrLayers = 8;
+    d.mipLevels = 2;
+    d.usage = rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage;
+    d.debugName = "volume";
+    rhi::TextureHandle tex = ctx.texture(d);
+    rhi::ShaderHandle write = ctx.shader("rhi_tests/image_write_3d.comp");
+    for (uint32_t m = 0; m < 2; ++m) {
+        struct { int32_t w, h, d, add; } p{int32_t(8 >> m), int32_t(4 >> m), int32_t(8 >> m), int32_t(m * 7)};
+        rhi::DispatchState s;
+        s.shader = write;
+        s.label = "write volume mip";
+        s.bindings.constants.push(rhi::constants(0, p));
+        s.bindings.storageImages.push({0, rhi::textureMip(tex, uint8_t(m)), rhi::Access::Write});
+        ctx.device.dispatch(s, 2, 1, 2);
+    }
+    for (uint32_t m = 0; m < 2; ++m) {
+        auto bytes = ctx.readTexture(tex, {m, 0, 0});
+        uint32_t w = 8 >> m, h = 4 >> m, dd = 8 >> m;
+        ctx.check(bytes.size() == size_t(w) * h * dd * 4, "3D readback covers all slices");
+        std::vector<uint32_t> v(bytes.size() / 4);
+        std::memcpy(v.data(), bytes.data(), bytes.size());
+        bool ok = true;
+        for (uint32_t z = 0; z < dd; ++z)
+            for (uint32_t y = 0; y < h; ++y)
+                for (uint32_t x = 0; x < w; ++x)
+                    ok &= v[(z * h + y) * w + x] == x + 100 * y + 10000 * z + m * 7;
+        ctx.check(ok, "3D mip " + std::to_string(m) + " content");
+        ctx.output("mip" + std::to_string(m), bytes);
+    }
+}
+
+BL_CONFORMANCE_CASE(view_cube_faces, "cube textures: initial data per face, samplerCube along the six axes") {
+    rhi::TextureDesc d = texture2D(Format::RGBA8_UNORM, 4, 4, rhi::TextureUsage::Sampled, "cube");
+    d.dimension = rhi::TextureDimension::TextureCube;
+    d.depthOrLayers = 6;
+    std::vector<uint8_t> init;
+    for (uint32_t face = 0; face < 6; ++face)
+        for (int t = 0; t < 16; ++t) init.insert(init.end(), {uint8_t(40 * face + 10), uint8_t(face), 0, 255});
+    rhi::TextureHandle tex = ctx.texture(d, init.data());
+    const float dirs[6][4] = {{1, 0, 0, 0}, {-1, 0, 0, 0}, {0, 1, 0, 0}, {0, -1, 0, 0}, {0, 0, 1, 0}, {0, 0, -1, 0}};
+    rhi::BufferHandle dirBuf = ctx.buffer(sizeof(dirs), rhi::BufferUsage::ShaderRead, dirs, "directions");
+    rhi::BufferHandle out = ctx.buffer(6 * 16, kStorageUsage, nullptr, "out");
+    rhi::SamplerDesc sd;
+    sd.debugName = "linear";
+    uint32_t count = 6;
+    rhi::DispatchState s;
+    s.shader = ctx.shader("rhi_tests/sample_cube.comp");
+    s.label = "sample cube";
+    s.bindings.constants.push(rhi::constants(0, count));
+    s.bindings.textures.push({0, rhi::wholeTexture(tex), ctx.sampler(sd)});
+    s.bindings.readBuffers.push({0, dirBuf, {}});
+    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.device.dispatch(s, 1, 1, 1);
+    auto got = ctx.read<float>(out, 24);
+    for (uint32_t face = 0; face < 6; ++face)
+        ctx.check(std::fabs(got[face * 4] * 255.0f - float(40 * face + 10)) < 0.01f &&
+                      std::fabs(got[face * 4 + 1] * 255.0f - float(face)) < 0.01f,
+                  "cube face " + std::to_string(face) + " sampled wrong value " + std::to_string(got[face * 4] * 255));
+    ctx.output("faces", bytesOf(got), {Tolerance::Kind::Float32, 1e-5});
+}
+
+}  // namespace bricklight::conformance

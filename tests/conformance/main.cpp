@@ -1,0 +1,39 @@
+// The conformance suite on our reference backends: every case on Vulkan (validation layer on, any
+// message fails the case), on OpenGL 4.5, and compared across the two.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include "bricklight/conformance.h"
+#ifdef BRICKLIGHT_HAS_VULKAN
+#include "bricklight/rhi_vulkan.h"
+#endif
+#ifdef BRICKLIGHT_HAS_GL
+#include "bricklight/rhi_gl.h"
+#endif
+
+using namespace bricklight;
+
+int main(int argc, char** argv) {
+    std::vector<conformance::Backend> backends;
+#ifdef BRICKLIGHT_HAS_VULKAN
+    backends.push_back({"vulkan",
+                        [] {
+                            vulkan::DeviceOptions options;
+                            options.enableValidation = true;
+                            return vulkan::createDevice(options);
+                        },
+                        [](rhi::IDevice& d) { return vulkan::barrierCount(d); }});
+#endif
+#ifdef BRICKLIGHT_HAS_GL
+    backends.push_back({"gl",
+                        []() -> std::unique_ptr<rhi::IDevice> {
+                            std::string error;
+                            auto device = gl::createHeadlessDevice(gl::HeadlessApi::Auto, nullptr, &error);
+                            if (!device) fprintf(stderr, "gl: %s\n", error.c_str());
+                            return device;
+                        },
+                        [](rhi::IDevice& d) { return gl::barrierCount(d); }});
+#endif
+    conformance::registerCatchTests(backends);
+    return Catch::Session().run(argc, argv);
+}
