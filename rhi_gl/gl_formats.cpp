@@ -71,9 +71,10 @@ void queryFormatSupport(const Functions& gl, uint32_t* support) {
             const bool storageAllowed = format != Format::RGBA8_SRGB && format != Format::R11G11B10_FLOAT;
             if (storageAllowed && yes(query(ifmt, GL_SHADER_IMAGE_LOAD)) && yes(query(ifmt, GL_SHADER_IMAGE_STORE)))
                 bits |= FS::Storage;
-            // GLSL image atomics exist only for r32ui / r32i: the driver's answer is ANDed with that.
+            // GLSL image atomics exist only for r32ui / r32i: the driver's answer is ANDed with that (the spec
+            // says GL_TRUE, Mesa answers GL_FULL_SUPPORT: both count).
             const bool atomicFormat = format == Format::R32_UINT || format == Format::R32_SINT;
-            if ((bits & FS::Storage) && atomicFormat && query(ifmt, GL_SHADER_IMAGE_ATOMIC) == GL_TRUE)
+            if ((bits & FS::Storage) && atomicFormat && yes(query(ifmt, GL_SHADER_IMAGE_ATOMIC)))
                 bits |= FS::StorageAtomic;
         }
         // Integer formats are never filterable or blendable, whatever a driver reports.

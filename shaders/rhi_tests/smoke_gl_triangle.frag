@@ -1,0 +1,9 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+// GL smoke test: the interpolated vertex colour (the tests use flat colours per draw).
+layout(location = 0) in vec4 vColor;
+layout(location = 0) out vec4 outColor;
+void main() {
+    outColor = vColor;
+}
