@@ -10,9 +10,13 @@
 #include <string>
 
 #include "bricklight/rhi.h"
-#include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_validation.h"
+#ifdef BRICKLIGHT_HAS_GL
+#include "bricklight/rhi_gl.h"
+#endif
+#ifdef BRICKLIGHT_HAS_VULKAN
 #include "bricklight/rhi_vulkan.h"
+#endif
 
 using namespace bricklight;
 
@@ -43,11 +47,19 @@ int main(int argc, char** argv) {
     std::unique_ptr<rhi::IDevice> native;
     std::string error;
     if (backend == "vulkan") {
+#ifdef BRICKLIGHT_HAS_VULKAN
         vulkan::DeviceOptions options;
         options.errorCallback = onError;
         native = vulkan::createDevice(options);
+#else
+        return usage("this build has no Vulkan backend");
+#endif
     } else if (backend == "gl") {
+#ifdef BRICKLIGHT_HAS_GL
         native = gl::createHeadlessDevice(gl::HeadlessApi::Auto, onError, &error);
+#else
+        return usage("this build has no OpenGL backend");
+#endif
     } else {
         return usage(("unknown backend '" + backend + "' (vulkan or gl)").c_str());
     }

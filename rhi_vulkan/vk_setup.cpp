@@ -1,0 +1,447 @@
+// Instance, physical device and device creation; capabilities; the debug messenger; the public factories.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "vk_device.h"
+#include "vk_formats.h"
+
+namespace bricklight::vulkan::detail {
+
+void Reporter::report(rhi::Severity severity, const std::string& message) const {
+    if (callback) {
+        callback(severity, message);
+        return;
+    }
+    const char* tag = severity == rhi::Severity::Error ? "error" : severity == rhi::Severity::Warning ? "warning" : "info";
+    fprintf(stderr, "bricklight vulkan %s: %s\n", tag, message.c_str());
+}
+
+namespace {
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debugMessenger(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+    auto* reporter = static_cast<Reporter*>(user);
+    reporter->validationMessages++;
+    reporter->report(rhi::Severity::Error, std::string("vulkan validation: ") + (data->pMessage ? data->pMessage : ""));
+    return VK_FALSE;
+}
+
+bool envFlag(const char* name) {
+    const char* v = getenv(name);
+    return v && *v && strcmp(v, "0") != 0;
+}
+
+bool hasInstanceLayer(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    for (auto& l : layers)
+        if (strcmp(l.layerName, name) == 0) return true;
+    return false;
+}
+
+bool hasInstanceExtension(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> exts(n);
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, exts.data());
+    for (auto& e : exts)
+        if (strcmp(e.extensionName, name) == 0) return true;
+    return false;
+}
+
+bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> exts(n);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
+    for (auto& e : exts)
+        if (strcmp(e.extensionName, name) == 0) return true;
+    return false;
+}
+
+int64_t findQueueFamily(VkPhysicalDevice pd) {
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
+    const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    for (uint32_t i = 0; i < n; ++i)
+        if ((families[i].queueFlags & need) == need) return i;
+    return -1;
+}
+
+int typeScore(VkPhysicalDeviceType type, bool preferSoftware) {
+    if (preferSoftware) return type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 10 : 0;
+    switch (type) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+        default: return 0;
+    }
+}
+
+}  // namespace
+
+bool VulkanDevice::fail(const std::string& message) const {
+    reporter_->report(rhi::Severity::Error, message);
+    return false;
+}
+
+void VulkanDevice::warn(const std::string& message) const { reporter_->report(rhi::Severity::Warning, message); }
+
+std::string VulkanDevice::quoted(const char* label) {
+    return label && *label ? std::string(" '") + label + "'" : std::string();
+}
+
+std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions& options) {
+    std::unique_ptr<VulkanDevice> dev(new VulkanDevice());
+    dev->reporter_->callback = options.errorCallback;
+    dev->ownsDevice_ = true;
+    const bool validation = options.enableValidation || envFlag("BRICKLIGHT_VK_VALIDATION");
+    const bool syncValidation = options.enableSyncValidation || envFlag("BRICKLIGHT_VK_SYNC_VALIDATION");
+
+    uint32_t apiVersion = VK_API_VERSION_1_0;
+    vkEnumerateInstanceVersion(&apiVersion);
+    if (apiVersion < VK_API_VERSION_1_3) {
+        dev->fail("createDevice: the Vulkan loader supports version " + std::to_string(VK_API_VERSION_MAJOR(apiVersion)) +
+                  "." + std::to_string(VK_API_VERSION_MINOR(apiVersion)) + "; Vulkan 1.3 is required");
+        return nullptr;
+    }
+
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        if (hasInstanceLayer("VK_LAYER_KHRONOS_validation"))
+            layers.push_back("VK_LAYER_KHRONOS_validation");
+        else
+            dev->fail("createDevice: validation requested but VK_LAYER_KHRONOS_validation is not installed");
+    }
+    dev->debugUtils_ = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (dev->debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messengerInfo.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messengerInfo.pfnUserCallback = debugMessenger;
+    messengerInfo.pUserData = dev->reporter_.get();
+
+    VkValidationFeatureEnableEXT syncFeature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &syncFeature;
+
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "bricklight";
+    app.pEngineName = "bricklight";
+    app.apiVersion = VK_API_VERSION_1_3;
+    VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ici.pApplicationInfo = &app;
+    ici.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    ici.ppEnabledLayerNames = layers.data();
+    ici.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    ici.ppEnabledExtensionNames = extensions.data();
+    const bool useMessenger = dev->debugUtils_ && !layers.empty();
+    if (useMessenger) {
+        ici.pNext = &messengerInfo;
+        if (syncValidation) messengerInfo.pNext = &features;
+    }
+    if (VkResult r = vkCreateInstance(&ici, nullptr, &dev->instance_); r != VK_SUCCESS) {
+        dev->fail("createDevice: vkCreateInstance failed (VkResult " + std::to_string(r) + ")");
+        return nullptr;
+    }
+    if (useMessenger) {
+        messengerInfo.pNext = nullptr;
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(dev->instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (create) create(dev->instance_, &messengerInfo, nullptr, &dev->messenger_);
+    }
+
+    // Pick the physical device: Vulkan 1.3, a graphics+compute queue, sync2 + dynamic rendering.
+    std::string filter = options.deviceNameContains;
+    if (const char* env = getenv("BRICKLIGHT_VK_DEVICE"); env && *env) filter = env;
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(dev->instance_, &count, nullptr);
+    std::vector<VkPhysicalDevice> candidates(count);
+    vkEnumeratePhysicalDevices(dev->instance_, &count, candidates.data());
+    int bestScore = -1;
+    std::string rejected;
+    for (VkPhysicalDevice pd : candidates) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pd, &p);
+        VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        f2.pNext = &f13;
+        vkGetPhysicalDeviceFeatures2(pd, &f2);
+        std::string why;
+        if (p.apiVersion < VK_API_VERSION_1_3) why = "Vulkan 1.3 not supported";
+        else if (!f13.synchronization2 || !f13.dynamicRendering) why = "no synchronization2/dynamicRendering";
+        else if (findQueueFamily(pd) < 0) why = "no graphics+compute queue";
+        else if (!filter.empty() && std::string(p.deviceName).find(filter) == std::string::npos)
+            why = "name does not contain '" + filter + "'";
+        if (!why.empty()) {
+            rejected += std::string(rejected.empty() ? "" : "; ") + p.deviceName + ": " + why;
+            continue;
+        }
+        int score = typeScore(p.deviceType, options.preferSoftware);
+        if (score > bestScore) {
+            bestScore = score;
+            dev->physical_ = pd;
+        }
+    }
+    if (!dev->physical_) {
+        dev->fail("createDevice: no usable Vulkan device" + (rejected.empty() ? std::string() : " (" + rejected + ")"));
+        return nullptr;
+    }
+    dev->queueFamily_ = static_cast<uint32_t>(findQueueFamily(dev->physical_));
+
+    // Features: the required ones plus every optional one the contract can use.
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(dev->physical_, &supported);
+    VkPhysicalDeviceFeatures& en = dev->enabled_;
+    en.geometryShader = supported.geometryShader;
+    en.depthClamp = supported.depthClamp;
+    en.samplerAnisotropy = supported.samplerAnisotropy;
+    en.independentBlend = supported.independentBlend;
+    en.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    en.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+    en.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
+    en.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    en.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
+    en.largePoints = supported.largePoints;
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    f13.synchronization2 = VK_TRUE;
+    f13.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.pNext = &f13;
+    f2.features = en;
+
+    std::vector<const char*> devExt;
+    const bool noPush = options.disablePushDescriptors || envFlag("BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS");
+    dev->pushDescriptors_ = !noPush && hasDeviceExtension(dev->physical_, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    if (dev->pushDescriptors_) devExt.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.queueFamilyIndex = dev->queueFamily_;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    dci.pNext = &f2;
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    dci.enabledExtensionCount = static_cast<uint32_t>(devExt.size());
+    dci.ppEnabledExtensionNames = devExt.data();
+    if (VkResult r = vkCreateDevice(dev->physical_, &dci, nullptr, &dev->device_); r != VK_SUCCESS) {
+        dev->fail("createDevice: vkCreateDevice failed (VkResult " + std::to_string(r) + ")");
+        return nullptr;
+    }
+    vkGetDeviceQueue(dev->device_, dev->queueFamily_, 0, &dev->queue_);
+    if (!dev->initDevice()) return nullptr;
+    return dev;
+}
+
+std::unique_ptr<VulkanDevice> VulkanDevice::createEmbedded(const EmbeddedDesc& desc) {
+    std::unique_ptr<VulkanDevice> dev(new VulkanDevice());
+    dev->reporter_->callback = desc.errorCallback;
+    if (!desc.instance || !desc.physicalDevice || !desc.device || !desc.queue) {
+        dev->fail("createEmbeddedDevice: instance, physicalDevice, device and queue must all be set");
+        return nullptr;
+    }
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(desc.physicalDevice, &p);
+    if (p.apiVersion < VK_API_VERSION_1_3) {
+        dev->fail(std::string("createEmbeddedDevice: '") + p.deviceName + "' does not support Vulkan 1.3");
+        return nullptr;
+    }
+    dev->instance_ = desc.instance;
+    dev->physical_ = desc.physicalDevice;
+    dev->device_ = desc.device;
+    dev->queue_ = desc.queue;
+    dev->queueFamily_ = desc.queueFamilyIndex;
+    if (desc.enabledFeatures) dev->enabled_ = *desc.enabledFeatures;
+    dev->pushDescriptors_ = desc.pushDescriptorEnabled;
+    dev->debugUtils_ = desc.debugUtilsEnabled;
+    if (!dev->initDevice()) return nullptr;
+    return dev;
+}
+
+void VulkanDevice::loadFunctions() {
+    if (pushDescriptors_) {
+        pushDescriptorSet_ =
+            reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+        if (!pushDescriptorSet_) pushDescriptors_ = false;
+    }
+    if (debugUtils_) {
+        setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+        beginLabel_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+        endLabel_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+        debugUtils_ = setObjectName_ && beginLabel_ && endLabel_;
+    }
+}
+
+bool VulkanDevice::initDevice() {
+    vkGetPhysicalDeviceProperties(physical_, &props_);
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memProps_);
+    loadFunctions();
+    queryCapabilities();
+    createFrames();
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    if (vkCreateFence(device_, &fci, nullptr, &syncFence_) != VK_SUCCESS) return fail("createDevice: vkCreateFence failed");
+    return true;
+}
+
+void VulkanDevice::queryCapabilities() {
+    VkPhysicalDevicePushDescriptorPropertiesKHR push{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    driver.pNext = pushDescriptors_ ? &push : nullptr;
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    p2.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(physical_, &p2);
+    maxPushDescriptors_ = pushDescriptors_ ? push.maxPushDescriptors : 0;
+
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, families.data());
+    timestampValidBits_ = queueFamily_ < n ? families[queueFamily_].timestampValidBits : 0;
+
+    const VkPhysicalDeviceLimits& l = props_.limits;
+    caps_.backendName = "vulkan";
+    caps_.deviceName = std::string(props_.deviceName) + " (" + driver.driverName + " " + driver.driverInfo + ")";
+    caps_.limits.maxTextureSize2D = l.maxImageDimension2D;
+    caps_.limits.maxTextureSize3D = l.maxImageDimension3D;
+    caps_.limits.maxTextureArrayLayers = l.maxImageArrayLayers;
+    for (int i = 0; i < 3; ++i) {
+        caps_.limits.maxComputeGroupCount[i] = l.maxComputeWorkGroupCount[i];
+        caps_.limits.maxComputeGroupSize[i] = l.maxComputeWorkGroupSize[i];
+    }
+    caps_.limits.maxComputeGroupInvocations = l.maxComputeWorkGroupInvocations;
+    caps_.limits.maxComputeSharedMemoryBytes = l.maxComputeSharedMemorySize;
+    caps_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
+    caps_.limits.maxColorTargets = std::min<uint32_t>(l.maxColorAttachments, rhi::kMaxColorTargets);
+    caps_.limits.minStorageBufferOffsetAlignment = static_cast<uint32_t>(l.minStorageBufferOffsetAlignment);
+    caps_.limits.minUniformBufferOffsetAlignment = static_cast<uint32_t>(l.minUniformBufferOffsetAlignment);
+    for (size_t i = 1; i < static_cast<size_t>(rhi::Format::Count); ++i) {
+        auto f = static_cast<rhi::Format>(i);
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(physical_, toVkFormat(f), &fp);
+        caps_.formatSupport[i] = formatSupportBits(f, fp.optimalTilingFeatures);
+    }
+    caps_.geometryShader = enabled_.geometryShader;
+    caps_.timestamps = l.timestampComputeAndGraphics && timestampValidBits_ > 0;
+}
+
+VulkanDevice::~VulkanDevice() {
+    if (device_) {
+        if (!appCommandBuffer_) waitForGpu();
+        vkDeviceWaitIdle(device_);
+        for (auto& f : frames_) {
+            for (auto& fn : f.garbage) fn();
+            f.garbage.clear();
+        }
+        for (auto& [id, t] : textures_) {
+            for (auto& v : t->views) vkDestroyImageView(device_, v.second, nullptr);
+            if (!t->wrapped) {
+                vkDestroyImage(device_, t->image, nullptr);
+                vkFreeMemory(device_, t->memory, nullptr);
+            }
+        }
+        for (auto& [id, b] : buffers_)
+            if (!b->wrapped) {
+                vkDestroyBuffer(device_, b->buffer, nullptr);
+                vkFreeMemory(device_, b->memory, nullptr);
+            }
+        for (auto& [id, s] : samplers_) vkDestroySampler(device_, s->sampler, nullptr);
+        for (auto& [id, s] : shaders_) vkDestroyShaderModule(device_, s->module, nullptr);
+        for (auto& [key, p] : pipelines_) vkDestroyPipeline(device_, p.pipeline, nullptr);
+        for (auto& [key, l] : setLayouts_) {
+            vkDestroyPipelineLayout(device_, l->pipelineLayout, nullptr);
+            vkDestroyDescriptorSetLayout(device_, l->setLayout, nullptr);
+        }
+        destroyFrames();
+        if (syncFence_) vkDestroyFence(device_, syncFence_, nullptr);
+        if (ownsDevice_) vkDestroyDevice(device_, nullptr);
+    }
+    if (ownsDevice_ && instance_) {
+        if (messenger_) {
+            auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+                vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+            if (destroy) destroy(instance_, messenger_, nullptr);
+        }
+        vkDestroyInstance(instance_, nullptr);
+    }
+}
+
+}  // namespace bricklight::vulkan::detail
+
+namespace bricklight::vulkan {
+
+using detail::VulkanDevice;
+
+std::unique_ptr<rhi::IDevice> createDevice(const DeviceOptions& options) {
+    return VulkanDevice::createStandalone(options);
+}
+std::unique_ptr<rhi::IDevice> createEmbeddedDevice(const EmbeddedDesc& desc) {
+    return VulkanDevice::createEmbedded(desc);
+}
+
+namespace {
+VulkanDevice* asVulkan(rhi::IDevice& device) { return dynamic_cast<VulkanDevice*>(&device); }
+}  // namespace
+
+void setCommandBuffer(rhi::IDevice& device, VkCommandBuffer commandBuffer) {
+    if (auto* d = asVulkan(device)) d->setAppCommandBuffer(commandBuffer);
+}
+VkDevice nativeDevice(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->device() : VK_NULL_HANDLE;
+}
+VkPhysicalDevice nativePhysicalDevice(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->physicalDevice() : VK_NULL_HANDLE;
+}
+VkInstance nativeInstance(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->instance() : VK_NULL_HANDLE;
+}
+VkQueue nativeQueue(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->queue() : VK_NULL_HANDLE;
+}
+uint32_t nativeQueueFamily(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->queueFamily() : 0;
+}
+VkImage nativeImage(rhi::IDevice& device, rhi::TextureHandle texture) {
+    auto* d = asVulkan(device);
+    return d ? d->nativeImage(texture) : VK_NULL_HANDLE;
+}
+VkBuffer nativeBuffer(rhi::IDevice& device, rhi::BufferHandle buffer) {
+    auto* d = asVulkan(device);
+    return d ? d->nativeBuffer(buffer) : VK_NULL_HANDLE;
+}
+uint64_t barrierCount(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->barrierCount() : 0;
+}
+uint64_t validationMessageCount(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->validationMessages() : 0;
+}
+bool usesPushDescriptors(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d && d->pushDescriptors();
+}
+
+}  // namespace bricklight::vulkan
