@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
                         [] {
                             vulkan::DeviceOptions options;
                             options.enableValidation = true;
+                            // Synchronization validation turns a missed barrier into a failing message even on
+                            // drivers that run every dispatch in order (lavapipe).
+                            options.enableSyncValidation = true;
                             return vulkan::createDevice(options);
                         },
                         [](rhi::IDevice& d) { return vulkan::barrierCount(d); }});
