@@ -269,7 +269,9 @@ BL_CONFORMANCE_CASE(draw_into_mip_and_layer, "ColorTarget view selecting mip 1 o
     auto l2 = ctx.readTexture(tex, {1, 2, 1});
     auto l1 = ctx.readTexture(tex, {1, 1, 1});
     auto m0 = ctx.readTexture(tex, {0, 2, 1});
-    ctx.check(l2.size() == 8 * 8 * 4 && l2[0] == 128 && l2[1] == 255 && l2[(8 * 8 - 1) * 4 + 1] == 255, "mip 1 layer 2 drawn");
+    // 0.5 * 255 = 127.5: drivers may round either way (NVIDIA gives 127, llvmpipe 128).
+    ctx.check(l2.size() == 8 * 8 * 4 && std::abs(int(l2[0]) - 128) <= 1 && l2[1] == 255 && l2[(8 * 8 - 1) * 4 + 1] == 255,
+              "mip 1 layer 2 drawn (got " + std::to_string(l2.empty() ? -1 : int(l2[0])) + ")");
     ctx.check(l1[1] == 0 && m0[1] == 0, "other subresources untouched");
     ctx.output("mip1layer2", l2, {Tolerance::Kind::Unorm8, 1});
 }
