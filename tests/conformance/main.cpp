@@ -3,6 +3,8 @@
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
+#include <string>
+
 #include "bricklight/conformance.h"
 #ifdef BRICKLIGHT_HAS_VULKAN
 #include "bricklight/rhi_vulkan.h"
@@ -16,6 +18,14 @@ using namespace bricklight;
 int main(int argc, char** argv) {
     std::vector<conformance::Backend> backends;
 #ifdef BRICKLIGHT_HAS_VULKAN
+    // Each case creates and destroys its own instance. The loader unloads the ICD with the last instance,
+    // and NVIDIA's ICD stops loading after ~30 such cycles in one process (seen on an H200: "Could not get
+    // 'vkCreateInstance' ... for ICD libGLX_nvidia.so.0"). One instance kept for the whole run keeps the
+    // ICD loaded, as an application's would be.
+    std::unique_ptr<rhi::IDevice> keepDriverLoaded;
+    bool listing = false;
+    for (int i = 1; i < argc; ++i) listing |= std::string(argv[i]).rfind("--list", 0) == 0;
+    if (!listing) keepDriverLoaded = vulkan::createDevice(vulkan::DeviceOptions{});
     backends.push_back({"vulkan",
                         [] {
                             vulkan::DeviceOptions options;
