@@ -92,6 +92,18 @@ public:
         if (out) std::memset(out, 0, size);
         return true;
     }
+    uint64_t requestReadback(BufferHandle b, uint64_t, uint64_t size) override {
+        if (!describe(b)) return 0;
+        readbacks_[nextTicket_] = size;
+        return nextTicket_++;
+    }
+    ReadbackStatus pollReadback(uint64_t ticket, void* out) override {
+        auto it = readbacks_.find(ticket);
+        if (it == readbacks_.end()) return ReadbackStatus::Failed;
+        if (out) std::memset(out, 0, it->second);
+        readbacks_.erase(it);
+        return ReadbackStatus::Ready;
+    }
     bool readTexture(TextureHandle t, TextureSubresource sub, void* out) override {
         const TextureDesc* d = describe(t);
         if (d && out) std::memset(out, 0, subresourceBytes(*d, sub));
@@ -110,6 +122,8 @@ public:
     void waitIdle() override {}
 
 private:
+    std::unordered_map<uint64_t, uint64_t> readbacks_;  // ticket -> size
+    uint64_t nextTicket_ = 1;
 
     Capabilities caps_;
     ErrorCallback callback_;

@@ -96,6 +96,11 @@ public:
         write({{"call", "readBuffer"}, {"buffer", b.id}, {"offset", offset}, {"size", size}});
         return inner_.readBuffer(b, offset, size, out);
     }
+    uint64_t requestReadback(BufferHandle b, uint64_t offset, uint64_t size) override {
+        write({{"call", "requestReadback"}, {"buffer", b.id}, {"offset", offset}, {"size", size}});
+        return inner_.requestReadback(b, offset, size);
+    }
+    ReadbackStatus pollReadback(uint64_t ticket, void* out) override { return inner_.pollReadback(ticket, out); }
     bool readTexture(TextureHandle t, TextureSubresource sub, void* out) override {
         write({{"call", "readTexture"}, {"texture", t.id}, {"sub", {sub.mip, sub.layer, sub.layerCount}}});
         return inner_.readTexture(t, sub, out);

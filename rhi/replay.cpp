@@ -77,6 +77,10 @@ bool replayLine(const json& j, IDevice& device, record::DecodeContext& ctx, bool
     } else if (call == "readBuffer") {
         std::vector<uint8_t> scratch(j.at("size").get<uint64_t>());
         ok = device.readBuffer(buf("buffer"), j.at("offset"), scratch.size(), scratch.data());
+    } else if (call == "requestReadback") {
+        // Replayed as a blocking read so that the copy happens at the same point of the stream.
+        std::vector<uint8_t> scratch(j.at("size").get<uint64_t>());
+        ok = device.readBuffer(buf("buffer"), j.at("offset"), scratch.size(), scratch.data());
     } else if (call == "readTexture") {
         TextureHandle t = tex("texture");
         const TextureDesc* d = device.describe(t);

@@ -190,6 +190,19 @@ public:
         if (!out && size) r.error("out is null");
         return finish(r) && inner_.readBuffer(b, offset, size, out);
     }
+    uint64_t requestReadback(BufferHandle b, uint64_t offset, uint64_t size) override {
+        Report r{"requestReadback"};
+        if (const BufferDesc* d = liveBuffer(objects_, b, "buffer", r)) checkBufferRange(*d, offset, size, "range", r);
+        if (!size) r.error("size is 0");
+        return finish(r) ? inner_.requestReadback(b, offset, size) : 0;
+    }
+    ReadbackStatus pollReadback(uint64_t ticket, void* out) override {
+        if (!out) {
+            emit(Severity::Error, "pollReadback: out is null");
+            return ReadbackStatus::Failed;
+        }
+        return inner_.pollReadback(ticket, out);
+    }
     bool readTexture(TextureHandle t, TextureSubresource sub, void* out) override {
         Report r{"readTexture"};
         if (const TextureDesc* d = liveTexture(objects_, t, "texture", r)) checkSubresource(*d, sub, "subresource", r);

@@ -125,6 +125,10 @@ Device::~Device() {
     makeCurrent();
     gl.Finish();
     timer_.destroy(gl);
+    for (auto& [ticket, rb] : readbacks_) {
+        gl.DeleteSync(rb.fence);
+        gl.DeleteBuffers(1, &rb.buffer);
+    }
     views_.clear(gl);
     programs_.clear(gl);
     framebuffers_.clear(gl);

@@ -85,6 +85,8 @@ public:
     bool clearTexture(rhi::TextureHandle texture, uint32_t baseMip, uint32_t mipCount, rhi::ClearValue value) override;
     bool readBuffer(rhi::BufferHandle buffer, uint64_t offset, uint64_t size, void* out) override;
     bool readTexture(rhi::TextureHandle texture, rhi::TextureSubresource sub, void* out) override;
+    uint64_t requestReadback(rhi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    rhi::ReadbackStatus pollReadback(uint64_t ticket, void* out) override;
 
     bool dispatch(const rhi::DispatchState& state, uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) override;
     bool dispatchIndirect(const rhi::DispatchState& state, rhi::BufferHandle args, uint64_t offset) override;
@@ -179,6 +181,15 @@ private:
     ConstantRing constants_;
     GLuint scratchIndexBuffer_ = 0;  // indexed drawIndirect with a non-zero index buffer offset
     uint64_t scratchIndexSize_ = 0;
+
+    // Non-blocking read-backs: a copy into a staging buffer followed by a fence.
+    struct PendingReadback {
+        GLuint buffer = 0;
+        GLsync fence = nullptr;
+        uint64_t size = 0;
+    };
+    std::unordered_map<uint64_t, PendingReadback> readbacks_;
+    uint64_t nextReadbackTicket_ = 1;
 
     MarkerTimer timer_;
     struct Marker {

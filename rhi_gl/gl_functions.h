@@ -37,6 +37,9 @@ namespace bricklight::gl::detail {
     X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)                                                \
     X(PFNGLGETNAMEDBUFFERPARAMETERI64VPROC, GetNamedBufferParameteri64v)                                    \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                                                \
+    X(PFNGLFENCESYNCPROC, FenceSync)                                                                        \
+    X(PFNGLCLIENTWAITSYNCPROC, ClientWaitSync)                                                              \
+    X(PFNGLDELETESYNCPROC, DeleteSync)                                                                      \
     X(PFNGLISBUFFERPROC, IsBuffer)                                                                          \
     X(PFNGLBINDBUFFERPROC, BindBuffer)                                                                      \
     X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                                            \

@@ -195,6 +195,47 @@ bool Device::readBuffer(BufferHandle h, uint64_t offset, uint64_t size, void* ou
     return true;
 }
 
+uint64_t Device::requestReadback(BufferHandle h, uint64_t offset, uint64_t size) {
+    makeCurrent();
+    Call call{"requestReadback"};
+    BufferRecord* b = buffer(h, call, "buffer");
+    if (!b) return 0;
+    call.label = b->desc.debugName.c_str();
+    if (!size) return fail(call, "size: 0"), 0;
+    if (!checkBufferRange(call, "offset/size", *b, offset, size)) return 0;
+    GLbitfield bits = 0;
+    barriers_.require(&bits, b->lastShaderWrite, GL_BUFFER_UPDATE_BARRIER_BIT);
+    barriers_.issue(gl, bits);
+    PendingReadback rb;
+    gl.CreateBuffers(1, &rb.buffer);
+    gl.NamedBufferStorage(rb.buffer, GLsizeiptr(size), nullptr, GL_CLIENT_STORAGE_BIT);
+    gl.CopyNamedBufferSubData(b->name, rb.buffer, GLintptr(offset), 0, GLsizeiptr(size));
+    rb.fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    rb.size = size;
+    const uint64_t ticket = nextReadbackTicket_++;
+    readbacks_[ticket] = rb;
+    return ticket;
+}
+
+ReadbackStatus Device::pollReadback(uint64_t ticket, void* out) {
+    makeCurrent();
+    auto it = readbacks_.find(ticket);
+    if (it == readbacks_.end()) return ReadbackStatus::Failed;  // the status is the message
+    PendingReadback& rb = it->second;
+    // Timeout 0: only asks. GL_SYNC_FLUSH_COMMANDS_BIT makes sure the fence gets to the GPU.
+    const GLenum state = gl.ClientWaitSync(rb.fence, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+    if (state == GL_TIMEOUT_EXPIRED) return ReadbackStatus::Pending;
+    if (state == GL_WAIT_FAILED) {
+        fail(Call{"pollReadback"}, "glClientWaitSync failed for ticket " + std::to_string(ticket));
+        return ReadbackStatus::Failed;
+    }
+    if (out) gl.GetNamedBufferSubData(rb.buffer, 0, GLsizeiptr(rb.size), out);
+    gl.DeleteSync(rb.fence);
+    gl.DeleteBuffers(1, &rb.buffer);
+    readbacks_.erase(it);
+    return ReadbackStatus::Ready;
+}
+
 bool Device::readTexture(TextureHandle h, TextureSubresource sub, void* out) {
     makeCurrent();
     Call call{"readTexture"};

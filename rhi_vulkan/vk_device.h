@@ -203,6 +203,8 @@ public:
     bool clearTexture(rhi::TextureHandle texture, uint32_t baseMip, uint32_t mipCount, rhi::ClearValue value) override;
     bool readBuffer(rhi::BufferHandle buffer, uint64_t offset, uint64_t size, void* out) override;
     bool readTexture(rhi::TextureHandle texture, rhi::TextureSubresource sub, void* out) override;
+    uint64_t requestReadback(rhi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    rhi::ReadbackStatus pollReadback(uint64_t ticket, void* out) override;
 
     bool dispatch(const rhi::DispatchState& state, uint32_t x, uint32_t y, uint32_t z) override;
     bool dispatchIndirect(const rhi::DispatchState& state, rhi::BufferHandle args, uint64_t offset) override;
@@ -362,6 +364,21 @@ private:
     VkCommandBuffer recording_ = VK_NULL_HANDLE;  // internal command buffer being recorded
     VkCommandBuffer appCommandBuffer_ = VK_NULL_HANDLE;
     uint64_t barrierCount_ = 0;
+
+    // Non-blocking read-backs: a host-visible copy, finished once the frame it was recorded in (serial)
+    // has been recycled or a full wait (waitCount_) happened after it.
+    struct PendingReadback {
+        VkBuffer buffer = VK_NULL_HANDLE;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        void* mapped = nullptr;
+        uint64_t size = 0;
+        uint64_t serial = 0;
+        uint64_t waitCount = 0;
+    };
+    std::unordered_map<uint64_t, PendingReadback> readbacks_;
+    uint64_t nextReadbackTicket_ = 1;
+    int64_t completedSerial_ = -1;  // highest frame serial whose fence has signalled
+    uint64_t waitCount_ = 0;
 
     // Markers and timing.
     struct OpenMarker {

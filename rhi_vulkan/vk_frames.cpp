@@ -104,6 +104,7 @@ bool VulkanDevice::waitForGpu() {
     VkResult r = vkWaitForFences(device_, 1, &syncFence_, VK_TRUE, UINT64_MAX);
     vkResetFences(device_, 1, &syncFence_);
     if (r != VK_SUCCESS) return fail("vkWaitForFences failed (device lost?)");
+    waitCount_++;
     for (FrameSlot& f : frames_)
         if (f.pending) {
             vkWaitForFences(device_, 1, &f.fence, VK_TRUE, UINT64_MAX);
@@ -147,7 +148,10 @@ void VulkanDevice::recycle(FrameSlot& slot, bool harvestTimings) {
         slot.queriesUsed = 0;
     }
     releaseTransient(slot);
-    if (slot.pending) vkResetFences(device_, 1, &slot.fence);
+    if (slot.pending) {
+        completedSerial_ = std::max(completedSerial_, int64_t(slot.serial));
+        vkResetFences(device_, 1, &slot.fence);
+    }
     slot.pending = false;
 }
 

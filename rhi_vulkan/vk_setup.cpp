@@ -346,6 +346,11 @@ VulkanDevice::~VulkanDevice() {
     if (device_) {
         if (!appCommandBuffer_) waitForGpu();
         vkDeviceWaitIdle(device_);
+        for (auto& [ticket, rb] : readbacks_) {
+            vkDestroyBuffer(device_, rb.buffer, nullptr);
+            vkFreeMemory(device_, rb.memory, nullptr);
+        }
+        readbacks_.clear();
         for (auto& f : frames_) {
             for (auto& fn : f.garbage) fn();
             f.garbage.clear();

@@ -264,6 +264,53 @@ bool VulkanDevice::readBuffer(rhi::BufferHandle h, uint64_t offset, uint64_t siz
     return ok;
 }
 
+uint64_t VulkanDevice::requestReadback(rhi::BufferHandle h, uint64_t offset, uint64_t size) {
+    const std::string call = "requestReadback";
+    Buffer* b = findBuffer(h, call, "buffer");
+    if (!b) return 0;
+    const std::string where = call + " " + bufferName(*b);
+    if (!size) return fail(where + ": size is 0"), 0;
+    if (offset > b->desc.size || size > b->desc.size - offset)
+        return fail(where + ": [" + std::to_string(offset) + ", +" + std::to_string(size) + ") is outside the buffer (" +
+                    std::to_string(b->desc.size) + " bytes)"),
+               0;
+    PendingReadback rb;
+    if (!allocateBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                        VK_MEMORY_PROPERTY_HOST_CACHED_BIT, &rb.buffer, &rb.memory, &rb.mapped))
+        return fail(where + ": cannot allocate " + std::to_string(size) + " bytes of read-back memory"), 0;
+    CallPlan plan;
+    addBufferUse(plan, *b, transferRequest(false));
+    VkCommandBuffer c = cmd();
+    trackTransfer(c, plan);
+    VkBufferCopy region{offset, 0, size};
+    vkCmdCopyBuffer(c, b->buffer, rb.buffer, 1, &region);
+    BarrierBatch host;
+    host.memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                VK_ACCESS_2_HOST_READ_BIT);
+    barrierCount_ += host.flush(c);
+    releaseWrapped(c, plan);
+    rb.size = size;
+    rb.serial = frameSerial_;
+    rb.waitCount = waitCount_;
+    const uint64_t ticket = nextReadbackTicket_++;
+    readbacks_[ticket] = rb;
+    return ticket;
+}
+
+rhi::ReadbackStatus VulkanDevice::pollReadback(uint64_t ticket, void* out) {
+    auto it = readbacks_.find(ticket);
+    if (it == readbacks_.end()) return rhi::ReadbackStatus::Failed;  // the status is the message
+    for (FrameSlot& f : frames_)
+        if (f.pending && vkGetFenceStatus(device_, f.fence) == VK_SUCCESS) recycle(f, true);
+    PendingReadback& rb = it->second;
+    if (int64_t(rb.serial) > completedSerial_ && rb.waitCount == waitCount_) return rhi::ReadbackStatus::Pending;
+    if (out) memcpy(out, rb.mapped, rb.size);
+    vkDestroyBuffer(device_, rb.buffer, nullptr);
+    vkFreeMemory(device_, rb.memory, nullptr);
+    readbacks_.erase(it);
+    return rhi::ReadbackStatus::Ready;
+}
+
 bool VulkanDevice::readTexture(rhi::TextureHandle h, rhi::TextureSubresource sub, void* out) {
     const std::string call = "readTexture";
     Texture* t = findTexture(h, call, "texture");

@@ -420,6 +420,9 @@ enum class Severity : uint8_t { Info, Warning, Error };
 // "dispatch 'blur': storageImages[0] (slot 2): texture 'hdr' format R11G11B10_FLOAT is not storage-capable".
 using ErrorCallback = std::function<void(Severity, const std::string& message)>;
 
+// State of a non-blocking read-back (IDevice::requestReadback / pollReadback).
+enum class ReadbackStatus : uint8_t { Pending, Ready, Failed };
+
 struct MarkerTiming {
     std::string label;  // nested markers are joined with '/'
     double milliseconds = 0.0;
@@ -477,6 +480,14 @@ public:
     // Blocking read-backs for tests and tools: wait for all prior work, copy into `out`.
     virtual bool readBuffer(BufferHandle buffer, uint64_t offset, uint64_t size, void* out) = 0;
     virtual bool readTexture(TextureHandle texture, TextureSubresource sub, void* out) = 0;
+    // Non-blocking read-back, for statistics and GPU feedback in a normal frame: records a copy of the
+    // range now, ordered with the calls around it, and returns a ticket (0 on failure). pollReadback
+    // never waits: Pending until the GPU has finished the copy, then Ready once (the bytes are copied to
+    // `out`, which must hold the requested size, and the ticket is forgotten); Failed for an unknown
+    // ticket (no message). A read-back finishes at the latest when endFrame() recycles its frame, or
+    // on waitIdle().
+    virtual uint64_t requestReadback(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
+    virtual ReadbackStatus pollReadback(uint64_t ticket, void* out) = 0;
 
     // Work.
     virtual bool dispatch(const DispatchState& state, uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) = 0;

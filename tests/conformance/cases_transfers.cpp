@@ -25,6 +25,39 @@ BL_CONFORMANCE_CASE(transfer_buffer_write_copy_clear, "writeBuffer at offsets, c
     ctx.output("b", bytesOf(v));
 }
 
+BL_CONFORMANCE_CASE(readback_without_waiting, "requestReadback/pollReadback: sees the writes before it, not after; Ready within the frames in flight; a ticket is taken once") {
+    const uint32_t n = 256;
+    rhi::BufferHandle out = ctx.buffer(n * 4, kStorageUsage, nullptr, "values");
+    struct { uint32_t count, scale, offset; } p{n, 5, 1};
+    rhi::DispatchState s;
+    s.shader = ctx.shader("rhi_tests/fill_buffer.comp");
+    s.label = "fill";
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.check(ctx.device.dispatch(s, groupsFor(n, 64), 1, 1), "dispatch");
+    const uint64_t ticket = ctx.device.requestReadback(out, 16, (n - 4) * 4);
+    ctx.check(ticket != 0, "requestReadback returns a ticket");
+    const uint32_t later[4] = {9, 9, 9, 9};
+    ctx.device.writeBuffer(out, 16, later, sizeof(later));  // after the request: must not be seen
+    std::vector<uint32_t> v(n - 4, 0);
+    rhi::ReadbackStatus status = rhi::ReadbackStatus::Pending;
+    // The contract: finished at the latest when endFrame() recycles the frame (a few frames later).
+    for (int frame = 0; frame < 8 && status == rhi::ReadbackStatus::Pending; ++frame) {
+        ctx.device.endFrame();
+        status = ctx.device.pollReadback(ticket, v.data());
+    }
+    ctx.check(status == rhi::ReadbackStatus::Ready, "Ready within 8 frames");
+    for (uint32_t i = 0; i < n - 4; ++i)
+        if (!ctx.check(v[i] == (i + 4) * 5 + 1, "value " + std::to_string(i + 4))) break;
+    ctx.check(ctx.device.pollReadback(ticket, v.data()) == rhi::ReadbackStatus::Failed, "a taken ticket fails");
+    const uint64_t second = ctx.device.requestReadback(out, 0, 16);
+    ctx.device.waitIdle();
+    uint32_t head[4] = {};
+    ctx.check(ctx.device.pollReadback(second, head) == rhi::ReadbackStatus::Ready, "Ready after waitIdle");
+    ctx.check(head[0] == 1 && head[3] == 16 && head[2] == 11, "head values");
+    ctx.output("values", bytesOf(v));
+}
+
 BL_CONFORMANCE_CASE(transfer_texture_copy_clear, "copyTexture between mips/layers, clearTexture float per mip, writeTexture of one array layer") {
     rhi::TextureDesc d = texture2D(Format::RGBA16_FLOAT, 8, 8, rhi::TextureUsage::Sampled, "src", 2);
     d.dimension = rhi::TextureDimension::Texture2DArray;
