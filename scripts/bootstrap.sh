@@ -10,7 +10,7 @@ packages=(
   libosmesa6-dev libegl-dev libgl-dev libegl-mesa0
   libglfw3-dev libglm-dev
   libopenimageio-dev
-  catch2 nlohmann-json3-dev
+  catch2 nlohmann-json3-dev libassimp-dev assimp-testmodels
 )
 
 missing=()

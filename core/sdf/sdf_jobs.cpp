@@ -1,0 +1,172 @@
+// CPU planning of an update. Cascades follow the centre in whole voxels; the slabs that enter a window are
+// rebuilt (their toroidal slots held the voxels that left). Dirty world boxes (instances added, moved,
+// removed; dynamic instances every update) become per-cascade jobs, clipped to the window. Jobs are
+// taken in order while the budgets allow; the rest wait for the next update.
+#include <algorithm>
+#include <cmath>
+
+#include "sdf_scene_impl.h"
+
+namespace bricklight::sdf::detail {
+
+namespace {
+constexpr int kRes = int(kCascadeResolution);
+}
+
+bool SdfSceneImpl::clipToCascade(Job& job) const {
+    const glm::ivec3 lo = cascades_[job.cascade].origin, hi = lo + kRes;
+    job.min = glm::max(job.min, lo);
+    job.max = glm::min(job.max, hi);
+    return glm::all(glm::lessThan(job.min, job.max));
+}
+
+void SdfSceneImpl::scrollCascades(const glm::vec3& center) {
+    for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {
+        const float vs = voxelSize(c);
+        const glm::ivec3 next = glm::ivec3(glm::floor(center / vs)) - kRes / 2;
+        CascadeState& cs = cascades_[c];
+        if (!cs.placed) {
+            cs.origin = next;
+            cs.placed = true;
+            pending_.push_back({c, next, next + kRes});
+            continue;
+        }
+        const glm::ivec3 old = cs.origin;
+        if (next == old) continue;
+        cs.origin = next;
+        // The part of the new window outside the old one, as up to three disjoint slabs.
+        glm::ivec3 lo = next, hi = next + kRes;
+        for (int axis = 0; axis < 3; ++axis) {
+            const int oldLo = old[axis], oldHi = old[axis] + kRes;
+            Job slab{c, lo, hi};
+            if (next[axis] > old[axis]) {
+                slab.min[axis] = std::max(oldHi, lo[axis]);
+                if (slab.min[axis] < hi[axis]) pending_.push_back(slab);
+                hi[axis] = std::min(hi[axis], oldHi);
+            } else if (next[axis] < old[axis]) {
+                slab.max[axis] = std::min(oldLo, hi[axis]);
+                if (lo[axis] < slab.max[axis]) pending_.push_back(slab);
+                lo[axis] = std::max(lo[axis], oldLo);
+            }
+            if (lo[axis] >= hi[axis]) break;  // moved by a whole window: the first slab was all of it
+        }
+    }
+}
+
+// Triangles of the instances a job needs that are not chosen yet; marks and lists them.
+uint32_t SdfSceneImpl::trianglesFor(const Job& job, std::vector<char>& chosen, std::vector<uint32_t>& picked) const {
+    const float vs = voxelSize(job.cascade), b = band(job.cascade);
+    const glm::vec3 lo = glm::vec3(job.min) * vs - b, hi = glm::vec3(job.max) * vs + b;
+    uint32_t total = 0;
+    size_t index = 0;
+    for (const auto& [id, inst] : instances_) {
+        const size_t i = index++;
+        if (chosen[i] || inst.maxCascade < job.cascade) continue;
+        if (glm::any(glm::lessThan(inst.bounds.max, lo)) || glm::any(glm::greaterThan(inst.bounds.min, hi))) continue;
+        total += meshes_.at(inst.mesh.id).triangleCount;
+        picked.push_back(uint32_t(i));
+    }
+    return total;
+}
+
+Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
+    // Dynamic instances: their old and new footprints, every update.
+    for (auto& [id, inst] : instances_)
+        if (inst.dynamic) {
+            if (inst.built) markDirty(inst.builtBounds, inst.maxCascade);
+            markDirty(inst.bounds, inst.maxCascade);
+            inst.builtBounds = inst.bounds;
+            inst.built = true;
+        }
+    std::vector<Job> candidates = std::move(pending_);
+    pending_.clear();
+    for (size_t i = 0; i < dirtyBoxes_.size(); ++i)
+        for (uint32_t c = 0; c <= std::min(dirtyMaxCascade_[i], desc_.cascadeCount - 1); ++c) {
+            const float vs = voxelSize(c), b = band(c);
+            // Voxels within the band of the box (plus one voxel: the lattice reaches the far faces).
+            Job job{c, glm::ivec3(glm::floor((dirtyBoxes_[i].min - b) / vs)) - 1,
+                    glm::ivec3(glm::floor((dirtyBoxes_[i].max + b) / vs)) + 2};
+            candidates.push_back(job);
+        }
+    dirtyBoxes_.clear();
+    dirtyMaxCascade_.clear();
+
+    Plan plan;
+    std::vector<char> chosen(instances_.size(), 0);
+    std::vector<uint32_t> instanceOrder;
+    instanceOrder.reserve(instances_.size());
+    for (const auto& [id, inst] : instances_) instanceOrder.push_back(id);
+    const Budgets& budgets = desc_.budgets;
+    bool full = false;
+    for (size_t k = 0; k < candidates.size(); ++k) {
+        Job job = candidates[k];
+        if (!clipToCascade(job)) continue;  // scrolled out of its cascade
+        if (full) {
+            pending_.push_back(job);
+            continue;
+        }
+        std::vector<uint32_t> picked;
+        const uint32_t extra = trianglesFor(job, chosen, picked);
+        const bool fits = plan.jobs.size() < budgets.maxJobsPerUpdate &&
+                          plan.voxels + job.voxels() <= budgets.maxVoxelsPerUpdate &&
+                          uint64_t(plan.triangles) + extra <= budgets.maxTrianglesPerUpdate;
+        if (!fits) {
+            // A job alone over a budget is split in two along its longest side until it fits.
+            const glm::ivec3 size = job.max - job.min;
+            const bool alone = plan.jobs.empty();
+            if (alone && job.voxels() > 1) {
+                const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+                Job a = job, b = job;
+                a.max[axis] = b.min[axis] = job.min[axis] + size[axis] / 2;
+                candidates.insert(candidates.begin() + long(k) + 1, {a, b});
+                continue;
+            }
+            if (alone) {
+                if (!oversizeReported_)
+                    fail("one voxel of cascade " + std::to_string(job.cascade) + " needs " + std::to_string(extra) +
+                         " triangles, more than maxTrianglesPerUpdate (" + std::to_string(budgets.maxTrianglesPerUpdate) +
+                         "): it stays unbuilt (traced through the next cascade); raise the budget");
+                oversizeReported_ = true;
+                continue;
+            }
+            full = true;
+            pending_.push_back(job);
+            continue;
+        }
+        for (uint32_t i : picked) {
+            chosen[i] = 1;
+            plan.instances.push_back(instanceOrder[i]);
+        }
+        plan.triangles += extra;
+        plan.voxels += job.voxels();
+        plan.changedCascades |= 1u << job.cascade;
+        plan.jobs.push_back(job);
+    }
+    // Deferred jobs are invalidated now, so that no voxel shows what its toroidal slot held before (or
+    // geometry that moved away). Too many of them: one bounding box per cascade (invalidating and later
+    // rebuilding more than needed is safe).
+    if (pending_.size() > budgets.maxJobsPerUpdate) {
+        std::vector<Job> merged;
+        for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {
+            Job box{c, glm::ivec3(INT32_MAX), glm::ivec3(INT32_MIN)};
+            for (const Job& j : pending_)
+                if (j.cascade == c) {
+                    box.min = glm::min(box.min, j.min);
+                    box.max = glm::max(box.max, j.max);
+                }
+            if (glm::all(glm::lessThan(box.min, box.max))) merged.push_back(box);
+        }
+        pending_ = std::move(merged);
+    }
+    plan.invalidateOnly = pending_;
+    for (const Job& j : pending_) plan.changedCascades |= 1u << j.cascade;
+    report.jobs = uint32_t(plan.jobs.size());
+    report.voxels = uint32_t(plan.voxels);
+    report.instancesGathered = uint32_t(plan.instances.size());
+    report.trianglesGathered = plan.triangles;
+    report.jobsDeferred = uint32_t(pending_.size());
+    for (const Job& j : pending_) report.voxelsDeferred += uint32_t(j.voxels());
+    return plan;
+}
+
+}  // namespace bricklight::sdf::detail

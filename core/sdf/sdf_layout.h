@@ -1,0 +1,69 @@
+// C++ mirror of shaders/include/bricklight/sdf_layout.glsl and shaders/sdf/build_common.glsl: the numbers
+// that the builder's records and the shaders must agree on.
+#pragma once
+
+#include <cstdint>
+
+#include "bricklight/sdf.h"
+
+namespace bricklight::sdf::layout {
+
+constexpr uint32_t kCascadeVoxels = kCascadeResolution * kCascadeResolution * kCascadeResolution;
+constexpr uint32_t kBrickTexels = kBrickResolution * kBrickResolution * kBrickResolution;
+
+constexpr uint32_t kEmpty = 0xFFFFFFFEu;
+constexpr uint32_t kUnbuilt = 0xFFFFFFFFu;
+constexpr uint32_t kFirstState = 0xFFFFFFF0u;
+constexpr uint32_t kAabbNone = 0xFFFFFFFFu;
+
+constexpr uint32_t kTreeStride = 4616;  // uints per cascade
+constexpr uint32_t kTreeMid = 4096;
+constexpr uint32_t kTreeRoot = 4608;
+
+// Counters (uint indices).
+enum Counter : uint32_t {
+    FreeCount = 0,
+    AllocCursor,
+    RefCursor,
+    TouchedCount,
+    SortedCursor,
+    BricksAllocated,
+    BricksFreed,
+    TrianglesRejected,
+    VoxelsDeferred,
+    VoxelsBuilt,
+    TrianglesProcessed,
+    RefsStored,
+    FreeAtAllocation,
+    CounterCount = 16
+};
+
+// Indirect argument offsets (bytes) in the args buffer.
+constexpr uint64_t kArgsPerTouched64 = 0;
+constexpr uint64_t kArgsPerTouchedBrick = 12;
+constexpr uint64_t kArgsPerReference64 = 24;
+constexpr uint64_t kArgsBytes = 48;
+
+constexpr uint32_t kWideGroups = 32768;  // dispatches wider than this use a second dimension
+
+struct GpuCascade {
+    int32_t origin[4];    // xyz origin voxel, w: exists
+    float voxelSize[4];   // size, 1/size, hit epsilon, band (world units)
+};
+struct GpuCascadeTable {
+    uint32_t header[4];   // cascade count, atlas bricks per axis, brick capacity, 0
+    GpuCascade cascades[kMaxCascades];
+};
+static_assert(sizeof(GpuCascadeTable) == 16 + 32 * kMaxCascades);
+
+// Job table head: per cascade min (w: has jobs), max; then per job min (w: cascade), size (w: first voxel).
+struct GpuInt4 {
+    int32_t v[4];
+};
+constexpr uint32_t kJobTableHeadInts = 2 * kMaxCascades;
+
+// Hit threshold of the tracer, in brixel intervals: trilinear interpolation of an unsigned distance can
+// stay up to half an interval above zero at a surface, so the threshold must exceed 0.5.
+constexpr float kHitEpsilonBrixels = 0.6f;
+
+}  // namespace bricklight::sdf::layout

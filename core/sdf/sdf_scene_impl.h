@@ -1,0 +1,160 @@
+// The SdfScene implementation, split by concept:
+//   sdf_scene.cpp      creation, resources, capability checks, memory, stats read-back, snapshot
+//   sdf_geometry.cpp   meshes and instances (validation, bounds, dirty regions)
+//   sdf_jobs.cpp       CPU planning of an update: scrolling slabs, dirty boxes -> jobs, budgets
+//   sdf_update.cpp     the build passes as records
+//   sdf_debug_view.cpp the debug view pass and trace bindings
+#pragma once
+
+#include <deque>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bricklight/sdf.h"
+#include "sdf_layout.h"
+
+namespace bricklight::sdf::detail {
+
+struct Mesh {
+    std::string name;
+    bool owned = false;  // buffers created by the scene (from CPU arrays)
+    rhi::BufferHandle vertexBuffer, indexBuffer;
+    uint64_t vertexOffset = 0, indexOffset = 0;
+    uint32_t vertexStride = 12;
+    PositionFormat positionFormat = PositionFormat::Float3;
+    uint32_t vertexCount = 0;
+    rhi::IndexFormat indexFormat = rhi::IndexFormat::U32;
+    uint32_t triangleCount = 0;
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // local
+    uint32_t users = 0;
+};
+
+struct WorldBox {
+    glm::vec3 min{0.0f}, max{0.0f};
+};
+
+struct Instance {
+    MeshHandle mesh;
+    glm::mat4 transform{1.0f};
+    bool dynamic = false;
+    uint32_t maxCascade = 0;
+    WorldBox bounds;       // of the current transform
+    WorldBox builtBounds;  // what the field holds of it (dynamic: last update)
+    bool built = false;
+};
+
+// A rebuild region: world voxel coordinates of one cascade, [min, max).
+struct Job {
+    uint32_t cascade = 0;
+    glm::ivec3 min{0}, max{0};
+    uint64_t voxels() const {
+        glm::ivec3 s = max - min;
+        return uint64_t(s.x) * uint64_t(s.y) * uint64_t(s.z);
+    }
+};
+
+// What update() decided to do, before recording.
+struct Plan {
+    std::vector<Job> jobs;            // built by this update
+    std::vector<Job> invalidateOnly;  // deferred: their voxels become UNBUILT now (no stale bricks)
+    std::vector<uint32_t> instances;  // ids to gather
+    uint32_t triangles = 0;
+    uint64_t voxels = 0;
+    uint32_t changedCascades = 0;  // scrolled or with jobs: their trees are rebuilt
+};
+
+struct InFlightStats {
+    uint64_t update = 0;
+    uint64_t ticket = 0;
+    std::vector<Job> jobs;  // re-queued if the GPU reports deferred voxels
+};
+
+class SdfSceneImpl final : public SdfScene {
+public:
+    SdfSceneImpl(rhi::IDevice& device, const SceneDesc& desc) : device_(device), desc_(desc) {}
+    ~SdfSceneImpl() override;
+    bool init(std::string* error);
+
+    MeshHandle createMesh(const MeshArrays& mesh) override;
+    MeshHandle createMesh(const MeshBuffers& mesh) override;
+    bool destroyMesh(MeshHandle mesh) override;
+    InstanceHandle addInstance(const InstanceDesc& instance) override;
+    bool setTransform(InstanceHandle instance, const glm::mat4& transform) override;
+    bool removeInstance(InstanceHandle instance) override;
+
+    UpdateReport update(const glm::vec3& center) override;
+    void invalidateAll() override;
+
+    void traceBindings(rhi::Bindings& bindings, TraceSlots slots) const override;
+    bool debugView(const DebugViewDesc& desc) override;
+
+    Stats latestStats() const override { return stats_; }
+    MemoryUse memoryUse() const override;
+    const SceneDesc& desc() const override { return desc_; }
+    glm::ivec3 cascadeOrigin(uint32_t cascade) const override;
+    float cascadeVoxelSize(uint32_t cascade) const override;
+    FieldSnapshot readField() override;
+    const std::string& lastError() const override { return lastError_; }
+
+private:
+    bool fail(const std::string& message);  // reports, returns false
+    float voxelSize(uint32_t cascade) const;
+    float band(uint32_t cascade) const;
+    uint32_t brickCapacity() const;
+    rhi::BufferHandle makeBuffer(const char* name, uint64_t size, uint32_t usage, const void* data = nullptr);
+
+    // sdf_geometry.cpp
+    bool checkTransform(const glm::mat4& m, const std::string& what);
+    WorldBox worldBounds(const Mesh& mesh, const glm::mat4& transform) const;
+    void markDirty(const WorldBox& box, uint32_t maxCascade);
+
+    // sdf_jobs.cpp
+    void scrollCascades(const glm::vec3& center);
+    Plan planUpdate(UpdateReport& report);
+    bool clipToCascade(Job& job) const;
+    uint32_t trianglesFor(const Job& job, std::vector<char>& chosen, std::vector<uint32_t>& picked) const;
+
+    // sdf_update.cpp
+    void writeCascadeTable();
+    void recordBuild(const Plan& plan);
+    void recordTrees(uint32_t cascadeMask);
+    void pollStats();
+
+    rhi::IDevice& device_;
+    SceneDesc desc_;
+    std::string lastError_;
+
+    struct Shaders {
+        rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, resolve, treeBottom, treeTop, debug;
+    } shaders_;
+
+    // Persistent resources.
+    rhi::TextureHandle atlas_;
+    rhi::SamplerHandle atlasSampler_;
+    rhi::BufferHandle cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_;
+    rhi::BufferHandle voxelRefs_;
+    // Per-update scratch, sized by the budgets.
+    rhi::BufferHandle triangles_, references_, sortedReferences_, touched_, jobTable_, overlays_;
+    uint32_t touchedCapacity_ = 0;
+
+    std::map<uint32_t, Mesh> meshes_;
+    std::map<uint32_t, Instance> instances_;
+    uint32_t nextMesh_ = 1, nextInstance_ = 1;
+
+    struct CascadeState {
+        glm::ivec3 origin{0};
+        bool placed = false;
+    };
+    std::vector<CascadeState> cascades_;
+    std::vector<WorldBox> dirtyBoxes_;
+    std::vector<uint32_t> dirtyMaxCascade_;
+    std::vector<Job> pending_;  // jobs carried over (budgets) or re-queued (GPU overflow)
+
+    uint64_t updateIndex_ = 0;
+    std::deque<InFlightStats> inFlight_;
+    Stats stats_;
+    bool oversizeReported_ = false;
+};
+
+}  // namespace bricklight::sdf::detail

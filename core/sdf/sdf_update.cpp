@@ -1,0 +1,310 @@
+// One update as records: cascade table, job table, then the passes
+//   invalidate -> gather (per instance) -> count references -> prepare -> allocate -> prepare ->
+//   scatter -> emit distances -> resolve empty -> tree bottom -> tree top
+// with GPU-sized (indirect) dispatches after the counting pass, and a non-blocking read-back of the
+// counters whose results arrive a few updates later (stats, and re-queuing work the GPU had to defer).
+#include <cstring>
+
+#include "sdf_scene_impl.h"
+
+namespace bricklight::sdf::detail {
+
+namespace {
+
+using rhi::Access;
+
+// Groups of 64 threads for n items: x up to kWideGroups, then y (shaders fold y back in).
+void wideGroups(uint64_t items, uint32_t* x, uint32_t* y) {
+    const uint64_t groups = (items + 63) / 64;
+    *x = uint32_t(std::min<uint64_t>(groups, layout::kWideGroups));
+    *y = uint32_t((groups + layout::kWideGroups - 1) / layout::kWideGroups);
+}
+
+struct Marker {
+    rhi::IDevice& device;
+    Marker(rhi::IDevice& d, const char* label) : device(d) { device.beginMarker(label); }
+    ~Marker() { device.endMarker(); }
+};
+
+}  // namespace
+
+void SdfSceneImpl::writeCascadeTable() {
+    layout::GpuCascadeTable table{};
+    table.header[0] = desc_.cascadeCount;
+    table.header[1] = desc_.atlasBricksPerAxis;
+    table.header[2] = brickCapacity();
+    for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {
+        layout::GpuCascade& g = table.cascades[c];
+        const glm::ivec3 o = cascades_[c].origin;
+        g.origin[0] = o.x;
+        g.origin[1] = o.y;
+        g.origin[2] = o.z;
+        g.origin[3] = cascades_[c].placed ? 1 : 0;
+        const float vs = voxelSize(c);
+        g.voxelSize[0] = vs;
+        g.voxelSize[1] = 1.0f / vs;
+        g.voxelSize[2] = layout::kHitEpsilonBrixels / 7.0f * vs;
+        g.voxelSize[3] = band(c);
+    }
+    device_.writeBuffer(cascadeTable_, 0, &table, sizeof(table));
+}
+
+UpdateReport SdfSceneImpl::update(const glm::vec3& center) {
+    UpdateReport report;
+    report.update = ++updateIndex_;
+    pollStats();
+    if (!std::isfinite(center.x) || !std::isfinite(center.y) || !std::isfinite(center.z)) {
+        fail("update: the centre is not finite; nothing done");
+        return report;
+    }
+    std::vector<glm::ivec3> before;
+    for (const CascadeState& c : cascades_) before.push_back(c.origin);
+    scrollCascades(center);
+    Plan plan = planUpdate(report);
+    for (uint32_t c = 0; c < desc_.cascadeCount; ++c)
+        if (cascades_[c].origin != before[c]) plan.changedCascades |= 1u << c;
+    report.cascadesChanged = plan.changedCascades;
+    writeCascadeTable();
+    if (!plan.jobs.empty() || !plan.invalidateOnly.empty()) recordBuild(plan);
+    if (plan.changedCascades) recordTrees(plan.changedCascades);
+    return report;
+}
+
+void SdfSceneImpl::invalidateAll() {
+    for (uint32_t c = 0; c < desc_.cascadeCount; ++c)
+        if (cascades_[c].placed) pending_.push_back({c, cascades_[c].origin, cascades_[c].origin + int(kCascadeResolution)});
+}
+
+void SdfSceneImpl::recordBuild(const Plan& plan) {
+    Marker all(device_, "sdf update");
+    // Job table: per-cascade bounds of the build jobs, then build jobs, then invalidate-only jobs.
+    std::vector<layout::GpuInt4> table(layout::kJobTableHeadInts);
+    for (uint32_t c = 0; c < kMaxCascades; ++c) {
+        table[2 * c] = {{INT32_MAX, INT32_MAX, INT32_MAX, 0}};
+        table[2 * c + 1] = {{INT32_MIN, INT32_MIN, INT32_MIN, 0}};
+    }
+    uint64_t voxels = 0;
+    auto addJob = [&](const Job& j, bool build) {
+        table.push_back({{j.min.x, j.min.y, j.min.z, int32_t(j.cascade)}});
+        const glm::ivec3 s = j.max - j.min;
+        table.push_back({{s.x, s.y, s.z, int32_t(voxels)}});
+        voxels += j.voxels();
+        if (!build) return;
+        auto& lo = table[2 * j.cascade].v;
+        auto& hi = table[2 * j.cascade + 1].v;
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], j.min[a]);
+            hi[a] = std::max(hi[a], j.max[a]);
+        }
+        lo[3] = 1;
+    };
+    for (const Job& j : plan.jobs) addJob(j, true);
+    const uint64_t buildVoxels = voxels;
+    for (const Job& j : plan.invalidateOnly) addJob(j, false);
+    const uint32_t jobCount = uint32_t(plan.jobs.size() + plan.invalidateOnly.size());
+    device_.writeBuffer(jobTable_, 0, table.data(), table.size() * sizeof(layout::GpuInt4));
+    device_.clearBuffer(counters_, {4, (layout::CounterCount - 1) * 4}, 0);  // all but the free count
+
+    uint32_t gx, gy;
+    {
+        Marker m(device_, "invalidate");
+        struct { uint32_t jobCount, voxelCount, buildVoxelCount; } p{jobCount, uint32_t(voxels), uint32_t(buildVoxels)};
+        rhi::DispatchState s;
+        s.shader = shaders_.invalidate;
+        s.label = "sdf invalidate jobs";
+        s.bindings.constants.push(rhi::constants(0, p));
+        s.bindings.readBuffers.push({0, jobTable_, {}});
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
+        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        wideGroups(voxels, &gx, &gy);
+        device_.dispatch(s, gx, gy, 1);
+    }
+    if (plan.jobs.empty()) return;
+
+    {
+        Marker m(device_, "gather");
+        uint32_t first = 0;
+        for (uint32_t id : plan.instances) {
+            const Instance& inst = instances_.at(id);
+            const Mesh& mesh = meshes_.at(inst.mesh.id);
+            struct {
+                float rows[3][4];
+                float boundsMin[4], boundsMax[4];
+                uint32_t vertex[4], index[4], misc[4];
+            } p{};
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) p.rows[r][c] = inst.transform[c][r];
+            // Tolerance for the bounds check: positions read back as half floats round.
+            const float extent = glm::length(mesh.boundsMax - mesh.boundsMin);
+            const float tolerance = mesh.positionFormat == PositionFormat::Half4 ? 1e-3f * extent + 1e-3f : 1e-6f * extent;
+            for (int a = 0; a < 3; ++a) {
+                p.boundsMin[a] = mesh.boundsMin[a];
+                p.boundsMax[a] = mesh.boundsMax[a];
+            }
+            p.boundsMin[3] = tolerance;
+            p.vertex[0] = uint32_t(mesh.vertexOffset);
+            p.vertex[1] = mesh.vertexStride;
+            p.vertex[2] = mesh.positionFormat == PositionFormat::Float3 ? 0 : 1;
+            p.vertex[3] = mesh.vertexCount;
+            p.index[0] = uint32_t(mesh.indexOffset);
+            p.index[1] = mesh.indexFormat == rhi::IndexFormat::U16 ? 0 : 1;
+            p.index[2] = mesh.triangleCount;
+            p.index[3] = first;
+            p.misc[0] = inst.maxCascade;
+            rhi::DispatchState s;
+            s.shader = shaders_.gather;
+            s.label = "sdf gather triangles";
+            s.flags = rhi::DispatchFlags::NoBarrierWithPreviousWriter;  // disjoint ranges of the scratch
+            s.bindings.constants.push(rhi::constants(0, p));
+            s.bindings.readBuffers.push({0, mesh.vertexBuffer, {}});
+            s.bindings.readBuffers.push({1, mesh.indexBuffer, {}});
+            s.bindings.storageBuffers.push({0, triangles_, {}, Access::Write});
+            s.bindings.storageBuffers.push({1, counters_, {}, Access::Atomic});
+            wideGroups(mesh.triangleCount, &gx, &gy);
+            device_.dispatch(s, gx, gy, 1);
+            first += mesh.triangleCount;
+        }
+    }
+    {
+        Marker m(device_, "count references");
+        struct { uint32_t triangleCount, cascadeCount, maxReferences, touchedCapacity; } p{
+            plan.triangles, desc_.cascadeCount, desc_.budgets.maxReferencesPerUpdate, touchedCapacity_};
+        rhi::DispatchState s;
+        s.shader = shaders_.count;
+        s.label = "sdf count references";
+        s.bindings.constants.push(rhi::constants(0, p));
+        s.bindings.readBuffers.push({0, triangles_, {}});
+        s.bindings.readBuffers.push({1, cascadeTable_, {}});
+        s.bindings.readBuffers.push({2, jobTable_, {}});
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({2, references_, {}, Access::Write});
+        s.bindings.storageBuffers.push({3, touched_, {}, Access::Write});
+        s.bindings.storageBuffers.push({4, counters_, {}, Access::Atomic});
+        wideGroups(plan.triangles, &gx, &gy);
+        if (plan.triangles) device_.dispatch(s, gx, gy, 1);
+    }
+    auto prepare = [&](uint32_t stage) {
+        struct { uint32_t stage, maxReferences; } p{stage, desc_.budgets.maxReferencesPerUpdate};
+        rhi::DispatchState s;
+        s.shader = shaders_.prepare;
+        s.label = stage == 0 ? "sdf prepare allocation" : "sdf commit allocation";
+        s.bindings.constants.push(rhi::constants(0, p));
+        s.bindings.storageBuffers.push({0, counters_, {}, Access::ReadWrite});
+        s.bindings.storageBuffers.push({1, args_, {}, Access::Write});
+        device_.dispatch(s, 1, 1, 1);
+    };
+    {
+        Marker m(device_, "allocate bricks");
+        prepare(0);
+        rhi::DispatchState s;
+        s.shader = shaders_.allocate;
+        s.label = "sdf allocate bricks";
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::ReadWrite});
+        s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Read});
+        s.bindings.storageBuffers.push({2, touched_, {}, Access::ReadWrite});
+        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({4, freeStack_, {}, Access::Read});
+        s.bindings.storageBuffers.push({5, brickOwners_, {}, Access::Write});
+        device_.dispatchIndirect(s, args_, layout::kArgsPerTouched64);
+        prepare(1);
+    }
+    {
+        Marker m(device_, "scatter references");
+        rhi::DispatchState s;
+        s.shader = shaders_.scatter;
+        s.label = "sdf scatter references";
+        s.bindings.readBuffers.push({0, references_, {}});
+        s.bindings.readBuffers.push({1, voxelRefs_, {}});
+        s.bindings.readBuffers.push({2, touched_, {}});
+        s.bindings.readBuffers.push({3, counters_, {}});
+        s.bindings.storageBuffers.push({0, sortedReferences_, {}, Access::Write});
+        device_.dispatchIndirect(s, args_, layout::kArgsPerReference64);
+    }
+    {
+        Marker m(device_, "emit distances");
+        rhi::DispatchState s;
+        s.shader = shaders_.emit;
+        s.label = "sdf emit distances";
+        s.bindings.readBuffers.push({0, triangles_, {}});
+        s.bindings.readBuffers.push({1, sortedReferences_, {}});
+        s.bindings.readBuffers.push({2, touched_, {}});
+        s.bindings.readBuffers.push({3, cascadeTable_, {}});
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
+        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::Write});
+        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::Write});
+        device_.dispatchIndirect(s, args_, layout::kArgsPerTouchedBrick);
+    }
+    {
+        Marker m(device_, "resolve empty");
+        struct { uint32_t jobCount, voxelCount; } p{uint32_t(plan.jobs.size()), uint32_t(buildVoxels)};
+        rhi::DispatchState s;
+        s.shader = shaders_.resolve;
+        s.label = "sdf resolve empty voxels";
+        s.bindings.constants.push(rhi::constants(0, p));
+        s.bindings.readBuffers.push({0, jobTable_, {}});
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({1, counters_, {}, Access::Atomic});
+        wideGroups(buildVoxels, &gx, &gy);
+        device_.dispatch(s, gx, gy, 1);
+    }
+    InFlightStats f;
+    f.update = updateIndex_;
+    f.ticket = device_.requestReadback(counters_, 0, layout::CounterCount * 4);
+    f.jobs = plan.jobs;
+    if (f.ticket) inFlight_.push_back(std::move(f));
+}
+
+void SdfSceneImpl::recordTrees(uint32_t mask) {
+    Marker all(device_, "sdf trees");
+    struct { uint32_t cascadeMask; } p{mask};
+    rhi::DispatchState s;
+    s.shader = shaders_.treeBottom;
+    s.label = "sdf tree bottom";
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.readBuffers.push({0, cascadeTable_, {}});
+    s.bindings.readBuffers.push({1, brickMaps_, {}});
+    s.bindings.readBuffers.push({2, brickAabbs_, {}});
+    s.bindings.storageBuffers.push({0, trees_, {}, Access::Write});
+    device_.dispatch(s, 4096 / 64, desc_.cascadeCount, 1);
+    rhi::DispatchState top;
+    top.shader = shaders_.treeTop;
+    top.label = "sdf tree top";
+    top.bindings.constants.push(rhi::constants(0, p));
+    top.bindings.storageBuffers.push({0, trees_, {}, Access::ReadWrite});
+    device_.dispatch(top, 1, desc_.cascadeCount, 1);
+}
+
+void SdfSceneImpl::pollStats() {
+    while (!inFlight_.empty()) {
+        uint32_t c[layout::CounterCount] = {};
+        const rhi::ReadbackStatus status = device_.pollReadback(inFlight_.front().ticket, c);
+        if (status == rhi::ReadbackStatus::Pending) return;
+        InFlightStats f = std::move(inFlight_.front());
+        inFlight_.pop_front();
+        if (status != rhi::ReadbackStatus::Ready) continue;
+        Stats s;
+        s.update = f.update;
+        s.bricksCapacity = brickCapacity();
+        s.bricksFree = c[layout::FreeCount];
+        s.bricksUsed = s.bricksCapacity - std::min(s.bricksCapacity, s.bricksFree);
+        s.bricksAllocated = c[layout::BricksAllocated];
+        s.bricksFreed = c[layout::BricksFreed];
+        s.trianglesProcessed = c[layout::TrianglesProcessed];
+        s.trianglesRejected = c[layout::TrianglesRejected];
+        s.referencesProcessed = c[layout::RefsStored];
+        s.voxelsBuilt = c[layout::VoxelsBuilt];
+        s.voxelsDeferredGpu = c[layout::VoxelsDeferred];
+        stats_ = s;
+        // The GPU left voxels of these jobs unbuilt (references or bricks ran out): build them again.
+        // While the pool is exhausted this retries every update; the stats say why.
+        if (s.voxelsDeferredGpu)
+            for (const Job& j : f.jobs) pending_.push_back(j);
+    }
+}
+
+}  // namespace bricklight::sdf::detail

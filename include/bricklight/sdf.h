@@ -1,0 +1,219 @@
+// Bricklight sparse brick distance fields: cascades of 64³ voxels around a point the application moves
+// (usually the camera); every voxel within reach of a triangle holds a brick of 8³ distance samples
+// ("brixels") in one shared R8 atlas. Built on the GPU from triangle meshes through rhi::IDevice records;
+// traced from shaders with the public include "bricklight/trace.glsl". See docs/sdf.md.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bricklight/rhi.h"
+
+namespace bricklight::sdf {
+
+constexpr uint32_t kMaxCascades = 16;
+constexpr uint32_t kCascadeResolution = 64;  // voxels per axis of every cascade
+constexpr uint32_t kBrickResolution = 8;     // brixels per axis; the 8 samples span the voxel (7 intervals)
+// Distances are exact (point-triangle) up to this many brixel intervals (voxel/7) from a surface and
+// saturate there. The stored value is min(distance, band): a conservative field, exact near surfaces.
+constexpr float kDistanceBandBrixels = 4.0f;
+
+// Handles are never reused within one SdfScene.
+struct MeshHandle {
+    uint32_t id = 0;
+    explicit operator bool() const { return id != 0; }
+};
+struct InstanceHandle {
+    uint32_t id = 0;
+    explicit operator bool() const { return id != 0; }
+};
+
+struct Budgets {
+    // Triangles transformed into the world per update (the triangle scratch holds this many).
+    uint32_t maxTrianglesPerUpdate = 2u << 20;
+    // Triangle-voxel references per update (16 bytes of scratch each).
+    uint32_t maxReferencesPerUpdate = 8u << 20;
+    // Voxels (re)built per update; bounds the bricks allocated per update. The default builds all of 16
+    // cascades in one update.
+    uint32_t maxVoxelsPerUpdate = kMaxCascades * kCascadeResolution * kCascadeResolution * kCascadeResolution;
+    // Rebuild regions (jobs) per update.
+    uint32_t maxJobsPerUpdate = 4096;
+};
+
+struct SceneDesc {
+    uint32_t cascadeCount = 8;          // 1..16; cascade i has voxels of finestVoxelSize * 2^i
+    float finestVoxelSize = 0.0f;       // world units, > 0 (see suggestVoxelSize)
+    uint32_t atlasBricksPerAxis = 64;   // the atlas is (8n)³ R8_UNORM holding n³ bricks; 64 = 512³, 2^18 bricks
+    uint32_t maxInstances = 65536;
+    uint32_t maxBoundsOverlays = 256;   // boxes drawn by the debug view
+    Budgets budgets;
+    std::string debugName = "sdf";
+    // Receives the builder's own messages (bad meshes, instances, budgets); stderr when empty. GPU-side
+    // messages come through the device's callback.
+    rhi::ErrorCallback errorCallback;
+};
+
+// A finest voxel size that makes the coarsest of `cascadeCount` cascades cover a box of `extent`
+// (the largest side of the scene bounds), with 64 voxels per cascade side.
+float suggestVoxelSize(float extent, uint32_t cascadeCount);
+
+// Mesh from CPU arrays: copied into device buffers at creation.
+struct MeshArrays {
+    const float* positions = nullptr;  // xyz per vertex
+    uint32_t vertexCount = 0;
+    const uint32_t* indices = nullptr;  // 3 per triangle
+    uint32_t indexCount = 0;
+    std::string name;
+};
+
+enum class PositionFormat : uint8_t { Float3, Half4 };
+
+// Mesh in the application's own GPU buffers (skinned or procedurally animated geometry): read by the
+// GPU at every update that needs it, so the app may rewrite the positions between updates. Buffers need
+// BufferUsage::ShaderRead. Offsets and the stride must be multiples of 4 bytes (2 for 16-bit indices).
+// The local bounds are the app's promise: triangles outside them are dropped (and counted in stats).
+struct MeshBuffers {
+    rhi::BufferHandle vertexBuffer;
+    uint64_t vertexOffset = 0;
+    uint32_t vertexStride = 12;
+    PositionFormat positionFormat = PositionFormat::Float3;
+    uint32_t vertexCount = 0;
+    rhi::BufferHandle indexBuffer;
+    uint64_t indexOffset = 0;
+    rhi::IndexFormat indexFormat = rhi::IndexFormat::U32;
+    uint32_t triangleCount = 0;
+    glm::vec3 boundsMin{0.0f};
+    glm::vec3 boundsMax{0.0f};
+    std::string name;
+};
+
+struct InstanceDesc {
+    MeshHandle mesh;
+    glm::mat4 transform{1.0f};  // affine (last row 0,0,0,1)
+    // Static instances persist until moved or removed; dynamic ones are rebuilt at every update.
+    bool dynamic = false;
+    uint32_t maxCascade = kMaxCascades - 1;  // keeps small props out of coarse cascades
+};
+
+// GPU counters of one update, read back without stalling (a few updates late).
+struct Stats {
+    uint64_t update = 0;             // the update these counters belong to (0 = none yet)
+    uint32_t bricksCapacity = 0;
+    uint32_t bricksFree = 0;         // after that update
+    uint32_t bricksUsed = 0;
+    uint32_t bricksAllocated = 0;    // by that update
+    uint32_t bricksFreed = 0;
+    uint32_t trianglesProcessed = 0;
+    uint32_t trianglesRejected = 0;  // NaN/inf positions, indices out of range, outside the declared bounds
+    uint32_t referencesProcessed = 0;
+    uint32_t voxelsBuilt = 0;        // voxels that got a brick or were found empty
+    uint32_t voxelsDeferredGpu = 0;  // voxels left unbuilt because the references or the brick pool ran out
+};
+
+// Work done or deferred by the latest update(), known on the CPU at once.
+struct UpdateReport {
+    uint64_t update = 0;
+    uint32_t cascadesChanged = 0;  // bit mask
+    uint32_t jobs = 0;
+    uint32_t voxels = 0;           // voxels scheduled for (re)building
+    uint32_t instancesGathered = 0;
+    uint32_t trianglesGathered = 0;
+    uint32_t jobsDeferred = 0;     // over a budget: carried to the next update
+    uint32_t voxelsDeferred = 0;
+    uint32_t jobsRetried = 0;      // re-queued because an earlier update reported GPU overflow
+};
+
+struct MemoryUse {
+    struct Resource {
+        std::string name;
+        uint64_t bytes = 0;
+    };
+    std::vector<Resource> resources;
+    uint64_t totalBytes = 0;
+};
+
+enum class DebugMode : uint32_t { Distance, Normal, Iterations, BrickId, CascadeId, Uvw };
+
+struct DebugViewDesc {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};  // depth [0,1] (GLM_FORCE_DEPTH_ZERO_TO_ONE style), any handedness
+    rhi::TextureHandle output;   // 2D RGBA8_UNORM with Storage usage
+    DebugMode mode = DebugMode::Normal;
+    uint32_t startCascade = 0;
+    uint32_t endCascade = kMaxCascades - 1;
+    float tMin = 0.0f;
+    float tMax = 1e30f;
+    bool showCascadeBounds = false;
+    bool showInstanceBounds = false;
+};
+
+// Where traceBindings() puts the field's resources; the including shader uses the same numbers
+// (BL_SDF_ATLAS_SLOT and BL_SDF_READ_BUFFER_BASE in trace.glsl).
+struct TraceSlots {
+    uint8_t atlasTexture = 15;   // BL_TEXTURE slot
+    uint8_t readBufferBase = 4;  // four consecutive BL_READ_BUFFER slots
+};
+
+// CPU copy of the decoded field, for tests and tools (blocking read-back).
+struct FieldSnapshot {
+    static constexpr uint32_t kEmpty = 0xFFFFFFFEu;
+    static constexpr uint32_t kUnbuilt = 0xFFFFFFFFu;
+    struct Cascade {
+        glm::ivec3 origin{0};  // world voxel coordinates of logical voxel (0,0,0)
+        float voxelSize = 0.0f;
+        std::vector<uint32_t> brickMap;  // physical (toroidal) order
+    };
+    std::vector<Cascade> cascades;
+    uint32_t atlasBricksPerAxis = 0;
+    std::vector<uint8_t> atlas;           // (8n)³ bytes
+    std::vector<uint32_t> brickAabbs;
+
+    // Brick id, kEmpty or kUnbuilt of a logical voxel (0..63 per axis).
+    uint32_t voxelState(uint32_t cascade, glm::ivec3 logical) const;
+    // Stored sample (0..255, 255 = at or beyond the band) of brixel `b` (0..7 per axis) of a brick.
+    uint8_t brixel(uint32_t brick, glm::ivec3 b) const;
+    // Distance (world units) at a lattice sample: `logical` voxel, brixel b; band if the voxel is empty;
+    // negative if the voxel is unbuilt.
+    float sampleDistance(uint32_t cascade, glm::ivec3 logical, glm::ivec3 b) const;
+};
+
+class SdfScene {
+public:
+    // Null (and a message through the device's error callback and `error`) if the description is invalid
+    // or the device lacks what the builder needs.
+    static std::unique_ptr<SdfScene> create(rhi::IDevice& device, const SceneDesc& desc, std::string* error = nullptr);
+    virtual ~SdfScene() = default;
+
+    // Geometry. Errors name the object and the problem, and change nothing.
+    virtual MeshHandle createMesh(const MeshArrays& mesh) = 0;
+    virtual MeshHandle createMesh(const MeshBuffers& mesh) = 0;
+    virtual bool destroyMesh(MeshHandle mesh) = 0;  // fails while instances use it
+    virtual InstanceHandle addInstance(const InstanceDesc& instance) = 0;
+    virtual bool setTransform(InstanceHandle instance, const glm::mat4& transform) = 0;
+    virtual bool removeInstance(InstanceHandle instance) = 0;
+
+    // Moves the cascades' centre, rebuilds what changed, and records all work through the device. After it
+    // every cascade is current, except work over a budget (reported, and done by later updates).
+    virtual UpdateReport update(const glm::vec3& center) = 0;
+    // Drops all bricks and rebuilds everything at the next update.
+    virtual void invalidateAll() = 0;
+
+    // What a record that traces the field must bind (merged into the caller's bindings), and the
+    // constants a caller needs none of: everything is in the bound buffers.
+    virtual void traceBindings(rhi::Bindings& bindings, TraceSlots slots = {}) const = 0;
+    virtual bool debugView(const DebugViewDesc& desc) = 0;
+
+    virtual Stats latestStats() const = 0;
+    virtual MemoryUse memoryUse() const = 0;
+    virtual const SceneDesc& desc() const = 0;
+    virtual glm::ivec3 cascadeOrigin(uint32_t cascade) const = 0;  // world voxel coordinates
+    virtual float cascadeVoxelSize(uint32_t cascade) const = 0;
+    virtual FieldSnapshot readField() = 0;  // blocking; for tests and tools
+    virtual const std::string& lastError() const = 0;  // the latest message of this scene ("" if none)
+};
+
+}  // namespace bricklight::sdf

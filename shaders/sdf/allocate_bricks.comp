@@ -1,0 +1,36 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+#include "build_common.glsl"
+// One thread per touched voxel: takes a brick from the top of the free stack (the stack only shrinks in
+// this pass; prepare_args commits the count) and a range of the sorted reference list. A voxel that
+// lost its references to the budget, or finds the pool empty, stays UNBUILT (deferred).
+layout(local_size_x = 64) in;
+BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
+BL_STORAGE_BUFFER(1) VoxelRefs { uint voxelRefs[]; };
+BL_STORAGE_BUFFER(2) Touched { uvec4 touched[]; };
+BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
+BL_STORAGE_BUFFER(4) FreeStack { uint freeStack[]; };
+BL_STORAGE_BUFFER(5) BrickOwners { uint brickOwners[]; };
+
+void main() {
+    uint t = gl_GlobalInvocationID.y * (BL_SDF_WIDE_GROUPS * 64u) + gl_GlobalInvocationID.x;
+    if (t >= counters[C_TOUCHED_COUNT]) return;
+    uvec4 entry = touched[t];
+    uint key = (entry.x >> 24) * BL_SDF_CASCADE_VOXELS + (entry.x & 0xFFFFFFu);
+    if (brickMaps[key] != BL_SDF_BUILDING) return;  // deferred while counting
+    uint available = counters[C_FREE_AT_ALLOCATION];
+    uint k = atomicAdd(counters[C_ALLOC_CURSOR], 1u);
+    if (k >= available) {
+        brickMaps[key] = BL_SDF_UNBUILT;
+        atomicAdd(counters[C_VOXELS_DEFERRED], 1u);
+        return;
+    }
+    uint brick = freeStack[available - 1u - k];
+    uint count = voxelRefs[2u * key];
+    uint first = atomicAdd(counters[C_SORTED_CURSOR], count);
+    touched[t] = uvec4(entry.x, count, first, brick);
+    brickMaps[key] = brick;
+    brickOwners[brick] = entry.x;
+    atomicAdd(counters[C_BRICKS_ALLOCATED], 1u);
+}
