@@ -69,6 +69,46 @@ uint32_t SdfSceneImpl::trianglesFor(const Job& job, std::vector<char>& chosen, s
     return total;
 }
 
+// Merges jobs of one cascade pairwise, the pair whose bounding box adds the least volume first, until at
+// most `cap` remain. Keeps the progress of split work (unlike one box per cascade).
+// Drops jobs that another job of the same cascade contains (a dynamic instance that did not move gives
+// the same box twice; retried work repeats boxes).
+static void dropContainedJobs(std::vector<Job>& jobs) {
+    for (size_t i = 0; i < jobs.size(); ++i)
+        for (size_t k = 0; k < jobs.size(); ++k)
+            if (i != k && jobs[i].cascade == jobs[k].cascade && glm::all(glm::lessThanEqual(jobs[k].min, jobs[i].min)) &&
+                glm::all(glm::lessThanEqual(jobs[i].max, jobs[k].max)) && (jobs[k].invalidated || !jobs[i].invalidated)) {
+                jobs.erase(jobs.begin() + long(i));
+                --i;
+                break;
+            }
+}
+
+static void mergeJobs(std::vector<Job>& jobs, size_t cap) {
+    if (jobs.size() <= cap) return;
+    dropContainedJobs(jobs);
+    while (jobs.size() > cap) {
+        size_t bi = 0, bj = 0;
+        int64_t best = INT64_MAX;
+        for (size_t i = 0; i < jobs.size(); ++i)
+            for (size_t k = i + 1; k < jobs.size(); ++k) {
+                if (jobs[i].cascade != jobs[k].cascade) continue;
+                Job u{jobs[i].cascade, glm::min(jobs[i].min, jobs[k].min), glm::max(jobs[i].max, jobs[k].max)};
+                const int64_t added = int64_t(u.voxels()) - int64_t(jobs[i].voxels()) - int64_t(jobs[k].voxels());
+                if (added < best) {
+                    best = added;
+                    bi = i;
+                    bj = k;
+                }
+            }
+        if (best == INT64_MAX) return;  // one job per cascade left
+        jobs[bi].min = glm::min(jobs[bi].min, jobs[bj].min);
+        jobs[bi].max = glm::max(jobs[bi].max, jobs[bj].max);
+        jobs[bi].invalidated = jobs[bi].invalidated && jobs[bj].invalidated;
+        jobs.erase(jobs.begin() + long(bj));
+    }
+}
+
 Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
     // Dynamic instances: their old and new footprints, every update.
     for (auto& [id, inst] : instances_)
@@ -90,6 +130,7 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
         }
     dirtyBoxes_.clear();
     dirtyMaxCascade_.clear();
+    if (candidates.size() <= 4096) dropContainedJobs(candidates);  // quadratic: skipped for floods
 
     Plan plan;
     std::vector<char> chosen(instances_.size(), 0);
@@ -108,7 +149,7 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
         std::vector<uint32_t> picked;
         const uint32_t extra = trianglesFor(job, chosen, picked);
         const bool fits = plan.jobs.size() < budgets.maxJobsPerUpdate &&
-                          plan.voxels + job.voxels() <= budgets.maxVoxelsPerUpdate &&
+                          plan.voxels + job.voxels() <= std::min<uint64_t>(budgets.maxVoxelsPerUpdate, adaptiveVoxelLimit_) &&
                           uint64_t(plan.triangles) + extra <= budgets.maxTrianglesPerUpdate;
         if (!fits) {
             // A job alone over a budget is split in two along its longest side until it fits.
@@ -142,24 +183,18 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
         plan.changedCascades |= 1u << job.cascade;
         plan.jobs.push_back(job);
     }
-    // Deferred jobs are invalidated now, so that no voxel shows what its toroidal slot held before (or
-    // geometry that moved away). Too many of them: one bounding box per cascade (invalidating and later
-    // rebuilding more than needed is safe).
-    if (pending_.size() > budgets.maxJobsPerUpdate) {
-        std::vector<Job> merged;
-        for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {
-            Job box{c, glm::ivec3(INT32_MAX), glm::ivec3(INT32_MIN)};
-            for (const Job& j : pending_)
-                if (j.cascade == c) {
-                    box.min = glm::min(box.min, j.min);
-                    box.max = glm::max(box.max, j.max);
-                }
-            if (glm::all(glm::lessThan(box.min, box.max))) merged.push_back(box);
-        }
-        pending_ = std::move(merged);
-    }
-    plan.invalidateOnly = pending_;
-    for (const Job& j : pending_) plan.changedCascades |= 1u << j.cascade;
+    // Jobs deferred for the first time are invalidated now, so that no voxel shows what its toroidal slot
+    // held before (or geometry that moved away); tracing falls to the next cascade there until they are
+    // built. Too many: neighbours are merged (invalidating and rebuilding more than needed is safe).
+    std::vector<Job> fresh, waiting;
+    for (const Job& j : pending_) (j.invalidated ? waiting : fresh).push_back(j);
+    mergeJobs(fresh, budgets.maxJobsPerUpdate);
+    for (Job& j : fresh) j.invalidated = true;
+    plan.invalidateOnly = fresh;
+    for (const Job& j : fresh) plan.changedCascades |= 1u << j.cascade;
+    pending_ = std::move(waiting);
+    pending_.insert(pending_.end(), fresh.begin(), fresh.end());
+    mergeJobs(pending_, 64 * size_t(budgets.maxJobsPerUpdate));
     report.jobs = uint32_t(plan.jobs.size());
     report.voxels = uint32_t(plan.voxels);
     report.instancesGathered = uint32_t(plan.instances.size());

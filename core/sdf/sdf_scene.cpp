@@ -190,6 +190,7 @@ bool SdfSceneImpl::init(std::string* error) {
     if (!atlas_ || !atlasSampler_) return bad("the device could not create the brick atlas (see the device's messages)");
 
     cascades_.resize(d.cascadeCount);
+    adaptiveVoxelLimit_ = b.maxVoxelsPerUpdate;
     stats_.bricksCapacity = stats_.bricksFree = capacity;
     writeCascadeTable();
     return true;

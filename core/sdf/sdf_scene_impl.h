@@ -48,6 +48,7 @@ struct Instance {
 struct Job {
     uint32_t cascade = 0;
     glm::ivec3 min{0}, max{0};
+    bool invalidated = false;  // its voxels were already made UNBUILT when it was first deferred
     uint64_t voxels() const {
         glm::ivec3 s = max - min;
         return uint64_t(s.x) * uint64_t(s.y) * uint64_t(s.z);
@@ -66,6 +67,7 @@ struct Plan {
 
 struct InFlightStats {
     uint64_t update = 0;
+    uint64_t voxels = 0;
     uint64_t ticket = 0;
     std::vector<Job> jobs;  // re-queued if the GPU reports deferred voxels
 };
@@ -155,6 +157,10 @@ private:
     std::deque<InFlightStats> inFlight_;
     Stats stats_;
     bool oversizeReported_ = false;
+    // Voxels per update actually planned: halved when the GPU reports that references or bricks ran out
+    // (so that retried work comes in smaller pieces and converges), doubled back after clean updates.
+    uint64_t adaptiveVoxelLimit_ = 0;
+    uint32_t retriedJobs_ = 0;
 };
 
 }  // namespace bricklight::sdf::detail

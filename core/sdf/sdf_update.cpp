@@ -64,6 +64,8 @@ UpdateReport SdfSceneImpl::update(const glm::vec3& center) {
     for (uint32_t c = 0; c < desc_.cascadeCount; ++c)
         if (cascades_[c].origin != before[c]) plan.changedCascades |= 1u << c;
     report.cascadesChanged = plan.changedCascades;
+    report.jobsRetried = retriedJobs_;
+    retriedJobs_ = 0;
     writeCascadeTable();
     if (!plan.jobs.empty() || !plan.invalidateOnly.empty()) recordBuild(plan);
     if (plan.changedCascades) recordTrees(plan.changedCascades);
@@ -256,6 +258,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
     f.update = updateIndex_;
     f.ticket = device_.requestReadback(counters_, 0, layout::CounterCount * 4);
     f.jobs = plan.jobs;
+    f.voxels = plan.voxels;
     if (f.ticket) inFlight_.push_back(std::move(f));
 }
 
@@ -302,8 +305,16 @@ void SdfSceneImpl::pollStats() {
         stats_ = s;
         // The GPU left voxels of these jobs unbuilt (references or bricks ran out): build them again.
         // While the pool is exhausted this retries every update; the stats say why.
-        if (s.voxelsDeferredGpu)
-            for (const Job& j : f.jobs) pending_.push_back(j);
+        if (s.voxelsDeferredGpu) {
+            for (Job j : f.jobs) {
+                j.invalidated = true;  // built or UNBUILT now: no stale bricks
+                pending_.push_back(j);
+            }
+            retriedJobs_ += uint32_t(f.jobs.size());
+            adaptiveVoxelLimit_ = std::max<uint64_t>(1, f.voxels / 2);
+        } else {
+            adaptiveVoxelLimit_ = std::min<uint64_t>(desc_.budgets.maxVoxelsPerUpdate, adaptiveVoxelLimit_ * 2);
+        }
     }
 }
 
