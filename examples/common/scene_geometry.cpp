@@ -1,11 +1,13 @@
 // Built-in scenes and the assimp loader.
 #include "scene_geometry.h"
 
+#include <assimp/cimport.h>
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <dlfcn.h>
 
 #include <array>
-#include <assimp/Importer.hpp>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
@@ -176,36 +178,73 @@ SceneGeometry proceduralField(uint32_t targetTriangles) {
     return s;
 }
 
+namespace {
+
+// assimp's C API, loaded when a file is first opened: programs that only use built-in scenes (the
+// benchmark copied to a bare GPU machine) need no assimp at run time.
+struct AssimpApi {
+    decltype(&aiImportFile) importFile = nullptr;
+    decltype(&aiReleaseImport) releaseImport = nullptr;
+    decltype(&aiGetErrorString) errorString = nullptr;
+    decltype(&aiGetMaterialColor) materialColor = nullptr;
+    std::string loadError;
+    AssimpApi() {
+        void* lib = nullptr;
+        for (const char* name : {"libassimp.so.5", "libassimp.so"})
+            if ((lib = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
+        if (!lib) {
+            loadError = "assimp (libassimp.so.5) is not installed: only the built-in scenes are available";
+            return;
+        }
+        importFile = reinterpret_cast<decltype(importFile)>(dlsym(lib, "aiImportFile"));
+        releaseImport = reinterpret_cast<decltype(releaseImport)>(dlsym(lib, "aiReleaseImport"));
+        errorString = reinterpret_cast<decltype(errorString)>(dlsym(lib, "aiGetErrorString"));
+        materialColor = reinterpret_cast<decltype(materialColor)>(dlsym(lib, "aiGetMaterialColor"));
+        if (!importFile || !releaseImport || !errorString || !materialColor) loadError = "libassimp lacks its C API";
+    }
+};
+
+const AssimpApi& assimp() {
+    static AssimpApi api;
+    return api;
+}
+
+}  // namespace
+
 SceneGeometry loadModel(const std::string& path, std::string* error) {
-    Assimp::Importer importer;
-    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                       aiProcess_PreTransformVertices | aiProcess_SortByPType);
     SceneGeometry s;
     s.name = path;
+    const AssimpApi& api = assimp();
+    if (!api.loadError.empty()) {
+        if (error) *error = "cannot load '" + path + "': " + api.loadError;
+        return s;
+    }
+    const aiScene* scene =
+        api.importFile(path.c_str(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
     if (!scene) {
-        if (error) *error = "cannot load '" + path + "': " + importer.GetErrorString();
+        if (error) *error = "cannot load '" + path + "': " + api.errorString();
         return s;
     }
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const aiMesh* in = scene->mMeshes[i];
-        if (!(in->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
         TriangleMesh m;
         m.name = in->mName.length ? in->mName.C_Str() : "mesh " + std::to_string(i);
         for (unsigned v = 0; v < in->mNumVertices; ++v)
             m.positions.insert(m.positions.end(), {in->mVertices[v].x, in->mVertices[v].y, in->mVertices[v].z});
-        for (unsigned f = 0; f < in->mNumFaces; ++f)
+        for (unsigned f = 0; f < in->mNumFaces; ++f)  // points and lines are not surfaces: skipped
             if (in->mFaces[f].mNumIndices == 3)
                 m.indices.insert(m.indices.end(), {in->mFaces[f].mIndices[0], in->mFaces[f].mIndices[1], in->mFaces[f].mIndices[2]});
         if (m.indices.empty()) continue;
         if (scene->mMaterials && in->mMaterialIndex < scene->mNumMaterials) {
+            const aiMaterial* mat = scene->mMaterials[in->mMaterialIndex];
             aiColor4D c;
-            if (scene->mMaterials[in->mMaterialIndex]->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) m.albedo = {c.r, c.g, c.b};
-            if (scene->mMaterials[in->mMaterialIndex]->Get(AI_MATKEY_COLOR_EMISSIVE, c) == AI_SUCCESS) m.emission = {c.r, c.g, c.b};
+            if (api.materialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) m.albedo = {c.r, c.g, c.b};
+            if (api.materialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) m.emission = {c.r, c.g, c.b};
         }
         s.instances.push_back({uint32_t(s.meshes.size()), glm::mat4(1.0f)});
         s.meshes.push_back(std::move(m));
     }
+    api.releaseImport(scene);
     if (s.meshes.empty()) {
         if (error) *error = "'" + path + "' holds no triangles";
         return s;

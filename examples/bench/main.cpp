@@ -1,0 +1,292 @@
+// bricklight-bench: GPU timings of the techniques, per pass, from GPU timestamps.
+//
+//   bricklight-bench sdf [--scene NAME|FILE] [--backend vulkan|gl] [--cascades N] [--frames N]
+//                        [--width W] [--height H] [--json FILE]
+//
+// sdf: a full build, frames with one moving ~100k-triangle dynamic instance, frames where the centre moves
+// by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080). Run-time needs:
+// the C++ runtime, the Vulkan loader, libEGL/libGL (assimp only for model files).
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bricklight/rhi_gl.h"
+#include "bricklight/rhi_vulkan.h"
+#include "bricklight/sdf.h"
+#include "scene_geometry.h"
+
+using namespace bricklight;
+
+namespace {
+
+struct Options {
+    std::string technique;
+    std::string scene = "field";
+    std::string backend = "vulkan";
+    std::string json;
+    uint32_t cascades = 8;
+    uint32_t frames = 16;
+    uint32_t width = 1920, height = 1080;
+};
+
+[[noreturn]] void usage(const std::string& problem) {
+    if (!problem.empty()) std::fprintf(stderr, "bricklight-bench: %s\n", problem.c_str());
+    std::fprintf(stderr,
+                 "usage: bricklight-bench sdf [--scene cornell|field|FILE] [--backend vulkan|gl] [--cascades 1-16]\n"
+                 "                            [--frames N] [--width W] [--height H] [--json FILE]\n");
+    std::exit(2);
+}
+
+uint32_t number(const char* text, const char* option, uint32_t lo, uint32_t hi) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(text, &end, 10);
+    if (!*text || *end || v < lo || v > hi)
+        usage(std::string(option) + " expects a whole number in " + std::to_string(lo) + ".." + std::to_string(hi));
+    return uint32_t(v);
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    if (argc < 2) usage("");
+    o.technique = argv[1];
+    if (o.technique != "sdf") usage("unknown technique '" + o.technique + "' (available: sdf)");
+    for (int i = 2; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&]() -> const char* {
+            if (i + 1 >= argc) usage(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--scene") o.scene = value();
+        else if (a == "--backend") o.backend = value();
+        else if (a == "--json") o.json = value();
+        else if (a == "--cascades") o.cascades = number(value(), "--cascades", 1, 16);
+        else if (a == "--frames") o.frames = number(value(), "--frames", 1, 10000);
+        else if (a == "--width") o.width = number(value(), "--width", 1, 16384);
+        else if (a == "--height") o.height = number(value(), "--height", 1, 16384);
+        else usage("unknown option '" + a + "'");
+    }
+    if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl");
+    return o;
+}
+
+// Sums of GPU milliseconds per marker label over the frames of one phase.
+struct PhaseTimes {
+    std::map<std::string, double> total;
+    uint32_t frames = 0;
+    double perFrame(const std::string& label) const {
+        auto it = total.find(label);
+        return it == total.end() || !frames ? 0.0 : it->second / frames;
+    }
+};
+
+PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
+    device.waitIdle();
+    PhaseTimes t;
+    t.frames = frames;
+    for (const rhi::MarkerTiming& m : device.takeTimings()) t.total[m.label] += m.milliseconds;
+    return t;
+}
+
+const char* kPasses[] = {"sdf update/invalidate", "sdf update/gather", "sdf update/count references",
+                         "sdf update/allocate bricks", "sdf update/scatter references", "sdf update/emit distances",
+                         "sdf update/resolve empty", "sdf trees"};
+
+double updateTotal(const PhaseTimes& t) { return t.perFrame("sdf update") + t.perFrame("sdf trees"); }
+
+void printPhase(const char* name, const PhaseTimes& t) {
+    std::printf("%-30s %9.3f ms/frame  (", name, updateTotal(t));
+    bool first = true;
+    for (const char* p : kPasses) {
+        const char* shortName = std::strchr(p, '/') ? std::strchr(p, '/') + 1 : p;
+        std::printf("%s%s %.3f", first ? "" : ", ", shortName, t.perFrame(p));
+        first = false;
+    }
+    std::printf(")\n");
+}
+
+std::string phaseJson(const PhaseTimes& t) {
+    std::string s = "{\"total_ms\": " + std::to_string(updateTotal(t)) + ", \"passes_ms\": {";
+    bool first = true;
+    for (const char* p : kPasses) {
+        s += std::string(first ? "" : ", ") + "\"" + p + "\": " + std::to_string(t.perFrame(p));
+        first = false;
+    }
+    return s + "}}";
+}
+
+int runSdf(const Options& o) {
+    std::string error;
+    scenes::SceneGeometry geometry = scenes::loadScene(o.scene, &error);
+    if (geometry.meshes.empty()) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return 1;
+    }
+    std::unique_ptr<rhi::IDevice> device;
+    if (o.backend == "vulkan") {
+        device = vulkan::createDevice(vulkan::DeviceOptions{});
+    } else {
+        device = gl::createHeadlessDevice(gl::HeadlessApi::Auto, nullptr, &error);
+    }
+    if (!device) {
+        std::fprintf(stderr, "bricklight-bench: no %s device%s%s\n", o.backend.c_str(), error.empty() ? "" : ": ", error.c_str());
+        return 1;
+    }
+    if (!device->capabilities().timestamps) std::fprintf(stderr, "bricklight-bench: warning: the device has no GPU timestamps\n");
+    device->setTimingEnabled(true);
+
+    const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
+    const float size = std::max(extent.x, std::max(extent.y, extent.z));
+    sdf::SceneDesc desc;
+    desc.cascadeCount = o.cascades;
+    // Cascade 0 spans 1/8 of the scene; cascade 3 all of it; the rest reach beyond.
+    desc.finestVoxelSize = size / 512.0f;
+    auto scene = sdf::SdfScene::create(*device, desc, &error);
+    if (!scene) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return 1;
+    }
+    std::vector<sdf::MeshHandle> meshes;
+    for (const auto& m : geometry.meshes)
+        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
+                                            uint32_t(m.indices.size()), m.name}));
+    for (const auto& i : geometry.instances) scene->addInstance({meshes[i.mesh], i.transform});
+    const glm::vec3 center = (geometry.boundsMin + geometry.boundsMax) * 0.5f + glm::vec3(0.0f, 0.05f * size, 0.0f);
+    std::printf("scene %s: %llu triangles in %zu instances; %s on %s; %u cascades, finest voxel %.4g\n", geometry.name.c_str(),
+                (unsigned long long)geometry.triangleCount(), geometry.instances.size(), o.backend.c_str(),
+                device->capabilities().deviceName.c_str(), o.cascades, desc.finestVoxelSize);
+
+    // 1. Full build (shaders and pipelines warmed by a first, untimed build of the same scene).
+    device->setTimingEnabled(false);
+    scene->update(center);
+    device->waitIdle();
+    scene->invalidateAll();
+    device->setTimingEnabled(true);
+    device->takeTimings();
+    const auto wallStart = std::chrono::steady_clock::now();
+    sdf::UpdateReport full = scene->update(center);
+    device->endFrame();
+    PhaseTimes build = collect(*device, 1);
+    const double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wallStart).count();
+    for (int i = 0; i < 4; ++i) scene->update(center), device->endFrame();  // let the stats arrive
+    device->waitIdle();
+    scene->update(center);
+    const sdf::Stats afterBuild = scene->latestStats();
+
+    // 2. One moving dynamic instance of ~100k triangles.
+    scenes::TriangleMesh ring = scenes::torus(0.06f * size, 0.015f * size, 100000);
+    sdf::MeshHandle ringMesh = scene->createMesh({ring.positions.data(), uint32_t(ring.positions.size() / 3), ring.indices.data(),
+                                                  uint32_t(ring.indices.size()), "moving torus"});
+    auto ringAt = [&](uint32_t frame) {
+        return glm::rotate(glm::translate(glm::mat4(1.0f), center + glm::vec3(0.004f * size * float(frame), 0.0f, 0.0f)),
+                           0.05f * float(frame), glm::vec3(0.2f, 1.0f, 0.1f));
+    };
+    sdf::InstanceHandle moving = scene->addInstance({ringMesh, ringAt(0), true});
+    for (uint32_t f = 0; f < 3; ++f) scene->setTransform(moving, ringAt(f)), scene->update(center), device->endFrame();
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) {
+        scene->setTransform(moving, ringAt(3 + f));
+        scene->update(center);
+        device->endFrame();
+    }
+    PhaseTimes dynamicFrames = collect(*device, o.frames);
+    scene->removeInstance(moving);
+    scene->update(center);
+    device->endFrame();
+    collect(*device, 0);
+
+    // 3. The centre moves by one finest voxel per frame.
+    glm::vec3 c = center;
+    for (uint32_t f = 0; f < o.frames; ++f) {
+        c.x += desc.finestVoxelSize;
+        scene->update(c);
+        device->endFrame();
+    }
+    PhaseTimes scrollFrames = collect(*device, o.frames);
+
+    // 4. Primary rays through the trace API.
+    struct {
+        glm::mat4 inverseViewProjection;
+        glm::vec4 eye;
+        uint32_t size[4];
+    } p{};
+    const glm::vec3 eye = c + glm::vec3(0.0f, 0.02f * size, -0.3f * size);
+    const glm::mat4 view = glm::lookAt(eye, c + glm::vec3(0.0f, -0.02f * size, 0.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(60.0f), float(o.width) / float(o.height), 0.01f, 10.0f * size);
+    p.inverseViewProjection = glm::inverse(proj * view);
+    p.eye = glm::vec4(eye, 1.0f);
+    p.size[0] = o.width;
+    p.size[1] = o.height;
+    rhi::BufferHandle depth = device->createBuffer({uint64_t(o.width) * o.height * 4, 0,
+                                                    rhi::BufferUsage::ShaderRead | rhi::BufferUsage::ShaderWrite, "depth"});
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("sdf_tests/primary_rays.comp");
+    rhi::ShaderHandle tracer = device->createShader(sd);
+    rhi::DispatchState s;
+    s.shader = tracer;
+    s.label = "primary rays";
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.storageBuffers.push({0, depth, {}, rhi::Access::Write});
+    scene->traceBindings(s.bindings, {});
+    device->dispatch(s, (o.width + 7) / 8, (o.height + 7) / 8, 1);  // warm-up
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) {
+        device->beginMarker("trace");
+        device->dispatch(s, (o.width + 7) / 8, (o.height + 7) / 8, 1);
+        device->endMarker();
+        device->endFrame();
+    }
+    PhaseTimes trace = collect(*device, o.frames);
+    std::vector<float> depths(size_t(o.width) * o.height);
+    device->readBuffer(depth, 0, depths.size() * 4, depths.data());
+    size_t hits = 0;
+    for (float d : depths) hits += d >= 0.0f;
+    const double traceMs = trace.perFrame("trace");
+    const double raysPerSecond = traceMs > 0 ? double(o.width) * o.height / (traceMs * 1e-3) : 0.0;
+
+    std::printf("%-30s %9.3f ms (wall %.1f ms; %u voxels in %u jobs, %u triangles gathered)\n", "full build: total", updateTotal(build),
+                wallMs, full.voxels, full.jobs, full.trianglesGathered);
+    printPhase("full build", build);
+    printPhase("moving dynamic 100k instance", dynamicFrames);
+    printPhase("centre moves one voxel", scrollFrames);
+    std::printf("%-30s %9.3f ms/frame  = %.3f G rays/s at %ux%u (%.1f%% hit)\n", "primary rays", traceMs, raysPerSecond * 1e-9,
+                o.width, o.height, 100.0 * double(hits) / double(depths.size()));
+    std::printf("bricks: %u used of %u (%u free), %u triangles and %u references processed by the full build\n",
+                afterBuild.bricksUsed, afterBuild.bricksCapacity, afterBuild.bricksFree, afterBuild.trianglesProcessed,
+                afterBuild.referencesProcessed);
+    const sdf::MemoryUse memory = scene->memoryUse();
+    std::printf("GPU memory: %.1f MiB\n", double(memory.totalBytes) / (1 << 20));
+    for (const auto& r : memory.resources) std::printf("  %-32s %10.2f MiB\n", r.name.c_str(), double(r.bytes) / (1 << 20));
+
+    if (!o.json.empty()) {
+        std::ofstream out(o.json);
+        out << "{\"technique\": \"sdf\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend
+            << "\", \"device\": \"" << device->capabilities().deviceName << "\", \"triangles\": " << geometry.triangleCount()
+            << ", \"cascades\": " << o.cascades << ", \"finest_voxel\": " << desc.finestVoxelSize
+            << ",\n \"full_build\": " << phaseJson(build) << ",\n \"dynamic_100k\": " << phaseJson(dynamicFrames)
+            << ",\n \"scroll_one_voxel\": " << phaseJson(scrollFrames) << ",\n \"trace\": {\"ms\": " << traceMs
+            << ", \"rays_per_second\": " << raysPerSecond << ", \"width\": " << o.width << ", \"height\": " << o.height
+            << "},\n \"bricks_used\": " << afterBuild.bricksUsed << ", \"references\": " << afterBuild.referencesProcessed
+            << ", \"gpu_bytes\": " << memory.totalBytes << "}\n";
+        if (!out) {
+            std::fprintf(stderr, "bricklight-bench: cannot write %s\n", o.json.c_str());
+            return 1;
+        }
+        std::printf("wrote %s\n", o.json.c_str());
+    }
+    device->destroy(depth);
+    device->destroy(tracer);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o = parse(argc, argv);
+    return runSdf(o);
+}
