@@ -125,6 +125,8 @@ Device::~Device() {
     makeCurrent();
     gl.Finish();
     timer_.destroy(gl);
+    for (GLsync& f : frameFences_)
+        if (f) gl.DeleteSync(f);
     for (auto& [ticket, rb] : readbacks_) {
         gl.DeleteSync(rb.fence);
         gl.DeleteBuffers(1, &rb.buffer);
@@ -225,6 +227,12 @@ std::vector<rhi::MarkerTiming> Device::takeTimings() {
 
 void Device::endFrame() {
     makeCurrent();
+    GLsync& slot = frameFences_[frame_ % kFramesInFlight];
+    if (slot) {  // the frame kFramesInFlight back: the only wait in a normal frame
+        gl.ClientWaitSync(slot, GL_SYNC_FLUSH_COMMANDS_BIT, GLuint64(-1));
+        gl.DeleteSync(slot);
+    }
+    slot = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl.Flush();
     ++frame_;
 }

@@ -190,6 +190,10 @@ private:
     };
     std::unordered_map<uint64_t, PendingReadback> readbacks_;
     uint64_t nextReadbackTicket_ = 1;
+    // Frames in flight, as on Vulkan: endFrame() fences each frame and waits for the one two frames back,
+    // which bounds how far the CPU runs ahead and when a read-back is at the latest ready.
+    static constexpr size_t kFramesInFlight = 2;
+    GLsync frameFences_[kFramesInFlight] = {};
 
     MarkerTimer timer_;
     struct Marker {

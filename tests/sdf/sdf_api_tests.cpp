@@ -132,7 +132,7 @@ void debugViewAndStats(const std::string& backend) {
     scene.update(glm::vec3(278, 274, 280));
     // Stats arrive a few frames late without any wait.
     sdf::Stats stats;
-    for (int frame = 0; frame < 6 && stats.update == 0; ++frame) {
+    for (int frame = 0; frame < 8 && stats.update == 0; ++frame) {
         dev.endFrame();
         scene.update(glm::vec3(278, 274, 280));
         stats = scene.latestStats();

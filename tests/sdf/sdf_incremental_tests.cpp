@@ -176,7 +176,7 @@ void poolExhausted(const std::string& backend) {
     sdf::FieldSnapshot full = build(32, nullptr);
     REQUIRE_NO_MESSAGES(td);
     CHECK(small.voxelsDeferredGpu > 0);
-    CHECK(small.bricksFree == 0);
+    CHECK(small.bricksUsed > 400);  // nearly all of the 512 (bricks found empty go back to the pool)
     uint64_t built = 0, unbuilt = 0, wrong = 0;
     for (uint32_t c = 0; c < 3; ++c)
         for (int i = 0; i < 64 * 64 * 64; ++i) {
