@@ -124,6 +124,20 @@ bool SdfSceneImpl::init(std::string* error) {
     if (caps.limits.maxComputeGroupInvocations && caps.limits.maxComputeGroupInvocations < 512)
         return bad("the device allows fewer than 512 invocations per group (the brick pass needs 512)");
 
+    // Every buffer is bound whole: each must fit the device's storage-buffer range.
+    const uint64_t range = caps.limits.maxStorageBufferRange;
+    auto fits = [&](const char* what, uint64_t bytes, const char* budget) {
+        if (!range || bytes <= range) return true;
+        return bad(std::string(what) + " needs " + std::to_string(bytes) + " bytes, more than the device's maxStorageBufferRange (" +
+                   std::to_string(range) + "): lower " + budget);
+    };
+    const uint64_t cascadeEntries = uint64_t(d.cascadeCount) * layout::kCascadeVoxels;
+    if (!fits("the reference scratch", uint64_t(b.maxReferencesPerUpdate) * 12, "budgets.maxReferencesPerUpdate") ||
+        !fits("the triangle scratch", uint64_t(b.maxTrianglesPerUpdate) * 48, "budgets.maxTrianglesPerUpdate") ||
+        !fits("the voxel reference counts", cascadeEntries * 8, "cascadeCount") ||
+        !fits("the touched-voxel list", std::min<uint64_t>(b.maxVoxelsPerUpdate, cascadeEntries) * 16, "budgets.maxVoxelsPerUpdate"))
+        return false;
+
     auto shader = [&](const char* name, rhi::ShaderHandle* out) {
         const rhi::ShaderBlob* blob = rhi::findShader(name);
         if (!blob) return bad(std::string("shader '") + name + "' is not linked into this program");

@@ -146,6 +146,10 @@ int runSdf(const Options& o) {
     desc.cascadeCount = o.cascades;
     // Cascade 0 spans 1/8 of the scene; cascade 3 all of it; the rest reach beyond.
     desc.finestVoxelSize = size / 512.0f;
+    // The full build of the 1M-triangle field needs ~9M triangle-voxel references (the default budget is
+    // 8M, beyond which work is deferred to later updates).
+    desc.budgets.maxReferencesPerUpdate =
+        uint32_t(std::min<uint64_t>(32u << 20, device->capabilities().limits.maxStorageBufferRange / 12));
     auto scene = sdf::SdfScene::create(*device, desc, &error);
     if (!scene) {
         std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
@@ -178,12 +182,14 @@ int runSdf(const Options& o) {
     scene->update(center);
     const sdf::Stats afterBuild = scene->latestStats();
 
-    // 2. One moving dynamic instance of ~100k triangles.
-    scenes::TriangleMesh ring = scenes::torus(0.06f * size, 0.015f * size, 100000);
+    // 2. One moving dynamic instance of ~100k triangles, 16 finest voxels across (a character-sized object
+    //    when the finest voxel is ~10 cm).
+    const float vs0 = desc.finestVoxelSize;
+    scenes::TriangleMesh ring = scenes::torus(6.0f * vs0, 2.0f * vs0, 100000);
     sdf::MeshHandle ringMesh = scene->createMesh({ring.positions.data(), uint32_t(ring.positions.size() / 3), ring.indices.data(),
                                                   uint32_t(ring.indices.size()), "moving torus"});
     auto ringAt = [&](uint32_t frame) {
-        return glm::rotate(glm::translate(glm::mat4(1.0f), center + glm::vec3(0.004f * size * float(frame), 0.0f, 0.0f)),
+        return glm::rotate(glm::translate(glm::mat4(1.0f), center + glm::vec3(0.5f * vs0 * float(frame), 0.0f, 0.0f)),
                            0.05f * float(frame), glm::vec3(0.2f, 1.0f, 0.1f));
     };
     sdf::InstanceHandle moving = scene->addInstance({ringMesh, ringAt(0), true});
@@ -195,6 +201,8 @@ int runSdf(const Options& o) {
         device->endFrame();
     }
     PhaseTimes dynamicFrames = collect(*device, o.frames);
+    scene->update(center);  // polls the read-back of the last measured frame
+    const sdf::Stats dynamicStats = scene->latestStats();
     scene->removeInstance(moving);
     scene->update(center);
     device->endFrame();
@@ -208,6 +216,8 @@ int runSdf(const Options& o) {
         device->endFrame();
     }
     PhaseTimes scrollFrames = collect(*device, o.frames);
+    scene->update(c);
+    const sdf::Stats scrollStats = scene->latestStats();
 
     // 4. Primary rays through the trace API.
     struct {
@@ -253,7 +263,11 @@ int runSdf(const Options& o) {
                 wallMs, full.voxels, full.jobs, full.trianglesGathered);
     printPhase("full build", build);
     printPhase("moving dynamic 100k instance", dynamicFrames);
+    std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", dynamicStats.bricksAllocated,
+                dynamicStats.trianglesProcessed, dynamicStats.referencesProcessed);
     printPhase("centre moves one voxel", scrollFrames);
+    std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", scrollStats.bricksAllocated,
+                scrollStats.trianglesProcessed, scrollStats.referencesProcessed);
     std::printf("%-30s %9.3f ms/frame  = %.3f G rays/s at %ux%u (%.1f%% hit)\n", "primary rays", traceMs, raysPerSecond * 1e-9,
                 o.width, o.height, 100.0 * double(hits) / double(depths.size()));
     std::printf("bricks: %u used of %u (%u free), %u triangles and %u references processed by the full build\n",

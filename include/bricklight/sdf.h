@@ -20,7 +20,7 @@ constexpr uint32_t kCascadeResolution = 64;  // voxels per axis of every cascade
 constexpr uint32_t kBrickResolution = 8;     // brixels per axis; the 8 samples span the voxel (7 intervals)
 // Distances are exact (point-triangle) up to this many brixel intervals (voxel/7) from a surface and
 // saturate there. The stored value is min(distance, band): a conservative field, exact near surfaces.
-constexpr float kDistanceBandBrixels = 4.0f;
+constexpr float kDistanceBandBrixels = 2.0f;
 
 // Handles are never reused within one SdfScene.
 struct MeshHandle {

@@ -2,12 +2,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "build_common.glsl"
-// One group per allocated brick, one thread per brixel: the exact distance from the brixel's lattice
-// point to the voxel's referenced triangles (every triangle within the band of the voxel), saturated at
-// the band and stored as distance / band in the R8 atlas. Also the brick's tight AABB (brixels within one
-// interval of a surface, grown by one); a brick with no brixel inside the band is freed (voxel EMPTY).
+// One group per allocated brick. With many references (dense meshes) each thread takes references in turn
+// and, for its triangle, visits only the brixels within the band of the triangle's box, keeping the
+// smallest exact squared point-triangle distance per brixel with a shared-memory atomic minimum (squared
+// distances of >= 0 floats order like their bits): the work is references x (brixels near each triangle),
+// not references x 512. With few references (large triangles) each brixel evaluates all of them.
+// Then one thread per brixel stores min(distance, band) / band in the R8 atlas, and the group derives the
+// brick's tight AABB (brixels within one interval of a surface, grown by one); a brick with no brixel
+// inside the band is freed (voxel EMPTY).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
-#define CHUNK 128u
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };
 BL_READ_BUFFER(1) SortedReferences { uint sortedReferences[]; };
 BL_READ_BUFFER(2) Touched { uvec4 touched[]; };
@@ -18,7 +21,7 @@ BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
 BL_IMAGE(0, r8) uniform writeonly image3D atlas;
 
-shared vec4 chunk[3u * CHUNK];
+shared uint best[512];
 shared uint boxMin[3], boxMax[3], keep;
 
 void main() {
@@ -27,12 +30,6 @@ void main() {
     uvec4 entry = touched[t];
     if (entry.w == BL_SDF_UNBUILT) return;
     uint lane = gl_LocalInvocationIndex;
-    if (lane < 3u) {
-        boxMin[lane] = 7u;
-        boxMax[lane] = 0u;
-    }
-    if (lane == 0u) keep = 0u;
-
     uint cascade = entry.x >> 24;
     uint physical = entry.x & 0xFFFFFFu;
     ivec3 origin = table.cascades[cascade].origin.xyz;
@@ -40,37 +37,58 @@ void main() {
     ivec3 voxel = origin + ((slot - origin) & ivec3(BL_SDF_CASCADE_RES - 1));
     float vs = table.cascades[cascade].voxelSize.x;
     float band = table.cascades[cascade].voxelSize.w;
-    ivec3 b = ivec3(gl_LocalInvocationID);
-    vec3 p = (vec3(voxel) + vec3(b) / 7.0) * vs;
+    float brixel = vs / 7.0;
+    vec3 voxelMin = vec3(voxel) * vs;
 
-    float best = band * band;
-    for (uint base = 0u; base < entry.y; base += CHUNK) {
-        uint n = min(CHUNK, entry.y - base);
-        barrier();
-        if (lane < n) {
-            uint tri = sortedReferences[entry.z + base + lane];
-            chunk[3u * lane] = triangles[3u * tri];
-            chunk[3u * lane + 1u] = triangles[3u * tri + 1u];
-            chunk[3u * lane + 2u] = triangles[3u * tri + 2u];
+    best[lane] = floatBitsToUint(band * band);
+    if (lane < 3u) {
+        boxMin[lane] = 7u;
+        boxMax[lane] = 0u;
+    }
+    if (lane == 0u) keep = 0u;
+    barrier();
+
+    ivec3 own = ivec3(gl_LocalInvocationID);
+    if (entry.y <= 32u) {
+        // Few references (large triangles): every brixel evaluates all of them, so all threads work.
+        vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
+        float d2 = band * band;
+        for (uint r = 0u; r < entry.y; ++r) {
+            uint tri = sortedReferences[entry.z + r];
+            d2 = min(d2, blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, triangles[3u * tri + 1u].xyz,
+                                                   triangles[3u * tri + 2u].xyz));
         }
-        barrier();
-        for (uint j = 0u; j < n; ++j) {
-            vec3 a = chunk[3u * j].xyz, bb = chunk[3u * j + 1u].xyz, c = chunk[3u * j + 2u].xyz;
-            // Cheap reject: the triangle's box is already farther than the best distance.
-            vec3 outside = max(max(min(a, min(bb, c)) - p, p - max(a, max(bb, c))), vec3(0.0));
-            if (dot(outside, outside) >= best) continue;
-            best = min(best, blPointTriangleDistanceSq(p, a, bb, c));
+        best[lane] = floatBitsToUint(d2);
+    } else {
+        for (uint r = lane; r < entry.y; r += 512u) {
+            uint tri = sortedReferences[entry.z + r];
+            vec3 a = triangles[3u * tri].xyz, b = triangles[3u * tri + 1u].xyz, c = triangles[3u * tri + 2u].xyz;
+            // Brixels whose lattice point lies within the band of the triangle's box.
+            vec3 lo = (min(a, min(b, c)) - band - voxelMin) / brixel;
+            vec3 hi = (max(a, max(b, c)) + band - voxelMin) / brixel;
+            ivec3 i0 = clamp(ivec3(ceil(lo)), ivec3(0), ivec3(7));
+            ivec3 i1 = clamp(ivec3(floor(hi)), ivec3(0), ivec3(7));
+            for (int z = i0.z; z <= i1.z; ++z)
+                for (int y = i0.y; y <= i1.y; ++y)
+                    for (int x = i0.x; x <= i1.x; ++x) {
+                        vec3 p = (vec3(voxel) + vec3(x, y, z) / 7.0) * vs;
+                        uint index = uint((z * 8 + y) * 8 + x);
+                        float d2 = blPointTriangleDistanceSq(p, a, b, c);
+                        if (floatBitsToUint(d2) < best[index]) atomicMin(best[index], floatBitsToUint(d2));
+                    }
         }
     }
-    float d = sqrt(best);
+    barrier();
+
+    float d = sqrt(uintBitsToFloat(best[lane]));
     uint q = uint(floor(min(d, band) / band * 255.0 + 0.5));
     uint brick = entry.w;
-    imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + b, vec4(float(q) / 255.0));
+    imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + own, vec4(float(q) / 255.0));
     if (q < 255u) atomicOr(keep, 1u);
-    if (d <= vs / 7.0) {
+    if (d <= brixel) {
         for (int axis = 0; axis < 3; ++axis) {
-            atomicMin(boxMin[axis], uint(b[axis]));
-            atomicMax(boxMax[axis], uint(b[axis]));
+            atomicMin(boxMin[axis], uint(own[axis]));
+            atomicMax(boxMax[axis], uint(own[axis]));
         }
     }
     barrier();

@@ -8,7 +8,7 @@
 #define BL_SDF_CASCADE_VOXELS 262144u  // 64³
 #define BL_SDF_BRICK_RES 8
 // Distances saturate at this many brixel intervals (voxel / 7); stored as distance / band in R8_UNORM.
-#define BL_SDF_BAND_BRIXELS 4.0
+#define BL_SDF_BAND_BRIXELS 2.0
 
 // Brick map entries: a brick id, or one of these states.
 #define BL_SDF_EMPTY 0xFFFFFFFEu     // built, no surface within the band of the voxel
