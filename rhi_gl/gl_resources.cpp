@@ -145,6 +145,8 @@ BufferHandle Device::createBuffer(const BufferDesc& desc, const void* initialDat
         fail(call, "glNamedBufferStorage failed (GL error " + hex(err) + (err == GL_OUT_OF_MEMORY ? ", out of memory)" : ")"));
         return {};
     }
+    // New buffers read as zero on every backend (GL leaves them undefined; NVIDIA's hold old data).
+    if (!initialData) gl.ClearNamedBufferSubData(b.name, GL_R8, 0, GLsizeiptr(desc.size), GL_RED, GL_UNSIGNED_BYTE, nullptr);
     b.id = newId();
     if (!desc.debugName.empty()) gl.ObjectLabel(GL_BUFFER, b.name, -1, desc.debugName.c_str());
     BufferHandle handle{b.id};

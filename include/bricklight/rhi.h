@@ -449,7 +449,8 @@ public:
     virtual void setErrorCallback(ErrorCallback callback) = 0;
 
     // Resources. initialData (optional) is tightly packed: all mips of layer 0, then layer 1... for
-    // textures; `size` bytes for buffers. Failure returns a null handle.
+    // textures; `size` bytes for buffers. Without it a buffer reads as zero (a texture's contents are
+    // undefined until written or cleared). Failure returns a null handle.
     virtual TextureHandle createTexture(const TextureDesc& desc, const void* initialData = nullptr) = 0;
     virtual BufferHandle createBuffer(const BufferDesc& desc, const void* initialData = nullptr) = 0;
     virtual SamplerHandle createSampler(const SamplerDesc& desc) = 0;

@@ -58,6 +58,23 @@ BL_CONFORMANCE_CASE(readback_without_waiting, "requestReadback/pollReadback: see
     ctx.output("values", bytesOf(v));
 }
 
+BL_CONFORMANCE_CASE(new_buffer_reads_zero, "createBuffer without initial data: the contents read as zero") {
+    // Several sizes, created after others were destroyed, so that reused memory would show.
+    for (uint64_t size : {4ull, 1000ull, 65536ull}) {
+        std::vector<uint32_t> junk(size / 4 + 1, 0xDEADBEEFu);
+        rhi::BufferHandle old = ctx.buffer(size, kStorageUsage, junk.data(), "junk");
+        ctx.device.waitIdle();
+        ctx.device.destroy(old);
+        rhi::BufferHandle b = ctx.buffer(size, kStorageUsage, nullptr, "fresh");
+        std::vector<uint8_t> bytes(size, 0xFF);
+        ctx.check(ctx.device.readBuffer(b, 0, size, bytes.data()), "readBuffer");
+        bool zero = true;
+        for (uint8_t v : bytes) zero &= v == 0;
+        ctx.check(zero, "a new buffer of " + std::to_string(size) + " bytes reads as zero");
+        if (size == 1000) ctx.output("fresh", bytes);
+    }
+}
+
 BL_CONFORMANCE_CASE(transfer_texture_copy_clear, "copyTexture between mips/layers, clearTexture float per mip, writeTexture of one array layer") {
     rhi::TextureDesc d = texture2D(Format::RGBA16_FLOAT, 8, 8, rhi::TextureUsage::Sampled, "src", 2);
     d.dimension = rhi::TextureDimension::Texture2DArray;
