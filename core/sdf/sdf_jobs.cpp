@@ -123,9 +123,9 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
     for (size_t i = 0; i < dirtyBoxes_.size(); ++i)
         for (uint32_t c = 0; c <= std::min(dirtyMaxCascade_[i], desc_.cascadeCount - 1); ++c) {
             const float vs = voxelSize(c), b = band(c);
-            // Voxels within the band of the box (plus one voxel: the lattice reaches the far faces).
-            Job job{c, glm::ivec3(glm::floor((dirtyBoxes_[i].min - b) / vs)) - 1,
-                    glm::ivec3(glm::floor((dirtyBoxes_[i].max + b) / vs)) + 2};
+            // Voxels whose closed box (its lattice reaches the far faces) comes within the band of the box.
+            Job job{c, glm::ivec3(glm::ceil((dirtyBoxes_[i].min - b) / vs)) - 1,
+                    glm::ivec3(glm::floor((dirtyBoxes_[i].max + b) / vs)) + 1};
             candidates.push_back(job);
         }
     dirtyBoxes_.clear();

@@ -31,6 +31,7 @@ struct Options {
     std::string backend = "vulkan";
     std::string json;
     uint32_t cascades = 8;
+    uint32_t dynamicMaxCascade = 15;
     uint32_t frames = 16;
     uint32_t width = 1920, height = 1080;
 };
@@ -39,7 +40,8 @@ struct Options {
     if (!problem.empty()) std::fprintf(stderr, "bricklight-bench: %s\n", problem.c_str());
     std::fprintf(stderr,
                  "usage: bricklight-bench sdf [--scene cornell|field|FILE] [--backend vulkan|gl] [--cascades 1-16]\n"
-                 "                            [--frames N] [--width W] [--height H] [--json FILE]\n");
+                 "                            [--frames N] [--width W] [--height H] [--json FILE]\n"
+                 "                            [--dynamic-max-cascade C]  (highest cascade of the moving instance)\n");
     std::exit(2);
 }
 
@@ -67,6 +69,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--json") o.json = value();
         else if (a == "--cascades") o.cascades = number(value(), "--cascades", 1, 16);
         else if (a == "--frames") o.frames = number(value(), "--frames", 1, 10000);
+        else if (a == "--dynamic-max-cascade") o.dynamicMaxCascade = number(value(), "--dynamic-max-cascade", 0, 15);
         else if (a == "--width") o.width = number(value(), "--width", 1, 16384);
         else if (a == "--height") o.height = number(value(), "--height", 1, 16384);
         else usage("unknown option '" + a + "'");
@@ -192,7 +195,7 @@ int runSdf(const Options& o) {
         return glm::rotate(glm::translate(glm::mat4(1.0f), center + glm::vec3(0.5f * vs0 * float(frame), 0.0f, 0.0f)),
                            0.05f * float(frame), glm::vec3(0.2f, 1.0f, 0.1f));
     };
-    sdf::InstanceHandle moving = scene->addInstance({ringMesh, ringAt(0), true});
+    sdf::InstanceHandle moving = scene->addInstance({ringMesh, ringAt(0), true, o.dynamicMaxCascade});
     for (uint32_t f = 0; f < 3; ++f) scene->setTransform(moving, ringAt(f)), scene->update(center), device->endFrame();
     collect(*device, 0);
     for (uint32_t f = 0; f < o.frames; ++f) {
@@ -262,7 +265,7 @@ int runSdf(const Options& o) {
     std::printf("%-30s %9.3f ms (wall %.1f ms; %u voxels in %u jobs, %u triangles gathered)\n", "full build: total", updateTotal(build),
                 wallMs, full.voxels, full.jobs, full.trianglesGathered);
     printPhase("full build", build);
-    printPhase("moving dynamic 100k instance", dynamicFrames);
+    printPhase(("moving dynamic 100k (to c" + std::to_string(std::min(o.dynamicMaxCascade, o.cascades - 1)) + ")").c_str(), dynamicFrames);
     std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", dynamicStats.bricksAllocated,
                 dynamicStats.trianglesProcessed, dynamicStats.referencesProcessed);
     printPhase("centre moves one voxel", scrollFrames);
