@@ -121,8 +121,8 @@ bool SdfSceneImpl::init(std::string* error) {
     if (caps.limits.maxTextureSize3D && atlasSide > caps.limits.maxTextureSize3D)
         return bad("atlas side " + std::to_string(atlasSide) + " exceeds the device's 3D texture limit " +
                    std::to_string(caps.limits.maxTextureSize3D));
-    if (caps.limits.maxComputeGroupInvocations && caps.limits.maxComputeGroupInvocations < 256)
-        return bad("the device allows fewer than 256 invocations per group (the brick pass needs 256)");
+    if (caps.limits.maxComputeGroupInvocations && caps.limits.maxComputeGroupInvocations < 512)
+        return bad("the device allows fewer than 512 invocations per group (the brick pass needs 512)");
 
     // Every buffer is bound whole: each must fit the device's storage-buffer range.
     const uint64_t range = caps.limits.maxStorageBufferRange;

@@ -10,10 +10,7 @@
 // Then one thread per brixel stores min(distance, band) / band in the R8 atlas, and the group derives the
 // brick's tight AABB (brixels within one interval of a surface, grown by one); a brick with no brixel
 // inside the band is freed (voxel EMPTY).
-// 256 threads per brick: each owns two brixels (z and z + 4) in the per-brixel steps. (512-thread groups
-// ran ~3x slower on NVIDIA's Vulkan driver than on its GL driver; see docs/performance.md.)
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
-#define GROUP 256u
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };
 BL_READ_BUFFER(1) SortedReferences { uint sortedReferences[]; };
 BL_READ_BUFFER(2) Touched { uvec4 touched[]; };
@@ -44,7 +41,6 @@ void main() {
     vec3 voxelMin = vec3(voxel) * vs;
 
     best[lane] = floatBitsToUint(band * band);
-    best[lane + GROUP] = floatBitsToUint(band * band);
     if (lane < 3u) {
         boxMin[lane] = 7u;
         boxMax[lane] = 0u;
@@ -52,21 +48,19 @@ void main() {
     if (lane == 0u) keep = 0u;
     barrier();
 
+    ivec3 own = ivec3(gl_LocalInvocationID);
     if (entry.y <= 32u) {
         // Few references (large triangles): every brixel evaluates all of them, so all threads work.
-        for (uint half_ = 0u; half_ < 2u; ++half_) {
-            ivec3 own = ivec3(gl_LocalInvocationID) + ivec3(0, 0, 4 * int(half_));
-            vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
-            float d2 = band * band;
-            for (uint r = 0u; r < entry.y; ++r) {
-                uint tri = sortedReferences[entry.z + r];
-                d2 = min(d2, blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, triangles[3u * tri + 1u].xyz,
-                                                       triangles[3u * tri + 2u].xyz));
-            }
-            best[lane + half_ * GROUP] = floatBitsToUint(d2);
+        vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
+        float d2 = band * band;
+        for (uint r = 0u; r < entry.y; ++r) {
+            uint tri = sortedReferences[entry.z + r];
+            d2 = min(d2, blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, triangles[3u * tri + 1u].xyz,
+                                                   triangles[3u * tri + 2u].xyz));
         }
+        best[lane] = floatBitsToUint(d2);
     } else {
-        for (uint r = lane; r < entry.y; r += GROUP) {
+        for (uint r = lane; r < entry.y; r += 512u) {
             uint tri = sortedReferences[entry.z + r];
             vec3 a = triangles[3u * tri].xyz, b = triangles[3u * tri + 1u].xyz, c = triangles[3u * tri + 2u].xyz;
             // Brixels whose lattice point lies within the band of the triangle's box.
@@ -86,18 +80,15 @@ void main() {
     }
     barrier();
 
+    float d = sqrt(uintBitsToFloat(best[lane]));
+    uint q = uint(floor(min(d, band) / band * 255.0 + 0.5));
     uint brick = entry.w;
-    for (uint half_ = 0u; half_ < 2u; ++half_) {
-        ivec3 own = ivec3(gl_LocalInvocationID) + ivec3(0, 0, 4 * int(half_));
-        float d = sqrt(uintBitsToFloat(best[lane + half_ * GROUP]));
-        uint q = uint(floor(min(d, band) / band * 255.0 + 0.5));
-        imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + own, vec4(float(q) / 255.0));
-        if (q < 255u) atomicOr(keep, 1u);
-        if (d <= brixel) {
-            for (int axis = 0; axis < 3; ++axis) {
-                atomicMin(boxMin[axis], uint(own[axis]));
-                atomicMax(boxMax[axis], uint(own[axis]));
-            }
+    imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + own, vec4(float(q) / 255.0));
+    if (q < 255u) atomicOr(keep, 1u);
+    if (d <= brixel) {
+        for (int axis = 0; axis < 3; ++axis) {
+            atomicMin(boxMin[axis], uint(own[axis]));
+            atomicMax(boxMax[axis], uint(own[axis]));
         }
     }
     barrier();

@@ -54,6 +54,7 @@ struct Fixture {
     ~Fixture() {
         if (device) device->waitIdle();
         device.reset();
+        for (const auto& v : messages->validation) UNSCOPED_INFO(v);
         CHECK(messages->validation.empty());
     }
     ShaderHandle shader(const char* name) {
