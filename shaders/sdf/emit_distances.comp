@@ -1,5 +1,12 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#ifdef VULKAN
+// Workgroup-scope atomics on shared memory (GLSL's atomicMin means device scope in SPIR-V).
+#extension GL_KHR_memory_scope_semantics : require
+#define SHARED_ATOMIC_MIN(mem, value) atomicMin(mem, value, gl_ScopeWorkgroup, gl_StorageSemanticsShared, gl_SemanticsRelaxed)
+#else
+#define SHARED_ATOMIC_MIN(mem, value) atomicMin(mem, value)
+#endif
 #include "bricklight/bindings.glsl"
 #include "build_common.glsl"
 // One group per allocated brick. With many references (dense meshes) each thread takes references in turn
@@ -68,13 +75,18 @@ void main() {
             vec3 hi = (max(a, max(b, c)) + band - voxelMin) / brixel;
             ivec3 i0 = clamp(ivec3(ceil(lo)), ivec3(0), ivec3(7));
             ivec3 i1 = clamp(ivec3(floor(hi)), ivec3(0), ivec3(7));
+            // A bounding sphere of the triangle culls the box's corners (about half of its brixels for
+            // triangles smaller than a brixel) before the exact test.
+            vec3 centre = (a + b + c) / 3.0;
+            float reach = sqrt(max(blDot2(a - centre), max(blDot2(b - centre), blDot2(c - centre)))) + band;
             for (int z = i0.z; z <= i1.z; ++z)
                 for (int y = i0.y; y <= i1.y; ++y)
                     for (int x = i0.x; x <= i1.x; ++x) {
                         vec3 p = (vec3(voxel) + vec3(x, y, z) / 7.0) * vs;
+                        if (blDot2(p - centre) > reach * reach) continue;
                         uint index = uint((z * 8 + y) * 8 + x);
                         float d2 = blPointTriangleDistanceSq(p, a, b, c);
-                        if (floatBitsToUint(d2) < best[index]) atomicMin(best[index], floatBitsToUint(d2));
+                        if (floatBitsToUint(d2) < best[index]) SHARED_ATOMIC_MIN(best[index], floatBitsToUint(d2));
                     }
         }
     }
