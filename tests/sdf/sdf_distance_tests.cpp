@@ -23,12 +23,7 @@ void checkDistances(const std::string& backend, const DistanceCase& test) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry& g = test.geometry;
-    const glm::vec3 extent = g.boundsMax - g.boundsMin;
-    sdf::SceneDesc desc;
-    desc.cascadeCount = 2;
-    desc.finestVoxelSize = std::max(extent.x, std::max(extent.y, extent.z)) / 36.0f;
-    desc.atlasBricksPerAxis = 32;
-    desc.errorCallback = [&](rhi::Severity, const std::string& m) { td.messages->push_back(m); };
+    const sdf::SceneDesc desc = modelSceneDesc(g, 2, td);
     LoadedScene loaded = loadIntoSdf(*td.device, g, desc);
     if (!loaded.scene) REQUIRE_NO_MESSAGES(td);
     REQUIRE(loaded.scene);

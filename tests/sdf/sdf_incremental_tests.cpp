@@ -94,10 +94,7 @@ FinalState buildIncrementally(rhi::IDevice& device, sdf::SdfScene& scene, const 
 sdf::FieldSnapshot buildFromScratch(TestDevice& td, const World& w, const FinalState& f) {
     auto scene = sdf::SdfScene::create(*td.device, sceneDesc(td));
     REQUIRE(scene);
-    std::vector<sdf::MeshHandle> meshes;
-    for (const auto& m : w.geometry.meshes)
-        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
-                                            uint32_t(m.indices.size()), m.name}));
+    std::vector<sdf::MeshHandle> meshes = createMeshes(*scene, w.geometry);
     for (const auto& [mesh, t] : f.statics) scene->addInstance({meshes[mesh], t});
     scene->addInstance({meshes[w.torusMesh], f.dynamicTransform, true});
     scene->update(f.center);
@@ -112,10 +109,7 @@ void incrementalEqualsScratch(const std::string& backend, const sdf::Budgets* bu
     if (budgets) desc.budgets = *budgets;
     auto scene = sdf::SdfScene::create(*td.device, desc);
     REQUIRE(scene);
-    std::vector<sdf::MeshHandle> meshes;
-    for (const auto& m : w.geometry.meshes)
-        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
-                                            uint32_t(m.indices.size()), m.name}));
+    std::vector<sdf::MeshHandle> meshes = createMeshes(*scene, w.geometry);
     FinalState f = buildIncrementally(*td.device, *scene, w, meshes, frames, budgets != nullptr);
     sdf::FieldSnapshot incremental = scene->readField();
     sdf::FieldSnapshot scratch = buildFromScratch(td, w, f);
@@ -158,10 +152,7 @@ void poolExhausted(const std::string& backend) {
         desc.atlasBricksPerAxis = bricksPerAxis;
         auto scene = sdf::SdfScene::create(*td.device, desc);
         REQUIRE(scene);
-        std::vector<sdf::MeshHandle> meshes;
-        for (const auto& m : w.geometry.meshes)
-            meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
-                                                uint32_t(m.indices.size()), m.name}));
+        std::vector<sdf::MeshHandle> meshes = createMeshes(*scene, w.geometry);
         for (uint32_t m = 0; m < w.torusMesh; ++m) scene->addInstance({meshes[m], glm::mat4(1.0f)});
         for (int i = 0; i < 4; ++i) {
             scene->update(glm::vec3(278, 274, 280));

@@ -24,11 +24,7 @@ struct RayStats {
 
 RayStats traceAndCompare(TestDevice& td, const scenes::SceneGeometry& g, uint32_t rayCount) {
     const glm::vec3 extent = g.boundsMax - g.boundsMin;
-    sdf::SceneDesc desc;
-    desc.cascadeCount = 3;
-    desc.finestVoxelSize = std::max(extent.x, std::max(extent.y, extent.z)) / 36.0f;
-    desc.atlasBricksPerAxis = 32;
-    desc.errorCallback = [&](rhi::Severity, const std::string& m) { td.messages->push_back(m); };
+    const sdf::SceneDesc desc = modelSceneDesc(g, 3, td);
     LoadedScene loaded = loadIntoSdf(*td.device, g, desc);
     REQUIRE(loaded.scene);
     const glm::vec3 center = (g.boundsMin + g.boundsMax) * 0.5f;

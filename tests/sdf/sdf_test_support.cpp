@@ -160,20 +160,31 @@ bool Reference::intersect(const glm::dvec3& o, const glm::dvec3& d, double tMin,
     return hit;
 }
 
+std::vector<sdf::MeshHandle> createMeshes(sdf::SdfScene& scene, const scenes::SceneGeometry& geometry) {
+    std::vector<sdf::MeshHandle> meshes;
+    for (const auto& m : geometry.meshes)
+        meshes.push_back(scene.createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
+                                           uint32_t(m.indices.size()), m.name}));
+    return meshes;
+}
+
+sdf::SceneDesc modelSceneDesc(const scenes::SceneGeometry& geometry, uint32_t cascades, TestDevice& td) {
+    const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
+    sdf::SceneDesc desc;
+    desc.cascadeCount = cascades;
+    desc.finestVoxelSize = std::max(extent.x, std::max(extent.y, extent.z)) / 36.0f;
+    desc.atlasBricksPerAxis = 32;
+    auto messages = td.messages;
+    desc.errorCallback = [messages](rhi::Severity, const std::string& m) { messages->push_back(m); };
+    return desc;
+}
+
 LoadedScene loadIntoSdf(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const sdf::SceneDesc& desc) {
     LoadedScene out;
     std::string error;
     out.scene = sdf::SdfScene::create(device, desc, &error);
     if (!out.scene) return out;
-    for (const auto& m : geometry.meshes) {
-        sdf::MeshArrays a;
-        a.positions = m.positions.data();
-        a.vertexCount = uint32_t(m.positions.size() / 3);
-        a.indices = m.indices.data();
-        a.indexCount = uint32_t(m.indices.size());
-        a.name = m.name;
-        out.meshes.push_back(out.scene->createMesh(a));
-    }
+    out.meshes = createMeshes(*out.scene, geometry);
     for (const auto& i : geometry.instances) {
         sdf::InstanceDesc d;
         d.mesh = out.meshes[i.mesh];

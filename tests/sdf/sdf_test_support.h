@@ -49,6 +49,11 @@ struct LoadedScene {
 };
 // Meshes from CPU arrays, one instance per scene instance.
 LoadedScene loadIntoSdf(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const sdf::SceneDesc& desc);
+// Every mesh of `geometry` in `scene` (from CPU arrays), in order.
+std::vector<sdf::MeshHandle> createMeshes(sdf::SdfScene& scene, const scenes::SceneGeometry& geometry);
+// A description whose finest voxel puts the model 36 voxels across, with a 32³-brick atlas; the builder's
+// messages go to the device's message list.
+sdf::SceneDesc modelSceneDesc(const scenes::SceneGeometry& geometry, uint32_t cascades, TestDevice& td);
 
 // Repository test models (Debian's assimp-testmodels).
 std::string testModelPath(const std::string& relative);
