@@ -27,6 +27,9 @@ TestDevice makeDevice(const std::string& backend) {
     if (backend == "vulkan") {
         vulkan::DeviceOptions options;
         options.enableValidation = true;
+        // Synchronization validation turns a barrier the builder's records should have caused into a
+        // failing message even on lavapipe, which runs dispatches in order.
+        options.enableSyncValidation = true;
         options.errorCallback = callback;
         t.device = vulkan::createDevice(options);
     }
