@@ -9,6 +9,7 @@
 
 #include "gl_device.h"
 #include "gl_formats.h"
+#include "../rhi/binding_rules.h"
 
 namespace bricklight::gl::detail {
 
@@ -40,30 +41,6 @@ GLenum dimensionTarget(ResourceDimension d) {
         case ResourceDimension::Texture3D: return GL_TEXTURE_3D;
         case ResourceDimension::TextureCube: return GL_TEXTURE_CUBE_MAP;
         default: return GL_TEXTURE_2D;
-    }
-}
-
-// What a shader's declared dimension accepts (the same rule as the validation wrapper): 2D takes one layer
-// of an array or cube; 2D array takes a 2D, array or cube texture; cube needs all 6 faces of a cube.
-bool dimensionCompatible(ResourceDimension s, TextureDimension t, uint32_t layers) {
-    switch (s) {
-        case ResourceDimension::Texture2D:
-            return t == TextureDimension::Texture2D || (t != TextureDimension::Texture3D && layers == 1);
-        case ResourceDimension::Texture2DArray:
-            return t == TextureDimension::Texture2DArray || t == TextureDimension::TextureCube || t == TextureDimension::Texture2D;
-        case ResourceDimension::Texture3D: return t == TextureDimension::Texture3D;
-        case ResourceDimension::TextureCube: return t == TextureDimension::TextureCube && layers == 6;
-        default: return false;
-    }
-}
-
-bool scalarCompatible(ResourceScalar s, Format f) {
-    auto k = formatInfo(f).kind;
-    switch (s) {
-        case ResourceScalar::Uint: return k == FormatInfo::Kind::Uint;
-        case ResourceScalar::Sint: return k == FormatInfo::Kind::Sint;
-        case ResourceScalar::Float: return k != FormatInfo::Kind::Uint && k != FormatInfo::Kind::Sint;
-        default: return true;
     }
 }
 

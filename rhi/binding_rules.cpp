@@ -1,0 +1,28 @@
+#include "binding_rules.h"
+
+namespace bricklight::rhi {
+
+bool dimensionCompatible(ResourceDimension s, TextureDimension t, uint32_t layers) {
+    switch (s) {
+        case ResourceDimension::Texture2D:
+            return t == TextureDimension::Texture2D || (t != TextureDimension::Texture3D && layers == 1);
+        case ResourceDimension::Texture2DArray:
+            return t == TextureDimension::Texture2DArray || t == TextureDimension::TextureCube ||
+                   t == TextureDimension::Texture2D;
+        case ResourceDimension::Texture3D: return t == TextureDimension::Texture3D;
+        case ResourceDimension::TextureCube: return t == TextureDimension::TextureCube && layers == 6;
+        default: return false;
+    }
+}
+
+bool scalarCompatible(ResourceScalar s, Format f) {
+    const auto k = formatInfo(f).kind;
+    switch (s) {
+        case ResourceScalar::Uint: return k == FormatInfo::Kind::Uint;
+        case ResourceScalar::Sint: return k == FormatInfo::Kind::Sint;
+        case ResourceScalar::Float: return k != FormatInfo::Kind::Uint && k != FormatInfo::Kind::Sint;
+        default: return true;
+    }
+}
+
+}  // namespace bricklight::rhi
