@@ -1,12 +1,10 @@
 #!/usr/bin/env bash
-# The main job. Until the renderer exists it runs hello_rhi: a compute pass and a draw on the chosen
-# backend (vulkan or gl), written to out/hello_rhi_<backend>.png.
+# The main job: build, then render the Cornell box (256 x 256) to out/cornell.png. Until the rasterized
+# path lands, the image is the reference path tracer's (64 samples per pixel). Extra arguments go to
+# bricklight-render (e.g. --backend gl, --spp 256, --aov indirect-diffuse).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/configure.sh"
 mkdir -p "$root/out"
-backends=("$@")
-if [ ${#backends[@]} -eq 0 ]; then backends=(vulkan gl); fi
-for b in "${backends[@]}"; do
-  "$root/build/bin/hello_rhi" --backend "$b" --out "$root/out/hello_rhi_$b.png"
-done
+"$root/build/bin/bricklight-render" --scene cornell --width 256 --height 256 --reference --spp 64 \
+  --out "$root/out/cornell.png" "$@"

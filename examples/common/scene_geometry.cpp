@@ -35,39 +35,6 @@ TriangleMesh quadMesh(const char* name, std::initializer_list<std::array<std::ar
     return m;
 }
 
-TriangleMesh icosphere(uint32_t subdivisions) {
-    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
-                               3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
-    for (uint32_t s = 0; s < subdivisions; ++s) {
-        std::vector<uint32_t> next;
-        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mids;
-        auto mid = [&](uint32_t a, uint32_t b) {
-            auto key = std::minmax(a, b);
-            auto it = mids.find(key);
-            if (it != mids.end()) return it->second;
-            v.push_back((v[a] + v[b]) * 0.5f);
-            return mids[key] = uint32_t(v.size() - 1);
-        };
-        for (size_t i = 0; i < f.size(); i += 3) {
-            uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
-            uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-            next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
-        }
-        f = std::move(next);
-    }
-    TriangleMesh m;
-    m.name = "icosphere";
-    for (const glm::vec3& p : v) {
-        glm::vec3 n = glm::normalize(p);
-        m.positions.insert(m.positions.end(), {n.x, n.y, n.z});
-    }
-    m.indices = std::move(f);
-    return m;
-}
-
 }  // namespace
 
 uint64_t SceneGeometry::triangleCount() const {
@@ -117,7 +84,42 @@ SceneGeometry cornellBox() {
     s.meshes.push_back(std::move(light));
     for (uint32_t i = 0; i < s.meshes.size(); ++i) s.instances.push_back({i, glm::mat4(1.0f)});
     s.computeBounds();
+    // Cornell's camera: at (278, 273, -800) looking along +z, 39.3 degrees vertical field of view.
+    s.camera = {glm::vec3(278, 273, -800), glm::vec3(278, 273, 0), glm::vec3(0, 1, 0), 39.3f};
     return s;
+}
+
+TriangleMesh icosphere(uint32_t subdivisions) {
+    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
+                               3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    for (uint32_t s = 0; s < subdivisions; ++s) {
+        std::vector<uint32_t> next;
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mids;
+        auto mid = [&](uint32_t a, uint32_t b) {
+            auto key = std::minmax(a, b);
+            auto it = mids.find(key);
+            if (it != mids.end()) return it->second;
+            v.push_back((v[a] + v[b]) * 0.5f);
+            return mids[key] = uint32_t(v.size() - 1);
+        };
+        for (size_t i = 0; i < f.size(); i += 3) {
+            uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
+            uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+            next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+        }
+        f = std::move(next);
+    }
+    TriangleMesh m;
+    m.name = "icosphere";
+    for (const glm::vec3& p : v) {
+        glm::vec3 n = glm::normalize(p);
+        m.positions.insert(m.positions.end(), {n.x, n.y, n.z});
+    }
+    m.indices = std::move(f);
+    return m;
 }
 
 TriangleMesh torus(float majorRadius, float minorRadius, uint32_t triangles) {
@@ -219,8 +221,8 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
         if (error) *error = "cannot load '" + path + "': " + api.loadError;
         return s;
     }
-    const aiScene* scene =
-        api.importFile(path.c_str(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
+    // No JoinIdenticalVertices: it merges NaN positions away silently; bad vertices must reach the check below.
+    const aiScene* scene = api.importFile(path.c_str(), aiProcess_Triangulate | aiProcess_PreTransformVertices);
     if (!scene) {
         if (error) *error = "cannot load '" + path + "': " + api.errorString();
         return s;
@@ -229,8 +231,15 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
         const aiMesh* in = scene->mMeshes[i];
         TriangleMesh m;
         m.name = in->mName.length ? in->mName.C_Str() : "mesh " + std::to_string(i);
-        for (unsigned v = 0; v < in->mNumVertices; ++v)
-            m.positions.insert(m.positions.end(), {in->mVertices[v].x, in->mVertices[v].y, in->mVertices[v].z});
+        for (unsigned v = 0; v < in->mNumVertices; ++v) {
+            const aiVector3D& p = in->mVertices[v];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                if (error) *error = "'" + path + "': mesh '" + m.name + "' vertex " + std::to_string(v) + " is not finite";
+                api.releaseImport(scene);
+                return SceneGeometry{};
+            }
+            m.positions.insert(m.positions.end(), {p.x, p.y, p.z});
+        }
         for (unsigned f = 0; f < in->mNumFaces; ++f)  // points and lines are not surfaces: skipped
             if (in->mFaces[f].mNumIndices == 3)
                 m.indices.insert(m.indices.end(), {in->mFaces[f].mIndices[0], in->mFaces[f].mIndices[1], in->mFaces[f].mIndices[2]});
@@ -250,6 +259,11 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
         return s;
     }
     s.computeBounds();
+    // Files carry no camera or sky here: a view from the front, a sky and a sun.
+    const glm::vec3 centre = (s.boundsMin + s.boundsMax) * 0.5f;
+    const float size = glm::length(s.boundsMax - s.boundsMin);
+    s.camera = {centre + glm::vec3(0.0f, 0.25f * size, 1.2f * size), centre, glm::vec3(0, 1, 0), 45.0f};
+    s.environment = {glm::vec3(0.35f, 0.45f, 0.6f), glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f)), glm::vec3(3.0f)};
     return s;
 }
 

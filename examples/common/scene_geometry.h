@@ -15,9 +15,25 @@ struct TriangleMesh {
     std::string name;
     std::vector<float> positions;   // xyz per vertex
     std::vector<uint32_t> indices;  // 3 per triangle
-    glm::vec3 albedo{0.8f};
-    glm::vec3 emission{0.0f};
+    glm::vec3 albedo{0.8f};    // base colour (linear)
+    glm::vec3 emission{0.0f};  // emitted radiance (linear, W / (sr m^2) in the scene's units)
+    float roughness = 1.0f;
+    float metalness = 0.0f;
     uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
+};
+
+// Light from outside the geometry: a uniform sky and an optional sun (a directional light).
+struct Environment {
+    glm::vec3 skyRadiance{0.0f};
+    glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // towards the sun
+    glm::vec3 sunIrradiance{0.0f};             // on a surface facing the sun
+};
+
+struct Camera {
+    glm::vec3 eye{0.0f, 0.0f, 5.0f};
+    glm::vec3 at{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float verticalFovDegrees = 45.0f;
 };
 
 struct MeshInstance {
@@ -30,6 +46,8 @@ struct SceneGeometry {
     std::vector<TriangleMesh> meshes;
     std::vector<MeshInstance> instances;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds of all instances
+    Environment environment;
+    Camera camera;                               // the scene's default view
     uint64_t triangleCount() const;              // over instances
     void computeBounds();
 };
@@ -38,6 +56,8 @@ struct SceneGeometry {
 SceneGeometry cornellBox();
 // About `targetTriangles` triangles: a tessellated ground and rows of instanced spheres and tori.
 SceneGeometry proceduralField(uint32_t targetTriangles);
+// A unit icosphere (radius 1) with 20 * 4^subdivisions triangles, wound counter-clockwise seen from outside.
+TriangleMesh icosphere(uint32_t subdivisions);
 // A torus of about `triangles` triangles (the benchmark's moving dynamic object).
 TriangleMesh torus(float majorRadius, float minorRadius, uint32_t triangles);
 // OBJ, glTF, PLY, FBX... through assimp, node transforms applied. Empty scene and `error` set on failure.

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "sdf_backend_test.h"
+#include "backend_test.h"
 #include "sdf_test_support.h"
 
 using namespace bricklight;
@@ -204,5 +204,5 @@ void debugViewAndStats(const std::string& backend) {
 
 }  // namespace
 
-SDF_BACKEND_TEST("sdf meshes in the app's GPU buffers build the same field as CPU arrays", gpuBufferMeshes)
-SDF_BACKEND_TEST("sdf debug view, stats without waiting, memory", debugViewAndStats)
+BACKEND_TEST("sdf meshes in the app's GPU buffers build the same field as CPU arrays", "[sdf]", gpuBufferMeshes)
+BACKEND_TEST("sdf debug view, stats without waiting, memory", "[sdf]", debugViewAndStats)

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "sdf_backend_test.h"
+#include "backend_test.h"
 #include "sdf_test_support.h"
 
 using namespace bricklight;
@@ -194,5 +194,5 @@ void badDescriptions(const std::string& backend) {
 
 }  // namespace
 
-SDF_BACKEND_TEST("sdf bad meshes, instances and GPU data give clear errors or counted rejections", badInput)
-SDF_BACKEND_TEST("sdf bad scene descriptions and capacity give clear errors", badDescriptions)
+BACKEND_TEST("sdf bad meshes, instances and GPU data give clear errors or counted rejections", "[sdf]", badInput)
+BACKEND_TEST("sdf bad scene descriptions and capacity give clear errors", "[sdf]", badDescriptions)

@@ -1,7 +1,7 @@
 // Vulkan and GL build the same decoded field from the same scene (brick slots may differ): per voxel the
 // same state and per brixel the same stored value. Stated tolerance: 1 step of 255 (different shader
 // compilers may contract the float math differently); the test also reports how many brixels differ.
-#include "sdf_backend_test.h"
+#include "backend_test.h"
 #include "sdf_test_support.h"
 
 using namespace bricklight;

@@ -2,7 +2,7 @@
 // two voxels of the surfaces of real models (OBJ, PLY, glTF through assimp) and the Cornell box.
 #include <random>
 
-#include "sdf_backend_test.h"
+#include "backend_test.h"
 #include "sdf_test_support.h"
 
 using namespace bricklight;
@@ -95,4 +95,4 @@ void distancesAllScenes(const std::string& backend) {
 
 }  // namespace
 
-SDF_BACKEND_TEST("sdf distances match exact point-triangle distances", distancesAllScenes)
+BACKEND_TEST("sdf distances match exact point-triangle distances", "[sdf]", distancesAllScenes)

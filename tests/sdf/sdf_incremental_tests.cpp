@@ -5,7 +5,7 @@
 // work is deferred (CPU budgets) or overflows on the GPU (references, brick pool).
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "sdf_backend_test.h"
+#include "backend_test.h"
 #include "sdf_test_support.h"
 
 using namespace bricklight;
@@ -199,6 +199,6 @@ void poolExhausted(const std::string& backend) {
 
 }  // namespace
 
-SDF_BACKEND_TEST("sdf exhausted brick pool defers work without corrupting the field", poolExhausted)
-SDF_BACKEND_TEST("sdf incremental updates equal a from-scratch build", incrementalDefault)
-SDF_BACKEND_TEST("sdf incremental updates under small budgets converge to a from-scratch build", incrementalSmallBudgets)
+BACKEND_TEST("sdf exhausted brick pool defers work without corrupting the field", "[sdf]", poolExhausted)
+BACKEND_TEST("sdf incremental updates equal a from-scratch build", "[sdf]", incrementalDefault)
+BACKEND_TEST("sdf incremental updates under small budgets converge to a from-scratch build", "[sdf]", incrementalSmallBudgets)

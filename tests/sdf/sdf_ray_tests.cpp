@@ -8,7 +8,7 @@
 #include <random>
 
 #include "bricklight/rhi.h"
-#include "sdf_backend_test.h"
+#include "backend_test.h"
 #include "sdf_test_support.h"
 
 using namespace bricklight;
@@ -138,4 +138,4 @@ void raysAgree(const std::string& backend) {
 
 }  // namespace
 
-SDF_BACKEND_TEST("sdf rays agree with exact ray-triangle intersection", raysAgree)
+BACKEND_TEST("sdf rays agree with exact ray-triangle intersection", "[sdf]", raysAgree)

@@ -1,5 +1,4 @@
-// Shared by the SDF tests: devices for both backends (Vulkan with validation; any device message fails the
-// test), the CPU reference (exact point-triangle distances and ray-triangle hits over a uniform grid),
+// Shared by the SDF tests: the CPU reference (exact point-triangle distances and ray-triangle hits over a uniform grid),
 // and a scene loader that puts a SceneGeometry into an SdfScene.
 #pragma once
 
@@ -9,16 +8,12 @@
 
 #include "bricklight/sdf.h"
 #include "scene_geometry.h"
+#include "test_device.h"
 
 namespace bricklight::sdftest {
 
-struct TestDevice {
-    std::string backend;
-    std::unique_ptr<rhi::IDevice> device;
-    std::shared_ptr<std::vector<std::string>> messages = std::make_shared<std::vector<std::string>>();
-};
-// "vulkan" or "gl"; the device reports every message into `messages`.
-TestDevice makeDevice(const std::string& backend);
+using testing::makeDevice;
+using testing::TestDevice;
 
 // Exact geometry of a scene in world space (double precision), with a uniform grid for queries.
 class Reference {

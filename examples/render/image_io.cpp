@@ -1,0 +1,86 @@
+#include "image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace bricklight::render {
+
+namespace {
+
+std::string extensionOf(const std::string& path) {
+    const size_t dot = path.find_last_of('.');
+    std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+float filmic(float x) {  // ACES approximation (K. Narkowicz 2015), input already exposed
+    x = std::max(0.0f, x);
+    return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+
+float toSrgb(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
+float fromSrgb(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+}  // namespace
+
+bool writeImage(const std::string& path, const Image& image, float exposure, std::string* error) {
+    const std::string ext = extensionOf(path);
+    if (ext != "png" && ext != "exr") {
+        if (error) *error = "'" + path + "': unsupported output format (use .png or .exr)";
+        return false;
+    }
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        if (error) *error = "'" + path + "': " + OIIO::geterror();
+        return false;
+    }
+    bool ok;
+    if (ext == "exr") {
+        OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
+        ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
+    } else {
+        std::vector<uint8_t> bytes(image.rgb.size());
+        for (size_t i = 0; i < bytes.size(); ++i)
+            bytes[i] = uint8_t(std::lround(toSrgb(filmic(image.rgb[i] * exposure)) * 255.0f));
+        OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
+        ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    }
+    if (!ok) {
+        if (error) *error = "'" + path + "': " + out->geterror();
+        return false;
+    }
+    return out->close();
+}
+
+bool readImage(const std::string& path, Image* image, std::string* error) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        if (error) *error = "cannot read '" + path + "': " + OIIO::geterror();
+        return false;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.nchannels < 1 || spec.width <= 0 || spec.height <= 0) {
+        if (error) *error = "'" + path + "' has no pixels";
+        return false;
+    }
+    std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+        if (error) *error = "cannot read '" + path + "': " + in->geterror();
+        return false;
+    }
+    const bool linear = spec.format == OIIO::TypeDesc::FLOAT || spec.format == OIIO::TypeDesc::HALF;
+    image->width = uint32_t(spec.width);
+    image->height = uint32_t(spec.height);
+    image->rgb.resize(size_t(spec.width) * spec.height * 3);
+    for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p)
+        for (int c = 0; c < 3; ++c) {
+            const float v = pixels[p * spec.nchannels + size_t(std::min(c, spec.nchannels - 1))];
+            image->rgb[3 * p + size_t(c)] = linear ? v : fromSrgb(v);
+        }
+    return true;
+}
+
+}  // namespace bricklight::render

@@ -1,0 +1,61 @@
+// The reference path tracer (shaders/render/path_trace.comp) as records through rhi::IDevice: uploads a
+// SceneGeometry (world triangles in BVH order, materials, emitters), then adds samples per pixel to running
+// sums of the AOVs, progressively. The ground truth that rasterized and GI results are measured against.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bricklight/rhi.h"
+#include "scene_geometry.h"
+
+namespace bricklight::render {
+
+enum class Aov : uint32_t { Combined, Direct, IndirectDiffuse, Albedo, Normal, Depth, Count };
+const char* aovName(Aov aov);               // "combined", "direct", "indirect-diffuse", ...
+bool aovFromName(const std::string& name, Aov* out);
+
+// A linear float image, 3 channels per pixel, row 0 at the top.
+struct Image {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgb;
+    glm::vec3 at(uint32_t x, uint32_t y) const {
+        const size_t i = 3 * (size_t(y) * width + x);
+        return {rgb[i], rgb[i + 1], rgb[i + 2]};
+    }
+};
+
+struct PathTracerOptions {
+    uint32_t width = 256, height = 256;
+    uint32_t maxBounces = 64;        // Russian roulette ends paths long before this
+    uint32_t samplesPerDispatch = 4; // per pixel
+    uint32_t seed = 1;
+};
+
+class PathTracer {
+public:
+    // Null with `error` set for an empty scene, non-finite positions, negative albedo/emission or a camera
+    // that does not make a view.
+    static std::unique_ptr<PathTracer> create(rhi::IDevice& device, const scenes::SceneGeometry& scene,
+                                              const PathTracerOptions& options, std::string* error);
+    ~PathTracer();
+    bool setCamera(const scenes::Camera& camera, std::string* error);  // restarts accumulation
+    void addSamples(uint32_t samples);  // records dispatches; does not wait
+    uint32_t samples() const { return samples_; }
+    Image read(Aov aov);                // blocking; the mean of the samples so far
+    uint32_t triangleCount() const { return triangles_; }
+
+private:
+    PathTracer(rhi::IDevice& device) : device_(device) {}
+    rhi::IDevice& device_;
+    PathTracerOptions options_;
+    rhi::ShaderHandle shader_;
+    rhi::BufferHandle triangleBuffer_, nodeBuffer_, materialBuffer_, lightBuffer_, accumulation_;
+    scenes::Environment environment_;
+    scenes::Camera camera_;
+    uint32_t lightCount_ = 0, triangles_ = 0, samples_ = 0;
+    float lightWeight_ = 0.0f, epsilon_ = 1e-4f;
+};
+
+}  // namespace bricklight::render
