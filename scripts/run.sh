@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The main job: build, then render the Cornell box (256 x 256) to out/cornell.png. Until the rasterized
-# path lands, the image is the reference path tracer's (64 samples per pixel). Extra arguments go to
-# bricklight-render (e.g. --backend gl, --spp 256, --aov indirect-diffuse).
+# The main job: build, then render the Cornell box (256 x 256) to out/cornell.png with the fast default
+# path (rasterized G-buffer and direct lighting; GI comes with the GI issue). Extra arguments go to
+# bricklight-render (e.g. --backend gl, --aov albedo, or --reference --spp 256 for the path tracer).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/configure.sh"
 mkdir -p "$root/out"
-"$root/build/bin/bricklight-render" --scene cornell --width 256 --height 256 --reference --spp 64 \
+"$root/build/bin/bricklight-render" --scene cornell --width 256 --height 256 \
   --out "$root/out/cornell.png" "$@"

@@ -4,8 +4,9 @@
 //                     [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr] [--aov NAME ...] [--reference --spp N]
 //                     [--exposure E]
 //
-// --reference renders the scene with the path tracer (the ground truth). AOVs go next to --out as
-// <stem>.<aov>.exr (linear float). See docs/render.md.
+// Without --reference: a rasterized G-buffer and direct lighting (GI comes with the GI issue); with it,
+// the path tracer (the ground truth). AOVs go next to --out as <stem>.<aov>.exr (linear float). See
+// docs/render.md.
 #include <unistd.h>
 
 #include <chrono>
@@ -19,6 +20,7 @@
 #include "bricklight/rhi_vulkan.h"
 #include "image_io.h"
 #include "path_tracer.h"
+#include "raster_renderer.h"
 #include "scene_geometry.h"
 
 using namespace bricklight;
@@ -118,11 +120,6 @@ std::string aovPath(const std::string& out, render::Aov aov) {
 
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
-    if (!o.reference) {
-        std::fprintf(stderr, "bricklight-render: the rasterized path (G-buffer + direct lighting) is not implemented yet; "
-                             "use --reference --spp N for the path-traced image\n");
-        return 2;
-    }
     std::string error;
     scenes::SceneGeometry scene = scenes::loadScene(o.scene, &error);
     if (scene.meshes.empty()) {
@@ -148,35 +145,57 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bricklight-render: no %s device%s%s\n", o.backend.c_str(), error.empty() ? "" : ": ", error.c_str());
         return 1;
     }
-    render::PathTracerOptions pto;
-    pto.width = o.width;
-    pto.height = o.height;
-    auto tracer = render::PathTracer::create(*device, scene, pto, &error);
-    if (!tracer) {
-        std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
-        return 1;
-    }
     const auto start = std::chrono::steady_clock::now();
-    const uint32_t step = std::max(1u, std::min(o.spp, 16u));
-    for (uint32_t done = 0; done < o.spp;) {
-        const uint32_t n = std::min(step, o.spp - done);
-        tracer->addSamples(n);
-        device->endFrame();
-        done += n;
-        if (done < o.spp) device->waitIdle();  // progress reflects finished work
-        progress(done, o.spp);
+    std::unique_ptr<render::PathTracer> tracer;
+    std::unique_ptr<render::RasterRenderer> raster;
+    std::string how;
+    if (o.reference) {
+        render::PathTracerOptions pto;
+        pto.width = o.width;
+        pto.height = o.height;
+        tracer = render::PathTracer::create(*device, scene, pto, &error);
+        if (!tracer) {
+            std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
+            return 1;
+        }
+        const uint32_t step = std::max(1u, std::min(o.spp, 16u));
+        for (uint32_t done = 0; done < o.spp;) {
+            const uint32_t n = std::min(step, o.spp - done);
+            tracer->addSamples(n);
+            device->endFrame();
+            done += n;
+            if (done < o.spp) device->waitIdle();  // progress reflects finished work
+            progress(done, o.spp);
+        }
+        how = std::to_string(tracer->samples()) + " spp path-traced";
+    } else {
+        render::RasterOptions ro;
+        ro.width = o.width;
+        ro.height = o.height;
+        raster = render::RasterRenderer::create(*device, scene, ro, &error);
+        if (!raster) {
+            std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
+            return 1;
+        }
+        for (uint32_t f = 0; f < o.frames; ++f) {
+            raster->render();
+            device->endFrame();
+        }
+        how = "rasterized, direct light only (" + std::to_string(ro.lightSamples) + " light samples per pixel)";
     }
-    render::Image combined = tracer->read(render::Aov::Combined);
+    auto read = [&](render::Aov aov) { return tracer ? tracer->read(aov) : raster->read(aov); };
+    render::Image combined = read(render::Aov::Combined);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!render::writeImage(o.out, combined, o.exposure, &error)) {
         std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
         return 1;
     }
-    std::printf("wrote %s (%ux%u, %s, %u triangles, %u spp path-traced on %s) in %.2f s\n", o.out.c_str(), o.width, o.height,
-                scene.name.c_str(), tracer->triangleCount(), tracer->samples(), o.backend.c_str(), seconds);
+    std::printf("wrote %s (%ux%u, %s, %u triangles, %s on %s) in %.2f s\n", o.out.c_str(), o.width, o.height,
+                scene.name.c_str(), tracer ? tracer->triangleCount() : raster->triangleCount(), how.c_str(), o.backend.c_str(),
+                seconds);
     for (render::Aov aov : o.aovs) {
         const std::string path = aovPath(o.out, aov);
-        if (!render::writeImage(path, tracer->read(aov), 1.0f, &error)) {
+        if (!render::writeImage(path, read(aov), 1.0f, &error)) {
             std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
             return 1;
         }

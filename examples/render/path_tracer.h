@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bricklight/rhi.h"
+#include "gpu_scene.h"
 #include "scene_geometry.h"
 
 namespace bricklight::render {
@@ -31,6 +32,9 @@ struct PathTracerOptions {
     uint32_t maxBounces = 64;        // Russian roulette ends paths long before this
     uint32_t samplesPerDispatch = 4; // per pixel
     uint32_t seed = 1;
+    // Samples spread over the pixel (anti-aliasing). Off: every camera ray through the pixel centre, as a
+    // rasterizer samples (the primary-hit AOVs then equal a G-buffer's).
+    bool pixelJitter = true;
 };
 
 class PathTracer {
@@ -44,18 +48,17 @@ public:
     void addSamples(uint32_t samples);  // records dispatches; does not wait
     uint32_t samples() const { return samples_; }
     Image read(Aov aov);                // blocking; the mean of the samples so far
-    uint32_t triangleCount() const { return triangles_; }
+    uint32_t triangleCount() const { return scene_->triangleCount(); }
 
 private:
     PathTracer(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
     PathTracerOptions options_;
     rhi::ShaderHandle shader_;
-    rhi::BufferHandle triangleBuffer_, nodeBuffer_, materialBuffer_, lightBuffer_, accumulation_;
-    scenes::Environment environment_;
+    std::unique_ptr<GpuScene> scene_;
+    rhi::BufferHandle accumulation_;
     scenes::Camera camera_;
-    uint32_t lightCount_ = 0, triangles_ = 0, samples_ = 0;
-    float lightWeight_ = 0.0f, epsilon_ = 1e-4f;
+    uint32_t samples_ = 0;
 };
 
 }  // namespace bricklight::render

@@ -1,0 +1,134 @@
+#include "gpu_scene.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "bvh.h"
+
+namespace bricklight::render {
+
+namespace {
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+float bitsOf(uint32_t v) {
+    float f;
+    std::memcpy(&f, &v, 4);
+    return f;
+}
+constexpr uint32_t kMaxBvhDepth = 48;  // the traversal stack of scene_trace.glsl
+}  // namespace
+
+std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error) {
+    auto fail = [&](const std::string& m) {
+        if (error) *error = m;
+        return std::unique_ptr<GpuScene>();
+    };
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> materialOf;
+    for (const auto& inst : scene.instances) {
+        if (inst.mesh >= scene.meshes.size()) return fail("an instance names mesh " + std::to_string(inst.mesh) + ", which does not exist");
+        const auto& m = scene.meshes[inst.mesh];
+        for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t v = m.indices[i + size_t(k)];
+                if (3 * size_t(v) + 2 >= m.positions.size())
+                    return fail("mesh '" + m.name + "': index " + std::to_string(v) + " is out of range");
+                const glm::vec3 p = glm::vec3(inst.transform * glm::vec4(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2], 1.0f));
+                if (!finite(p)) return fail("mesh '" + m.name + "': vertex " + std::to_string(v) + " is not finite");
+                positions.push_back(p);
+            }
+            materialOf.push_back(inst.mesh);
+        }
+    }
+    if (positions.empty()) return fail("the scene has no triangles");
+    for (const auto& m : scene.meshes)
+        if (!finite(m.albedo) || !finite(m.emission) || glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) ||
+            glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1.0f))))
+            return fail("mesh '" + m.name + "': albedo must be in [0, 1] and emission >= 0");
+    const scenes::Environment& env = scene.environment;
+    if (!finite(env.skyRadiance) || !finite(env.sunIrradiance) || !finite(env.sunDirection) ||
+        glm::any(glm::lessThan(env.skyRadiance, glm::vec3(0.0f))) || glm::any(glm::lessThan(env.sunIrradiance, glm::vec3(0.0f))))
+        return fail("the environment's sky and sun must be finite and non-negative");
+
+    Bvh bvh = buildBvh(positions);
+    if (bvh.depth > kMaxBvhDepth) return fail("the BVH is " + std::to_string(bvh.depth) + " levels deep (the traversal stack holds 48)");
+    const uint32_t n = uint32_t(positions.size() / 3);
+    std::vector<glm::vec4> tris(3 * size_t(n)), lights;
+    std::vector<float> vertices;
+    vertices.reserve(size_t(n) * 21);
+    float total = 0.0f;
+    for (uint32_t slot = 0; slot < n; ++slot) {
+        const uint32_t t = bvh.order[slot];
+        const uint32_t material = materialOf[t];
+        const glm::vec3 a = positions[3 * t], b = positions[3 * t + 1], c = positions[3 * t + 2];
+        tris[3 * slot] = glm::vec4(a, bitsOf(material));
+        tris[3 * slot + 1] = glm::vec4(b, 0.0f);
+        tris[3 * slot + 2] = glm::vec4(c, 0.0f);
+        const glm::vec3 cr = glm::cross(b - a, c - a);
+        const float area = 0.5f * glm::length(cr);
+        const glm::vec3 normal = area > 0.0f ? glm::normalize(cr) : glm::vec3(0, 1, 0);
+        for (const glm::vec3& p : {a, b, c}) vertices.insert(vertices.end(), {p.x, p.y, p.z, normal.x, normal.y, normal.z, bitsOf(material)});
+        const glm::vec3 e = scene.meshes[material].emission;
+        const float weight = area * (0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b);
+        if (weight > 0.0f) {
+            total += weight;
+            lights.push_back(glm::vec4(bitsOf(slot), area, total, weight));
+        }
+    }
+    std::vector<glm::vec4> materials;
+    for (const auto& m : scene.meshes) {
+        materials.push_back(glm::vec4(m.albedo, m.roughness));
+        materials.push_back(glm::vec4(m.emission, m.metalness));
+    }
+    const uint32_t lightCount = uint32_t(lights.size());
+    if (lights.empty()) lights.push_back(glm::vec4(0.0f));  // a buffer is never empty
+
+    std::unique_ptr<GpuScene> s(new GpuScene(device));
+    s->environment_ = env;
+    s->environment_.sunDirection = glm::length(env.sunDirection) > 0.0f ? glm::normalize(env.sunDirection) : glm::vec3(0, 1, 0);
+    s->triangles_ = n;
+    s->lightCount_ = lightCount;
+    s->lightWeight_ = total;
+    s->epsilon_ = 1e-5f * std::max(1.0f, glm::length(bvh.nodes[0].max - bvh.nodes[0].min));
+    auto buffer = [&](const char* name, const void* data, uint64_t bytes, uint32_t usage) {
+        rhi::BufferDesc d;
+        d.size = bytes;
+        d.usage = usage;
+        d.debugName = std::string("scene ") + name;
+        return device.createBuffer(d, data);
+    };
+    using namespace rhi::BufferUsage;
+    s->triangleBuffer_ = buffer("triangles", tris.data(), tris.size() * 16, ShaderRead);
+    s->nodes_ = buffer("bvh", bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhNode), ShaderRead);
+    s->materials_ = buffer("materials", materials.data(), materials.size() * 16, ShaderRead);
+    s->lights_ = buffer("emitters", lights.data(), lights.size() * 16, ShaderRead);
+    s->vertices_ = buffer("vertices", vertices.data(), vertices.size() * 4, Vertex);
+    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->vertices_)
+        return fail("the device could not create the scene's buffers (see its messages)");
+    return s;
+}
+
+GpuScene::~GpuScene() {
+    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, vertices_})
+        if (b) device_.destroy(b);
+}
+
+void GpuScene::bind(rhi::Bindings& b) const {
+    b.readBuffers.push({0, triangleBuffer_, {}});
+    b.readBuffers.push({1, nodes_, {}});
+    b.readBuffers.push({2, materials_, {}});
+    b.readBuffers.push({3, lights_, {}});
+}
+
+SceneLightConstants GpuScene::lightConstants(uint32_t seed, uint32_t maxBounces) const {
+    SceneLightConstants c{};
+    c.sky = glm::vec4(environment_.skyRadiance, 0.0f);
+    c.sunDirection = glm::vec4(environment_.sunDirection, 0.0f);
+    c.sunIrradiance = glm::vec4(environment_.sunIrradiance, 0.0f);
+    c.counts[0] = lightCount_;
+    c.counts[1] = seed;
+    c.counts[2] = maxBounces;
+    c.lightWeight = glm::vec4(lightWeight_, epsilon_, 0.0f, 0.0f);
+    return c;
+}
+
+}  // namespace bricklight::render

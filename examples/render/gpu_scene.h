@@ -1,0 +1,46 @@
+// A SceneGeometry on the GPU for the renderer's passes: world triangles in BVH order, the BVH, materials,
+// emitters (shaders/render/scene_trace.glsl traces them), and a vertex buffer for rasterization.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "bricklight/rhi.h"
+#include "scene_geometry.h"
+
+namespace bricklight::render {
+
+// BL_CONSTANTS(1) of every pass that includes scene_trace.glsl.
+struct SceneLightConstants {
+    glm::vec4 sky;            // rgb radiance
+    glm::vec4 sunDirection;   // xyz towards the sun
+    glm::vec4 sunIrradiance;  // rgb
+    uint32_t counts[4];       // x emitters, y seed, z max bounces
+    glm::vec4 lightWeight;    // x total emitter weight, y ray offset (self-intersection)
+};
+
+class GpuScene {
+public:
+    // Null with `error` set for an empty scene, non-finite positions, indices out of range, negative
+    // albedo/emission, a BVH deeper than the traversal stack.
+    static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error);
+    ~GpuScene();
+    // Read buffers 0..3 (triangles, BVH, materials, emitters) as scene_trace.glsl declares them.
+    void bind(rhi::Bindings& bindings) const;
+    SceneLightConstants lightConstants(uint32_t seed, uint32_t maxBounces) const;
+    uint32_t triangleCount() const { return triangles_; }
+    rhi::BufferHandle vertexBuffer() const { return vertices_; }  // 3 vertices per triangle: position, normal, material
+    rhi::BufferHandle materialBuffer() const { return materials_; }
+    static constexpr uint32_t kVertexStride = 28;
+    float rayOffset() const { return epsilon_; }
+
+private:
+    explicit GpuScene(rhi::IDevice& device) : device_(device) {}
+    rhi::IDevice& device_;
+    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, vertices_;
+    scenes::Environment environment_;
+    uint32_t lightCount_ = 0, triangles_ = 0;
+    float lightWeight_ = 0.0f, epsilon_ = 1e-4f;
+};
+
+}  // namespace bricklight::render

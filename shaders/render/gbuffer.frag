@@ -1,0 +1,35 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+// G-buffer targets: 0 albedo (rgb) + roughness, 1 world normal facing the camera (xyz), 2 emission (rgb,
+// front faces only) + metalness, 3 motion vector (UV space, current - previous), 4 world position (w = 1
+// where geometry was drawn; exact, so that shadow rays start on the surface). Depth: D32.
+BL_CONSTANTS(0) uniform Camera {
+    mat4 viewProjection;
+    mat4 previousViewProjection;
+    vec4 eye;
+} camera;
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };  // 2 per material: albedo, roughness; emission, metalness
+layout(location = 0) in vec3 vNormal;
+layout(location = 1) flat in uint vMaterial;
+layout(location = 2) in vec4 vClip;
+layout(location = 3) in vec4 vPreviousClip;
+layout(location = 4) in vec3 vWorld;
+layout(location = 0) out vec4 outAlbedo;
+layout(location = 1) out vec4 outNormal;
+layout(location = 2) out vec4 outEmission;
+layout(location = 3) out vec2 outMotion;
+layout(location = 4) out vec4 outPosition;
+void main() {
+    // The front face (counter-clockwise in the world, as the path tracer's one-sided emitters) is the side
+    // its normal points to; decided from the geometry, not from the rasterizer's winding rule.
+    bool front = dot(vNormal, camera.eye.xyz - vWorld) > 0.0;
+    vec4 a = materials[2u * vMaterial], e = materials[2u * vMaterial + 1u];
+    outAlbedo = a;
+    outNormal = vec4(front ? vNormal : -vNormal, 0.0);
+    outEmission = vec4(front ? e.rgb : vec3(0.0), e.a);
+    vec2 uv = vClip.xy / vClip.w * 0.5 + 0.5;
+    vec2 previousUv = vPreviousClip.xy / vPreviousClip.w * 0.5 + 0.5;
+    outMotion = uv - previousUv;
+    outPosition = vec4(vWorld, 1.0);
+}

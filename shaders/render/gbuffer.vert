@@ -1,0 +1,26 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+// G-buffer: world-space triangles (GpuScene's vertex buffer) through the camera; the previous frame's
+// view-projection gives the motion vector.
+BL_CONSTANTS(0) uniform Camera {
+    mat4 viewProjection;          // clip-space y down: row 0 of the targets is the top of the image
+    mat4 previousViewProjection;
+    vec4 eye;
+} camera;
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in uint material;
+layout(location = 0) out vec3 vNormal;
+layout(location = 1) flat out uint vMaterial;
+layout(location = 2) out vec4 vClip;
+layout(location = 3) out vec4 vPreviousClip;
+layout(location = 4) out vec3 vWorld;
+void main() {
+    vNormal = normal;
+    vWorld = position;
+    vMaterial = material;
+    vClip = camera.viewProjection * vec4(position, 1.0);
+    vPreviousClip = camera.previousViewProjection * vec4(position, 1.0);
+    gl_Position = vClip;
+}

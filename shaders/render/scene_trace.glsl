@@ -1,0 +1,139 @@
+// The renderer's scene for ray queries: world triangles in BVH order, the BVH (built on the CPU), materials
+// and emitters (GpuScene binds them as read buffers 0..3), and the lighting constants (BL_CONSTANTS(1)).
+// Used by the reference path tracer and by the rasterized path's direct lighting.
+#ifndef BRICKLIGHT_RENDER_SCENE_TRACE_GLSL
+#define BRICKLIGHT_RENDER_SCENE_TRACE_GLSL
+
+BL_CONSTANTS(1) uniform SceneLight {
+    vec4 sky;            // rgb radiance
+    vec4 sunDirection;   // xyz towards the sun
+    vec4 sunIrradiance;  // rgb
+    uvec4 counts;        // x emitter count, y seed, z max bounces
+    vec4 lightWeight;    // x total emitter weight, y ray offset
+} sceneLight;
+BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits)
+BL_READ_BUFFER(1) Nodes { vec4 nodes[]; };           // 2 per node: min, rightOrFirst; max, count
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 2 per material: albedo, roughness; emission, metalness
+BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, cumulative weight, weight
+
+const float PI = 3.14159265358979;
+
+uint rngState;
+uint pcg(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+float rand() {
+    rngState = pcg(rngState);
+    return float(rngState >> 8) * (1.0 / 16777216.0);
+}
+
+struct Hit {
+    float t;
+    uint triangle;
+};
+
+// Nearest hit in (tMin, tMax), or any hit when `anyHit` (shadow rays).
+bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
+    vec3 inv = 1.0 / mix(d, vec3(1e-30), lessThan(abs(d), vec3(1e-30)));
+    uint stack[48];
+    uint top = 0u;
+    uint node = 0u;
+    hit.t = tMax;
+    hit.triangle = 0xFFFFFFFFu;
+    while (true) {
+        vec4 a = nodes[2u * node], b = nodes[2u * node + 1u];
+        vec3 t0 = (a.xyz - o) * inv, t1 = (b.xyz - o) * inv;
+        float tn = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), tMin));
+        float tf = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), hit.t));
+        if (tn <= tf) {
+            uint count = floatBitsToUint(b.w);
+            uint link = floatBitsToUint(a.w);
+            if (count == 0u) {
+                // Inner: the left child follows; visit it, keep the right one.
+                if (top < 48u) stack[top++] = link;
+                node = node + 1u;
+                continue;
+            }
+            for (uint i = link; i < link + count; ++i) {
+                vec3 v0 = triangles[3u * i].xyz, e1 = triangles[3u * i + 1u].xyz - v0, e2 = triangles[3u * i + 2u].xyz - v0;
+                vec3 p = cross(d, e2);
+                float det = dot(e1, p);
+                if (abs(det) < 1e-20) continue;
+                float invDet = 1.0 / det;
+                vec3 s = o - v0;
+                float u = dot(s, p) * invDet;
+                if (u < 0.0 || u > 1.0) continue;
+                vec3 q = cross(s, e1);
+                float v = dot(d, q) * invDet;
+                if (v < 0.0 || u + v > 1.0) continue;
+                float t = dot(e2, q) * invDet;
+                if (t > tMin && t < hit.t) {
+                    hit.t = t;
+                    hit.triangle = i;
+                    if (anyHit) return true;
+                }
+            }
+        }
+        if (top == 0u) break;
+        node = stack[--top];
+    }
+    return hit.triangle != 0xFFFFFFFFu;
+}
+
+vec3 triangleNormal(uint tri) {
+    vec3 v0 = triangles[3u * tri].xyz;
+    return normalize(cross(triangles[3u * tri + 1u].xyz - v0, triangles[3u * tri + 2u].xyz - v0));
+}
+
+vec3 cosineDirection(vec3 n) {
+    float r1 = rand(), r2 = rand();
+    float phi = 2.0 * PI * r1, s = sqrt(r2);
+    vec3 t = normalize(abs(n.x) > 0.5 ? cross(n, vec3(0, 1, 0)) : cross(n, vec3(1, 0, 0)));
+    vec3 b = cross(n, t);
+    return normalize(t * (cos(phi) * s) + b * (sin(phi) * s) + n * sqrt(max(0.0, 1.0 - r2)));
+}
+
+// Light reflected towards the viewer by a Lambertian surface (albedo, normal n facing the viewer) at p,
+// straight from the emitters (one sample, chosen by weight = area x luminance) and the sun.
+vec3 directLight(vec3 p, vec3 n, vec3 albedo, float eps) {
+    vec3 sum = vec3(0.0);
+    if (sceneLight.counts.x > 0u) {
+        float u = rand() * sceneLight.lightWeight.x;
+        uint lo = 0u, hi = sceneLight.counts.x - 1u;
+        while (lo < hi) {
+            uint mid = (lo + hi) >> 1;
+            if (lights[mid].z < u) lo = mid + 1u; else hi = mid;
+        }
+        vec4 light = lights[lo];
+        uint tri = floatBitsToUint(light.x);
+        float r1 = rand(), r2 = rand();
+        float sr = sqrt(r1);
+        vec3 v0 = triangles[3u * tri].xyz, v1 = triangles[3u * tri + 1u].xyz, v2 = triangles[3u * tri + 2u].xyz;
+        vec3 q = v0 * (1.0 - sr) + v1 * (sr * (1.0 - r2)) + v2 * (sr * r2);
+        vec3 toLight = q - p;
+        float dist2 = dot(toLight, toLight);
+        float dist = sqrt(dist2);
+        vec3 l = toLight / dist;
+        vec3 nl = triangleNormal(tri);
+        float cosL = dot(nl, -l), cosP = dot(n, l);
+        if (cosL > 0.0 && cosP > 0.0) {
+            Hit h;
+            if (!traceRay(p, l, eps, dist * (1.0 - 1e-4), true, h)) {
+                uint material = floatBitsToUint(triangles[3u * tri].w);
+                vec3 emission = materials[2u * material + 1u].rgb;
+                // pdf = (weight / total) / area
+                sum += albedo / PI * emission * cosP * cosL / dist2 * light.y * sceneLight.lightWeight.x / light.w;
+            }
+        }
+    }
+    float cosS = dot(n, sceneLight.sunDirection.xyz);
+    if (cosS > 0.0 && any(greaterThan(sceneLight.sunIrradiance.rgb, vec3(0.0)))) {
+        Hit h;
+        if (!traceRay(p, sceneLight.sunDirection.xyz, eps, 1e30, true, h)) sum += albedo / PI * sceneLight.sunIrradiance.rgb * cosS;
+    }
+    return sum;
+}
+
+#endif
