@@ -5,6 +5,52 @@
 
 namespace bricklight::render {
 
+namespace {
+
+double displayLuminance(const Image& img, size_t p) {
+    auto curve = [](double x) {
+        x = std::max(0.0, x);
+        const double t = std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+        return t <= 0.0031308 ? 12.92 * t : 1.055 * std::pow(t, 1.0 / 2.4) - 0.055;
+    };
+    return 0.2126 * curve(img.rgb[3 * p]) + 0.7152 * curve(img.rgb[3 * p + 1]) + 0.0722 * curve(img.rgb[3 * p + 2]);
+}
+
+double meanSsim(const Image& a, const Image& b) {
+    const uint32_t w = a.width, h = a.height, window = std::min({8u, w, h});
+    const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+    std::vector<double> la(size_t(w) * h), lb(size_t(w) * h);
+    for (size_t p = 0; p < la.size(); ++p) la[p] = displayLuminance(a, p), lb[p] = displayLuminance(b, p);
+    double sum = 0.0;
+    size_t windows = 0;
+    const uint32_t step = std::max(1u, window / 2);
+    for (uint32_t y = 0; y + window <= h; y += step)
+        for (uint32_t x = 0; x + window <= w; x += step) {
+            double ma = 0, mb = 0;
+            for (uint32_t j = 0; j < window; ++j)
+                for (uint32_t i = 0; i < window; ++i) ma += la[size_t(y + j) * w + x + i], mb += lb[size_t(y + j) * w + x + i];
+            const double n = double(window) * window;
+            ma /= n;
+            mb /= n;
+            double va = 0, vb = 0, cov = 0;
+            for (uint32_t j = 0; j < window; ++j)
+                for (uint32_t i = 0; i < window; ++i) {
+                    const double da = la[size_t(y + j) * w + x + i] - ma, db = lb[size_t(y + j) * w + x + i] - mb;
+                    va += da * da;
+                    vb += db * db;
+                    cov += da * db;
+                }
+            va /= n - 1;
+            vb /= n - 1;
+            cov /= n - 1;
+            sum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+            windows++;
+        }
+    return windows ? sum / double(windows) : 1.0;
+}
+
+}  // namespace
+
 ImageMetrics compareImages(const Image& a, const Image& b, const std::vector<uint8_t>* mask) {
     ImageMetrics m;
     if (a.width != b.width || a.height != b.height || a.rgb.size() != b.rgb.size()) {
@@ -33,6 +79,7 @@ ImageMetrics compareImages(const Image& a, const Image& b, const std::vector<uin
     m.psnr = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : INFINITY;
     m.meanA = sumA / double(n);
     m.meanB = sumB / double(n);
+    m.ssim = meanSsim(a, b);
     return m;
 }
 

@@ -1,0 +1,56 @@
+// bricklight-compare A B: how far image A is from the reference B (PNG, EXR or anything OpenImageIO reads).
+//
+//   bricklight-compare A B [--max-relmse X]
+//
+// Prints relMSE (epsilon 0.01), RMSE, PSNR and SSIM of display luminance (docs/render.md). With
+// --max-relmse, exits 1 when relMSE exceeds X (for scripts).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "image_io.h"
+#include "image_metrics.h"
+
+using namespace bricklight;
+
+int main(int argc, char** argv) {
+    std::string a, b;
+    double maxRelMse = -1.0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--max-relmse" && i + 1 < argc) {
+            char* end = nullptr;
+            maxRelMse = std::strtod(argv[++i], &end);
+            if (*end || !(maxRelMse >= 0.0)) {
+                std::fprintf(stderr, "bricklight-compare: --max-relmse expects a number >= 0\n");
+                return 2;
+            }
+        } else if (a.empty()) {
+            a = arg;
+        } else if (b.empty()) {
+            b = arg;
+        } else {
+            std::fprintf(stderr, "bricklight-compare: unexpected argument '%s'\nusage: bricklight-compare A B [--max-relmse X]\n", arg.c_str());
+            return 2;
+        }
+    }
+    if (b.empty()) {
+        std::fprintf(stderr, "usage: bricklight-compare A B [--max-relmse X]   (B is the reference)\n");
+        return 2;
+    }
+    render::Image ia, ib;
+    std::string error;
+    if (!render::readImage(a, &ia, &error) || !render::readImage(b, &ib, &error)) {
+        std::fprintf(stderr, "bricklight-compare: %s\n", error.c_str());
+        return 2;
+    }
+    if (ia.width != ib.width || ia.height != ib.height) {
+        std::fprintf(stderr, "bricklight-compare: sizes differ: %ux%u vs %ux%u\n", ia.width, ia.height, ib.width, ib.height);
+        return 2;
+    }
+    const render::ImageMetrics m = render::compareImages(ia, ib);
+    std::printf("relMSE %.6g (eps %.2g)  RMSE %.6g  PSNR %.2f dB  SSIM %.4f  mean %.6g vs %.6g\n", m.relMse, render::kRelMseEpsilon,
+                m.rmse, m.psnr, m.ssim, m.meanA, m.meanB);
+    return maxRelMse >= 0.0 && m.relMse > maxRelMse ? 1 : 0;
+}
