@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
@@ -267,9 +268,26 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
     return s;
 }
 
+const char* builtinSceneNames() { return "cornell, two-rooms[:THICKNESS], atrium, dynamic, field"; }
+
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error) {
     if (nameOrPath == "cornell") return cornellBox();
     if (nameOrPath == "field") return proceduralField(1000000);
+    if (nameOrPath == "atrium") return atrium();
+    if (nameOrPath == "dynamic") return dynamicRoom();
+    if (nameOrPath.rfind("two-rooms", 0) == 0) {
+        float thickness = 0.1f;
+        if (nameOrPath.size() > 9) {
+            char* end = nullptr;
+            const std::string value = nameOrPath.substr(nameOrPath[9] == ':' ? 10 : 9);
+            thickness = std::strtof(value.c_str(), &end);
+            if (nameOrPath[9] != ':' || value.empty() || *end || !(thickness > 0.0f && thickness <= 2.0f)) {
+                if (error) *error = "'" + nameOrPath + "': the wall thickness must be a number in (0, 2], as in two-rooms:0.05";
+                return {};
+            }
+        }
+        return twoRooms(thickness);
+    }
     return loadModel(nameOrPath, error);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,8 @@ struct SceneGeometry {
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds of all instances
     Environment environment;
     Camera camera;                               // the scene's default view
+    // Animated scenes: moves instances (and lights, which are emissive instances) to `frame`.
+    std::function<void(SceneGeometry&, uint32_t frame)> animate;
     uint64_t triangleCount() const;              // over instances
     void computeBounds();
 };
@@ -62,7 +65,16 @@ TriangleMesh icosphere(uint32_t subdivisions);
 TriangleMesh torus(float majorRadius, float minorRadius, uint32_t triangles);
 // OBJ, glTF, PLY, FBX... through assimp, node transforms applied. Empty scene and `error` set on failure.
 SceneGeometry loadModel(const std::string& path, std::string* error);
-// A built-in scene by name ("cornell", "field"), or a model file.
+// Two rooms sharing a wall `wallThickness` thick (metres); the sun enters the first through a roof
+// opening; the camera looks at the shared wall from the second, closed room: all light there is leakage.
+SceneGeometry twoRooms(float wallThickness);
+// A colonnade courtyard (pillars, arches, a gallery roof, a thin hanging cloth, open to the sky) under sun and sky.
+SceneGeometry atrium();
+// A closed room with a torus that moves and a small ceiling light that travels over a scripted path.
+SceneGeometry dynamicRoom();
+// The built-in scenes' names, for messages.
+const char* builtinSceneNames();
+// A built-in scene by name ("cornell", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model file.
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error);
 
 }  // namespace bricklight::scenes

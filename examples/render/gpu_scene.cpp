@@ -17,7 +17,8 @@ float bitsOf(uint32_t v) {
 constexpr uint32_t kMaxBvhDepth = 48;  // the traversal stack of scene_trace.glsl
 }  // namespace
 
-std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error) {
+std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
+                                           const std::vector<glm::vec3>* previous) {
     auto fail = [&](const std::string& m) {
         if (error) *error = m;
         return std::unique_ptr<GpuScene>();
@@ -54,7 +55,17 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     const uint32_t n = uint32_t(positions.size() / 3);
     std::vector<glm::vec4> tris(3 * size_t(n)), lights;
     std::vector<float> vertices;
-    vertices.reserve(size_t(n) * 21);
+    vertices.reserve(size_t(n) * 30);
+    const bool hasPrevious = previous && previous->size() == positions.size();
+    for (uint32_t t = 0; t < n; ++t) {
+        const glm::vec3 a = positions[3 * t], b = positions[3 * t + 1], c = positions[3 * t + 2];
+        const glm::vec3 cr = glm::cross(b - a, c - a);
+        const glm::vec3 normal = glm::length(cr) > 0.0f ? glm::normalize(cr) : glm::vec3(0, 1, 0);
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 p = positions[3 * t + size_t(k)], q = hasPrevious ? (*previous)[3 * t + size_t(k)] : p;
+            vertices.insert(vertices.end(), {p.x, p.y, p.z, normal.x, normal.y, normal.z, bitsOf(materialOf[t]), q.x, q.y, q.z});
+        }
+    }
     float total = 0.0f;
     for (uint32_t slot = 0; slot < n; ++slot) {
         const uint32_t t = bvh.order[slot];
@@ -63,10 +74,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         tris[3 * slot] = glm::vec4(a, bitsOf(material));
         tris[3 * slot + 1] = glm::vec4(b, 0.0f);
         tris[3 * slot + 2] = glm::vec4(c, 0.0f);
-        const glm::vec3 cr = glm::cross(b - a, c - a);
-        const float area = 0.5f * glm::length(cr);
-        const glm::vec3 normal = area > 0.0f ? glm::normalize(cr) : glm::vec3(0, 1, 0);
-        for (const glm::vec3& p : {a, b, c}) vertices.insert(vertices.end(), {p.x, p.y, p.z, normal.x, normal.y, normal.z, bitsOf(material)});
+        const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
         const glm::vec3 e = scene.meshes[material].emission;
         const float weight = area * (0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b);
         if (weight > 0.0f) {
@@ -86,6 +94,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->environment_ = env;
     s->environment_.sunDirection = glm::length(env.sunDirection) > 0.0f ? glm::normalize(env.sunDirection) : glm::vec3(0, 1, 0);
     s->triangles_ = n;
+    s->positions_ = std::move(positions);
     s->lightCount_ = lightCount;
     s->lightWeight_ = total;
     s->epsilon_ = 1e-5f * std::max(1.0f, glm::length(bvh.nodes[0].max - bvh.nodes[0].min));

@@ -23,15 +23,20 @@ class GpuScene {
 public:
     // Null with `error` set for an empty scene, non-finite positions, indices out of range, negative
     // albedo/emission, a BVH deeper than the traversal stack.
-    static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error);
+    // `previous` (optional): the same scene's world positions one frame earlier (an animated scene), for
+    // motion vectors; used when it has as many vertices.
+    static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
+                                            const std::vector<glm::vec3>* previous = nullptr);
     ~GpuScene();
     // Read buffers 0..3 (triangles, BVH, materials, emitters) as scene_trace.glsl declares them.
     void bind(rhi::Bindings& bindings) const;
     SceneLightConstants lightConstants(uint32_t seed, uint32_t maxBounces) const;
     uint32_t triangleCount() const { return triangles_; }
-    rhi::BufferHandle vertexBuffer() const { return vertices_; }  // 3 vertices per triangle: position, normal, material
+    // 3 vertices per triangle, in the scene's order: position, normal, material, previous position.
+    rhi::BufferHandle vertexBuffer() const { return vertices_; }
     rhi::BufferHandle materialBuffer() const { return materials_; }
-    static constexpr uint32_t kVertexStride = 28;
+    static constexpr uint32_t kVertexStride = 40;
+    const std::vector<glm::vec3>& worldPositions() const { return positions_; }
     float rayOffset() const { return epsilon_; }
 
 private:
@@ -39,6 +44,7 @@ private:
     rhi::IDevice& device_;
     rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, vertices_;
     scenes::Environment environment_;
+    std::vector<glm::vec3> positions_;
     uint32_t lightCount_ = 0, triangles_ = 0;
     float lightWeight_ = 0.0f, epsilon_ = 1e-4f;
 };

@@ -42,10 +42,11 @@ struct Options {
 [[noreturn]] void usage(const std::string& problem) {
     std::fprintf(stderr, "bricklight-render: %s\n", problem.c_str());
     std::fprintf(stderr,
-                 "usage: bricklight-render [--scene cornell|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
+                 "usage: bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                         [--frames N] [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr]\n"
                  "                         [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
-                 "                         [--reference --spp N] [--exposure E]\n");
+                 "                         [--reference --spp N] [--exposure E]\n"
+                 "scenes: %s\n", scenes::builtinSceneNames());
     std::exit(2);
 }
 
@@ -146,6 +147,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     const auto start = std::chrono::steady_clock::now();
+    if (o.reference && scene.animate) scene.animate(scene, o.frames - 1);  // the last frame's state
     std::unique_ptr<render::PathTracer> tracer;
     std::unique_ptr<render::RasterRenderer> raster;
     std::string how;
@@ -178,6 +180,13 @@ int main(int argc, char** argv) {
             return 1;
         }
         for (uint32_t f = 0; f < o.frames; ++f) {
+            if (f > 0 && scene.animate) {
+                scene.animate(scene, f);
+                if (!raster->setScene(scene, &error)) {
+                    std::fprintf(stderr, "bricklight-render: frame %u: %s\n", f, error.c_str());
+                    return 1;
+                }
+            }
             raster->render();
             device->endFrame();
         }

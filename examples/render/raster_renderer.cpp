@@ -111,6 +111,7 @@ void RasterRenderer::render() {
     d.vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
     d.vertexInputs.push({1, rhi::VertexFormat::Float3, 0, 12});
     d.vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
+    d.vertexInputs.push({3, rhi::VertexFormat::Float3, 0, 28});
     d.vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_}) {
         rhi::ColorTarget c;
@@ -146,6 +147,17 @@ void RasterRenderer::render() {
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_}) s.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     s.bindings.storageBuffers.push({0, direct_, {}, rhi::Access::Write});
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
+}
+
+bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* error) {
+    std::string sceneError;
+    std::unique_ptr<GpuScene> next = GpuScene::create(device_, scene, &sceneError, &scene_->worldPositions());
+    if (!next) {
+        if (error) *error = "raster renderer: " + sceneError;
+        return false;
+    }
+    scene_ = std::move(next);
+    return true;
 }
 
 Image RasterRenderer::read(Aov aov) {

@@ -24,6 +24,9 @@ public:
     ~RasterRenderer();
     // The next frame's camera; the previous one gives the motion vectors.
     bool setCamera(const scenes::Camera& camera, std::string* error);
+    // The scene of the next frame (an animated scene's next state): its vertices' previous positions are
+    // this frame's, for motion vectors. Fails, changing nothing, on a bad scene.
+    bool setScene(const scenes::SceneGeometry& scene, std::string* error);
     void render();  // records the G-buffer draw and the lighting dispatch
     // Combined (= direct until GI lands), direct, albedo, normal, depth; indirect-diffuse is zero.
     Image read(Aov aov);

@@ -11,6 +11,7 @@ BL_CONSTANTS(0) uniform Camera {
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in uint material;
+layout(location = 3) in vec3 previousPosition;  // the same vertex one frame earlier (animated scenes)
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) flat out uint vMaterial;
 layout(location = 2) out vec4 vClip;
@@ -21,6 +22,6 @@ void main() {
     vWorld = position;
     vMaterial = material;
     vClip = camera.viewProjection * vec4(position, 1.0);
-    vPreviousClip = camera.previousViewProjection * vec4(position, 1.0);
+    vPreviousClip = camera.previousViewProjection * vec4(previousPosition, 1.0);
     gl_Position = vClip;
 }

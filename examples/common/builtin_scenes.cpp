@@ -1,0 +1,161 @@
+// The renderer's built-in test scenes beyond the Cornell box: the light-leak test, an outdoor-indoor
+// courtyard, and an animated room. Units: metres.
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene_geometry.h"
+
+namespace bricklight::scenes {
+
+namespace {
+
+// A closed axis-aligned box, counter-clockwise seen from outside.
+void addBox(TriangleMesh& m, glm::vec3 lo, glm::vec3 hi) {
+    const uint32_t b = uint32_t(m.positions.size() / 3);
+    for (int i = 0; i < 8; ++i)
+        m.positions.insert(m.positions.end(), {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    const uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& f : faces) m.indices.insert(m.indices.end(), {b + f[0], b + f[1], b + f[2], b + f[0], b + f[2], b + f[3]});
+}
+
+uint32_t addMesh(SceneGeometry& s, TriangleMesh m) {
+    s.meshes.push_back(std::move(m));
+    const uint32_t i = uint32_t(s.meshes.size() - 1);
+    s.instances.push_back({i, glm::mat4(1.0f)});
+    return i;
+}
+
+TriangleMesh named(const char* name, glm::vec3 albedo) {
+    TriangleMesh m;
+    m.name = name;
+    m.albedo = albedo;
+    return m;
+}
+
+}  // namespace
+
+SceneGeometry twoRooms(float t) {
+    SceneGeometry s;
+    s.name = "two-rooms";
+    const float w = 0.2f;  // outer shell thickness
+    const glm::vec3 white(0.8f);
+    TriangleMesh shell = named("shell", white);
+    const float east = 8.0f + t;
+    addBox(shell, {-w, -w, -w}, {east + w, 0.0f, 4.0f + w});                 // floor
+    addBox(shell, {-w, 0.0f, -w}, {0.0f, 3.0f, 4.0f + w});                    // west wall
+    addBox(shell, {east, 0.0f, -w}, {east + w, 3.0f, 4.0f + w});              // east wall
+    addBox(shell, {0.0f, 0.0f, -w}, {east, 3.0f, 0.0f});                      // south wall
+    addBox(shell, {0.0f, 0.0f, 4.0f}, {east, 3.0f, 4.0f + w});                // north wall
+    // Ceiling: room B closed; room A with an opening x 1.5..2.5, z 1.5..2.5.
+    addBox(shell, {4.0f, 3.0f, -w}, {east + w, 3.0f + w, 4.0f + w});
+    addBox(shell, {-w, 3.0f, -w}, {1.5f, 3.0f + w, 4.0f + w});
+    addBox(shell, {2.5f, 3.0f, -w}, {4.0f, 3.0f + w, 4.0f + w});
+    addBox(shell, {1.5f, 3.0f, -w}, {2.5f, 3.0f + w, 1.5f});
+    addBox(shell, {1.5f, 3.0f, 2.5f}, {2.5f, 3.0f + w, 4.0f + w});
+    addMesh(s, std::move(shell));
+    TriangleMesh wall = named("shared wall", white);
+    addBox(wall, {4.0f, 0.0f, 0.0f}, {4.0f + t, 3.0f, 4.0f});
+    addMesh(s, std::move(wall));
+    // The sun falls through the opening onto room A's floor next to the shared wall.
+    s.environment = {glm::vec3(0.3f, 0.4f, 0.6f), glm::normalize(glm::vec3(-0.5f, 1.0f, 0.1f)), glm::vec3(5.0f)};
+    s.camera = {glm::vec3(7.5f + t, 1.6f, 2.0f), glm::vec3(4.0f + t, 1.2f, 2.0f), glm::vec3(0, 1, 0), 75.0f};
+    s.computeBounds();
+    return s;
+}
+
+SceneGeometry atrium() {
+    SceneGeometry s;
+    s.name = "atrium";
+    const glm::vec3 stone(0.62f, 0.55f, 0.45f);
+    TriangleMesh ground = named("ground", glm::vec3(0.5f, 0.48f, 0.42f));
+    addBox(ground, {-15.0f, -0.2f, -15.0f}, {15.0f, 0.0f, 15.0f});
+    addMesh(s, std::move(ground));
+    // Outer walls 6 m high around a 20 x 20 m court; a gallery roof 3 m wide at 5 m over the inner edge.
+    TriangleMesh walls = named("walls", stone);
+    addBox(walls, {-10.5f, 0.0f, -10.5f}, {10.5f, 6.0f, -10.0f});
+    addBox(walls, {-10.5f, 0.0f, 10.0f}, {10.5f, 6.0f, 10.5f});
+    addBox(walls, {-10.5f, 0.0f, -10.0f}, {-10.0f, 6.0f, 10.0f});
+    addBox(walls, {10.0f, 0.0f, -10.0f}, {10.5f, 6.0f, 10.0f});
+    addBox(walls, {-10.0f, 5.0f, -10.0f}, {10.0f, 5.4f, -7.0f});  // gallery roofs (the centre is open)
+    addBox(walls, {-10.0f, 5.0f, 7.0f}, {10.0f, 5.4f, 10.0f});
+    addBox(walls, {-10.0f, 5.0f, -7.0f}, {-7.0f, 5.4f, 7.0f});
+    addBox(walls, {7.0f, 5.0f, -7.0f}, {10.0f, 5.4f, 7.0f});
+    addMesh(s, std::move(walls));
+    // Pillars every 2 m along the inner edge, with arches (semicircles of 12 segments) between them.
+    TriangleMesh colonnade = named("colonnade", glm::vec3(0.75f, 0.72f, 0.66f));
+    auto arch = [&](glm::vec3 a, glm::vec3 b) {
+        const glm::vec3 mid = (a + b) * 0.5f, half = (b - a) * 0.5f;
+        const float r = glm::length(half);
+        for (int k = 0; k < 12; ++k) {
+            const float t0 = float(M_PI) * float(k) / 12.0f, t1 = float(M_PI) * float(k + 1) / 12.0f;
+            const glm::vec3 p0 = mid - half * std::cos(t0) + glm::vec3(0, 3.6f + r * std::sin(t0), 0);
+            const glm::vec3 p1 = mid - half * std::cos(t1) + glm::vec3(0, 3.6f + r * std::sin(t1), 0);
+            addBox(colonnade, glm::min(p0, p1) - glm::vec3(0.15f), glm::max(p0, p1) + glm::vec3(0.15f));
+        }
+    };
+    for (int side = 0; side < 4; ++side)
+        for (int k = 0; k <= 7; ++k) {
+            const float u = -7.0f + 2.0f * float(k);
+            glm::vec3 c = side == 0 ? glm::vec3(u, 0, -7) : side == 1 ? glm::vec3(u, 0, 7) : side == 2 ? glm::vec3(-7, 0, u) : glm::vec3(7, 0, u);
+            addBox(colonnade, c + glm::vec3(-0.25f, 0.0f, -0.25f), c + glm::vec3(0.25f, 5.0f, 0.25f));
+            if (k < 7) {
+                const glm::vec3 next = side < 2 ? c + glm::vec3(2, 0, 0) : c + glm::vec3(0, 0, 2);
+                arch(c + (next - c) * 0.125f, next - (next - c) * 0.125f);
+            }
+        }
+    addMesh(s, std::move(colonnade));
+    // A thin cloth hanging from the north gallery roof: one sheet of triangles, waved.
+    TriangleMesh cloth = named("cloth", glm::vec3(0.7f, 0.12f, 0.1f));
+    const int n = 24;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const float x = -2.0f + 4.0f * float(i) / n, y = 5.0f - 3.5f * float(j) / n;
+            const float z = 7.2f + 0.15f * std::sin(float(i) * 0.9f) * float(j) / n;
+            cloth.positions.insert(cloth.positions.end(), {x, y, z});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = uint32_t(j * (n + 1) + i);
+            cloth.indices.insert(cloth.indices.end(), {a, a + n + 1, a + 1, a + 1, a + n + 1, a + n + 2});
+        }
+    addMesh(s, std::move(cloth));
+    s.environment = {glm::vec3(0.35f, 0.45f, 0.65f), glm::normalize(glm::vec3(0.5f, 0.8f, -0.35f)), glm::vec3(4.0f)};
+    s.camera = {glm::vec3(-8.5f, 1.7f, -8.5f), glm::vec3(2.0f, 2.2f, 3.0f), glm::vec3(0, 1, 0), 70.0f};
+    s.computeBounds();
+    return s;
+}
+
+SceneGeometry dynamicRoom() {
+    SceneGeometry s;
+    s.name = "dynamic";
+    TriangleMesh room = named("room", glm::vec3(0.75f));
+    addBox(room, {-3.2f, -0.2f, -3.2f}, {3.2f, 0.0f, 3.2f});
+    addBox(room, {-3.2f, 3.0f, -3.2f}, {3.2f, 3.2f, 3.2f});
+    addBox(room, {-3.2f, 0.0f, -3.2f}, {-3.0f, 3.0f, 3.2f});
+    addBox(room, {3.0f, 0.0f, -3.2f}, {3.2f, 3.0f, 3.2f});
+    addBox(room, {-3.0f, 0.0f, -3.2f}, {3.0f, 3.0f, -3.0f});
+    addBox(room, {-3.0f, 0.0f, 3.0f}, {3.0f, 3.0f, 3.2f});
+    addMesh(s, std::move(room));
+    TriangleMesh object = torus(0.5f, 0.18f, 2000);
+    object.name = "moving torus";
+    object.albedo = glm::vec3(0.2f, 0.5f, 0.8f);
+    addMesh(s, std::move(object));
+    // The light: a small quad facing down, just under the ceiling.
+    TriangleMesh light = named("moving light", glm::vec3(0.8f));
+    light.positions = {-0.3f, 0.0f, -0.3f, -0.3f, 0.0f, 0.3f, 0.3f, 0.0f, 0.3f, 0.3f, 0.0f, -0.3f};
+    light.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from below: emits downwards
+    light.emission = glm::vec3(30.0f, 27.0f, 22.0f);
+    addMesh(s, std::move(light));
+    s.animate = [](SceneGeometry& g, uint32_t frame) {
+        const float t = 0.1f * float(frame);
+        g.instances[1].transform = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.5f * std::cos(t), 0.7f, 1.5f * std::sin(t))),
+                                               2.0f * t, glm::vec3(1.0f, 0.3f, 0.0f));
+        g.instances[2].transform = glm::translate(glm::mat4(1.0f), glm::vec3(1.8f * std::sin(0.7f * t), 2.95f, -1.0f + std::cos(0.5f * t)));
+    };
+    s.animate(s, 0);
+    s.camera = {glm::vec3(0.0f, 1.6f, -2.9f), glm::vec3(0.0f, 0.8f, 1.0f), glm::vec3(0, 1, 0), 75.0f};
+    s.computeBounds();
+    return s;
+}
+
+}  // namespace bricklight::scenes

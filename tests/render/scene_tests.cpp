@@ -1,0 +1,91 @@
+// The built-in scenes: the light-leak scene has exactly no light in its closed room (so any light a
+// technique puts there is a leak), the dynamic scene moves and its motion vectors show it, scene names
+// with bad parameters are refused.
+#include "backend_test.h"
+#include "image_metrics.h"
+#include "path_tracer.h"
+#include "raster_renderer.h"
+
+using namespace bricklight;
+using namespace bricklight::testing;
+
+namespace {
+
+void closedRoomIsDark(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    for (float thickness : {0.1f, 0.02f}) {
+        const scenes::SceneGeometry s = scenes::twoRooms(thickness);
+        render::PathTracerOptions o;
+        o.width = o.height = 32;
+        std::string error;
+        auto pt = render::PathTracer::create(*td.device, s, o, &error);
+        REQUIRE(pt);
+        pt->addSamples(32);
+        float largest = 0.0f;
+        for (float v : pt->read(render::Aov::Combined).rgb) largest = std::max(largest, v);
+        INFO("wall " << thickness << ": brightest pixel of the closed room " << largest);
+        CHECK(largest == 0.0f);
+        // ...while the sunlit room is lit.
+        scenes::Camera inA{{0.5f, 1.6f, 2.0f}, {4.0f, 0.5f, 2.0f}, {0, 1, 0}, 75.0f};
+        REQUIRE(pt->setCamera(inA, &error));
+        pt->addSamples(8);
+        double sum = 0.0;
+        for (float v : pt->read(render::Aov::Combined).rgb) sum += v;
+        CHECK(sum > 0.0);
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
+void dynamicSceneMoves(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry s = scenes::dynamicRoom();
+    REQUIRE(s.animate);
+    render::RasterOptions ro;
+    ro.width = ro.height = 48;
+    ro.lightSamples = 1;
+    std::string error;
+    auto r = render::RasterRenderer::create(*td.device, s, ro, &error);
+    REQUIRE(r);
+    r->render();
+    s.animate(s, 3);
+    REQUIRE(r->setScene(s, &error));
+    r->render();
+    const render::Image motion = r->readMotion(), albedo = r->read(render::Aov::Albedo);
+    const glm::vec3 torusAlbedo = s.meshes[1].albedo;
+    size_t torusPixels = 0, movingTorus = 0, stillElsewhere = 0, elsewhere = 0;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 48; ++x) {
+            const float m = glm::length(glm::vec2(motion.at(x, y)));
+            if (glm::length(albedo.at(x, y) - torusAlbedo) < 1e-3f) {
+                torusPixels++;
+                movingTorus += m > 1e-3f;
+            } else if (glm::length(albedo.at(x, y) - s.meshes[0].albedo) < 1e-3f) {  // the room
+                elsewhere++;
+                stillElsewhere += m == 0.0f;
+            }
+        }
+    INFO(torusPixels << " torus pixels, " << movingTorus << " with motion; " << stillElsewhere << " of " << elsewhere << " others still");
+    CHECK(torusPixels > 20);
+    CHECK(movingTorus == torusPixels);
+    CHECK(elsewhere > 1000);
+    CHECK(stillElsewhere == elsewhere);  // the room and the camera do not move
+    REQUIRE_NO_MESSAGES(td);
+}
+
+}  // namespace
+
+BACKEND_TEST("scenes: two-rooms' closed room gets no light at all", "[render]", closedRoomIsDark)
+BACKEND_TEST("scenes: dynamic moves, and its motion vectors show it", "[render]", dynamicSceneMoves)
+
+TEST_CASE("scenes: names and parameters", "[metrics]") {
+    std::string error;
+    CHECK(scenes::loadScene("two-rooms:0.05", &error).meshes.size() == 2);
+    CHECK(scenes::loadScene("two-rooms:abc", &error).meshes.empty());
+    CHECK(error.find("wall thickness") != std::string::npos);
+    CHECK(scenes::loadScene("two-rooms:-1", &error).meshes.empty());
+    CHECK(scenes::loadScene("two-roomsX", &error).meshes.empty());
+    CHECK(!scenes::loadScene("atrium", &error).meshes.empty());
+    CHECK(scenes::loadScene("dynamic", &error).animate);
+}
