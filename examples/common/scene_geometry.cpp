@@ -214,6 +214,50 @@ const AssimpApi& assimp() {
 
 }  // namespace
 
+// The world transform of the node named `name` (lights hang off nodes by name), or false if none.
+bool nodeTransform(const aiNode* node, const aiString& name, const aiMatrix4x4& parent, aiMatrix4x4* out) {
+    if (!node) return false;
+    const aiMatrix4x4 world = parent * node->mTransformation;
+    if (node->mName == name) {
+        *out = world;
+        return true;
+    }
+    for (unsigned i = 0; i < node->mNumChildren; ++i)
+        if (nodeTransform(node->mChildren[i], name, world, out)) return true;
+    return false;
+}
+
+// Lights of the file: directional -> the sun (the first one), point and spot -> point lights. Colours
+// are taken as radiant intensity (W/sr; directional: irradiance). Area and ambient lights are skipped.
+void importLights(const aiScene* scene, SceneGeometry& s) {
+    bool sun = false;
+    for (unsigned i = 0; i < scene->mNumLights; ++i) {
+        const aiLight* l = scene->mLights[i];
+        aiMatrix4x4 m;
+        if (!nodeTransform(scene->mRootNode, l->mName, aiMatrix4x4(), &m)) m = aiMatrix4x4();
+        const aiVector3D p = m * l->mPosition;
+        aiMatrix3x3 r(m);
+        aiVector3D d = r * l->mDirection;
+        d.Normalize();
+        const glm::vec3 colour(l->mColorDiffuse.r, l->mColorDiffuse.g, l->mColorDiffuse.b);
+        if (l->mType == aiLightSource_DIRECTIONAL && !sun) {
+            s.environment.sunDirection = -glm::vec3(d.x, d.y, d.z);
+            s.environment.sunIrradiance = colour;
+            sun = true;
+        } else if (l->mType == aiLightSource_POINT || l->mType == aiLightSource_SPOT) {
+            PointLight pl;
+            pl.position = glm::vec3(p.x, p.y, p.z);
+            pl.intensity = colour;
+            pl.direction = glm::vec3(d.x, d.y, d.z);
+            if (l->mType == aiLightSource_SPOT) {
+                pl.innerConeRadians = l->mAngleInnerCone;
+                pl.outerConeRadians = l->mAngleOuterCone;
+            }
+            s.pointLights.push_back(pl);
+        }
+    }
+}
+
 SceneGeometry loadModel(const std::string& path, std::string* error) {
     SceneGeometry s;
     s.name = path;
@@ -254,17 +298,20 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
         s.instances.push_back({uint32_t(s.meshes.size()), glm::mat4(1.0f)});
         s.meshes.push_back(std::move(m));
     }
-    api.releaseImport(scene);
     if (s.meshes.empty()) {
+        api.releaseImport(scene);
         if (error) *error = "'" + path + "' holds no triangles";
         return s;
     }
     s.computeBounds();
-    // Files carry no camera or sky here: a view from the front, a sky and a sun.
+    // A view from the front; the file's lights where it has any, else a sky and a sun.
     const glm::vec3 centre = (s.boundsMin + s.boundsMax) * 0.5f;
     const float size = glm::length(s.boundsMax - s.boundsMin);
     s.camera = {centre + glm::vec3(0.0f, 0.25f * size, 1.2f * size), centre, glm::vec3(0, 1, 0), 45.0f};
-    s.environment = {glm::vec3(0.35f, 0.45f, 0.6f), glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f)), glm::vec3(3.0f)};
+    importLights(scene, s);
+    if (scene->mNumLights == 0)
+        s.environment = {glm::vec3(0.35f, 0.45f, 0.6f), glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f)), glm::vec3(3.0f)};
+    api.releaseImport(scene);
     return s;
 }
 

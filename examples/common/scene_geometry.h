@@ -30,6 +30,15 @@ struct Environment {
     glm::vec3 sunIrradiance{0.0f};             // on a surface facing the sun
 };
 
+// A point light (radiant intensity in W/sr, in the scene's units) or, with a cone, a spot light.
+struct PointLight {
+    glm::vec3 position{0.0f};
+    glm::vec3 intensity{0.0f};
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot: the cone's axis
+    float innerConeRadians = 3.2f;            // > pi: no cone (a point light)
+    float outerConeRadians = 3.2f;
+};
+
 struct Camera {
     glm::vec3 eye{0.0f, 0.0f, 5.0f};
     glm::vec3 at{0.0f};
@@ -48,6 +57,7 @@ struct SceneGeometry {
     std::vector<MeshInstance> instances;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds of all instances
     Environment environment;
+    std::vector<PointLight> pointLights;
     Camera camera;                               // the scene's default view
     // Animated scenes: moves instances (and lights, which are emissive instances) to `frame`.
     std::function<void(SceneGeometry&, uint32_t frame)> animate;

@@ -50,6 +50,18 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         glm::any(glm::lessThan(env.skyRadiance, glm::vec3(0.0f))) || glm::any(glm::lessThan(env.sunIrradiance, glm::vec3(0.0f))))
         return fail("the environment's sky and sun must be finite and non-negative");
 
+    std::vector<glm::vec4> points;
+    for (const scenes::PointLight& l : scene.pointLights) {
+        if (!finite(l.position) || !finite(l.intensity) || !finite(l.direction) || glm::any(glm::lessThan(l.intensity, glm::vec3(0.0f))))
+            return fail("a point light has a non-finite position, intensity or direction, or a negative intensity");
+        const bool spot = l.outerConeRadians < float(M_PI);
+        const glm::vec3 axis = glm::length(l.direction) > 0.0f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+        points.push_back(glm::vec4(l.position, spot ? std::cos(l.outerConeRadians) : -2.0f));
+        points.push_back(glm::vec4(l.intensity, 0.0f));
+        points.push_back(glm::vec4(axis, spot ? std::cos(std::min(l.innerConeRadians, l.outerConeRadians)) : 1.0f));
+    }
+    const uint32_t pointCount = uint32_t(points.size() / 3);
+    if (points.empty()) points.resize(3, glm::vec4(0.0f));
     Bvh bvh = buildBvh(positions);
     if (bvh.depth > kMaxBvhDepth) return fail("the BVH is " + std::to_string(bvh.depth) + " levels deep (the traversal stack holds 48)");
     const uint32_t n = uint32_t(positions.size() / 3);
@@ -110,14 +122,16 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->nodes_ = buffer("bvh", bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhNode), ShaderRead);
     s->materials_ = buffer("materials", materials.data(), materials.size() * 16, ShaderRead);
     s->lights_ = buffer("emitters", lights.data(), lights.size() * 16, ShaderRead);
+    s->pointLights_ = buffer("point lights", points.data(), points.size() * 16, ShaderRead);
+    s->pointLightCount_ = pointCount;
     s->vertices_ = buffer("vertices", vertices.data(), vertices.size() * 4, Vertex);
-    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->vertices_)
+    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->pointLights_ || !s->vertices_)
         return fail("the device could not create the scene's buffers (see its messages)");
     return s;
 }
 
 GpuScene::~GpuScene() {
-    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, vertices_})
+    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_})
         if (b) device_.destroy(b);
 }
 
@@ -126,6 +140,7 @@ void GpuScene::bind(rhi::Bindings& b) const {
     b.readBuffers.push({1, nodes_, {}});
     b.readBuffers.push({2, materials_, {}});
     b.readBuffers.push({3, lights_, {}});
+    b.readBuffers.push({4, pointLights_, {}});
 }
 
 SceneLightConstants GpuScene::lightConstants(uint32_t seed, uint32_t maxBounces) const {
@@ -136,6 +151,7 @@ SceneLightConstants GpuScene::lightConstants(uint32_t seed, uint32_t maxBounces)
     c.counts[0] = lightCount_;
     c.counts[1] = seed;
     c.counts[2] = maxBounces;
+    c.counts[3] = pointLightCount_;
     c.lightWeight = glm::vec4(lightWeight_, epsilon_, 0.0f, 0.0f);
     return c;
 }

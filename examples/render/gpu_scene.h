@@ -28,7 +28,7 @@ public:
     static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
                                             const std::vector<glm::vec3>* previous = nullptr);
     ~GpuScene();
-    // Read buffers 0..3 (triangles, BVH, materials, emitters) as scene_trace.glsl declares them.
+    // Read buffers 0..4 (triangles, BVH, materials, emitters, point lights) as scene_trace.glsl declares them.
     void bind(rhi::Bindings& bindings) const;
     SceneLightConstants lightConstants(uint32_t seed, uint32_t maxBounces) const;
     uint32_t triangleCount() const { return triangles_; }
@@ -42,7 +42,8 @@ public:
 private:
     explicit GpuScene(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
-    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, vertices_;
+    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_;
+    uint32_t pointLightCount_ = 0;
     scenes::Environment environment_;
     std::vector<glm::vec3> positions_;
     uint32_t lightCount_ = 0, triangles_ = 0;

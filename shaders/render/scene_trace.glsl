@@ -8,13 +8,14 @@ BL_CONSTANTS(1) uniform SceneLight {
     vec4 sky;            // rgb radiance
     vec4 sunDirection;   // xyz towards the sun
     vec4 sunIrradiance;  // rgb
-    uvec4 counts;        // x emitter count, y seed, z max bounces
+    uvec4 counts;        // x emitter count, y seed, z max bounces, w point/spot light count
     vec4 lightWeight;    // x total emitter weight, y ray offset
 } sceneLight;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits)
 BL_READ_BUFFER(1) Nodes { vec4 nodes[]; };           // 2 per node: min, rightOrFirst; max, count
 BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 2 per material: albedo, roughness; emission, metalness
 BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, cumulative weight, weight
+BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
 
 const float PI = 3.14159265358979;
 
@@ -127,6 +128,19 @@ vec3 directLight(vec3 p, vec3 n, vec3 albedo, float eps) {
                 sum += albedo / PI * emission * cosP * cosL / dist2 * light.y * sceneLight.lightWeight.x / light.w;
             }
         }
+    }
+    // Point and spot lights (delta lights: every one, every time).
+    for (uint i = 0u; i < sceneLight.counts.w; ++i) {
+        vec4 a = pointLights[3u * i], intensity = pointLights[3u * i + 1u], c = pointLights[3u * i + 2u];
+        vec3 toLight = a.xyz - p;
+        float dist2 = dot(toLight, toLight);
+        vec3 l = toLight * inversesqrt(dist2);
+        float cosP = dot(n, l);
+        if (cosP <= 0.0) continue;
+        float cone = a.w > -1.0 ? smoothstep(a.w, c.w, dot(-l, c.xyz)) : 1.0;
+        if (cone <= 0.0) continue;
+        Hit h;
+        if (!traceRay(p, l, eps, sqrt(dist2) * (1.0 - 1e-4), true, h)) sum += albedo / PI * intensity.rgb * cone * cosP / dist2;
     }
     float cosS = dot(n, sceneLight.sunDirection.xyz);
     if (cosS > 0.0 && any(greaterThan(sceneLight.sunIrradiance.rgb, vec3(0.0)))) {

@@ -1,6 +1,8 @@
 // The built-in scenes: the light-leak scene has exactly no light in its closed room (so any light a
 // technique puts there is a leak), the dynamic scene moves and its motion vectors show it, scene names
 // with bad parameters are refused.
+#include <cmath>
+
 #include "backend_test.h"
 #include "image_metrics.h"
 #include "path_tracer.h"
@@ -88,4 +90,69 @@ TEST_CASE("scenes: names and parameters", "[metrics]") {
     CHECK(scenes::loadScene("two-roomsX", &error).meshes.empty());
     CHECK(!scenes::loadScene("atrium", &error).meshes.empty());
     CHECK(scenes::loadScene("dynamic", &error).animate);
+}
+
+namespace {
+
+void pointAndSpotLights(const std::string& backend) {
+    // A plane (albedo 0.5) under a point light of intensity I at height h: the radiance straight below is
+    // albedo / pi * I / h^2; under a spot light aimed away, zero. Both the path tracer (pixel centres) and
+    // the fast path, against the formula.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry s;
+    scenes::TriangleMesh plane;
+    plane.positions = {-50, 0, -50, 50, 0, -50, 50, 0, 50, -50, 0, 50};
+    plane.indices = {0, 2, 1, 0, 3, 2};
+    plane.albedo = glm::vec3(0.5f);
+    s.meshes.push_back(plane);
+    s.instances.push_back({0, glm::mat4(1.0f)});
+    const float h = 2.0f, intensity = 8.0f;
+    scenes::PointLight point;
+    point.position = {0.0f, h, 0.0f};
+    point.intensity = glm::vec3(intensity);
+    s.pointLights.push_back(point);
+    scenes::PointLight spot;
+    spot.position = {0.0f, 1.0f, 0.0f};
+    spot.intensity = glm::vec3(100.0f);
+    spot.direction = {0.0f, 1.0f, 0.0f};  // pointing up: lights nothing on the plane
+    spot.innerConeRadians = 0.3f;
+    spot.outerConeRadians = 0.4f;
+    s.pointLights.push_back(spot);
+    s.camera = {glm::vec3(0.0f, 5.0f, 0.001f), glm::vec3(0.0f), glm::vec3(0, 0, 1), 20.0f};
+    s.computeBounds();
+    const double expected = 0.5 / M_PI * intensity / (h * h);
+    std::string error;
+    render::PathTracerOptions po;
+    po.width = po.height = 9;
+    po.pixelJitter = false;
+    auto pt = render::PathTracer::create(*td.device, s, po, &error);
+    REQUIRE(pt);
+    pt->addSamples(4);
+    render::RasterOptions ro;
+    ro.width = ro.height = 9;
+    auto r = render::RasterRenderer::create(*td.device, s, ro, &error);
+    REQUIRE(r);
+    r->render();
+    const glm::vec3 traced = pt->read(render::Aov::Direct).at(4, 4), rastered = r->read(render::Aov::Direct).at(4, 4);
+    INFO("expected " << expected << ", path tracer " << traced.x << ", fast path " << rastered.x);
+    CHECK(traced.x == Approx(expected).epsilon(1e-3));
+    CHECK(rastered.x == Approx(expected).epsilon(1e-3));
+    REQUIRE_NO_MESSAGES(td);
+}
+
+}  // namespace
+
+BACKEND_TEST("scenes: point and spot lights against the inverse-square law", "[render]", pointAndSpotLights)
+
+TEST_CASE("scenes: lights from a file", "[metrics]") {
+    std::string error;
+    const scenes::SceneGeometry s = scenes::loadModel("/usr/share/assimp/models/Collada/lights.dae", &error);
+    INFO(error);
+    REQUIRE(!s.meshes.empty());
+    CHECK(s.pointLights.size() == 3);  // two point lights and a spot light
+    CHECK(s.environment.sunIrradiance.x > 0.0f);  // and a directional light, as the sun
+    bool spot = false;
+    for (const auto& l : s.pointLights) spot |= l.outerConeRadians < 3.0f;
+    CHECK(spot);
 }
