@@ -41,7 +41,9 @@ Pair makePair(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size,
 void gbufferMatchesPathTracer(const std::string& backend) {
     // The path tracer with camera rays through the pixel centres, as the rasterizer samples: the primary
     // hits are the same surfaces. Tolerances: albedo and normal are stored as 16-bit floats (5e-4
-    // relative); depth is float math on both sides (1e-4 relative). Silhouette pixels may go either way
+    // relative); depth: the raster's world position is an interpolated varying, the path tracer's an
+    // exact intersection (NVIDIA's interpolation differs by up to ~2e-4 relative; llvmpipe by 5e-7):
+    // 5e-4 relative. Silhouette pixels may go either way
     // between a rasterizer's coverage rule and a ray's hit test: at most 0.5 % of the pixels.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
@@ -50,7 +52,7 @@ void gbufferMatchesPathTracer(const std::string& backend) {
     const size_t pixels = 64 * 64;
     struct Check { render::Aov aov; double tolerance; bool relative; };
     for (const Check& c : {Check{render::Aov::Albedo, 1e-3, false}, Check{render::Aov::Normal, 2e-3, false},
-                           Check{render::Aov::Depth, 1e-4, true}}) {
+                           Check{render::Aov::Depth, 5e-4, true}}) {
         const render::Image r = p.raster->read(c.aov), t = p.tracer->read(c.aov);
         size_t bad = 0;
         double worst = 0.0;
