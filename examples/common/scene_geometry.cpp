@@ -190,6 +190,7 @@ struct AssimpApi {
     decltype(&aiReleaseImport) releaseImport = nullptr;
     decltype(&aiGetErrorString) errorString = nullptr;
     decltype(&aiGetMaterialColor) materialColor = nullptr;
+    decltype(&aiGetMaterialTexture) materialTexture = nullptr;
     std::string loadError;
     AssimpApi() {
         void* lib = nullptr;
@@ -203,7 +204,9 @@ struct AssimpApi {
         releaseImport = reinterpret_cast<decltype(releaseImport)>(dlsym(lib, "aiReleaseImport"));
         errorString = reinterpret_cast<decltype(errorString)>(dlsym(lib, "aiGetErrorString"));
         materialColor = reinterpret_cast<decltype(materialColor)>(dlsym(lib, "aiGetMaterialColor"));
-        if (!importFile || !releaseImport || !errorString || !materialColor) loadError = "libassimp lacks its C API";
+        materialTexture = reinterpret_cast<decltype(materialTexture)>(dlsym(lib, "aiGetMaterialTexture"));
+        if (!importFile || !releaseImport || !errorString || !materialColor || !materialTexture)
+            loadError = "libassimp lacks its C API";
     }
 };
 
@@ -289,11 +292,29 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
             if (in->mFaces[f].mNumIndices == 3)
                 m.indices.insert(m.indices.end(), {in->mFaces[f].mIndices[0], in->mFaces[f].mIndices[1], in->mFaces[f].mIndices[2]});
         if (m.indices.empty()) continue;
+        if (in->mTextureCoords[0])
+            for (unsigned v = 0; v < in->mNumVertices; ++v) m.uvs.insert(m.uvs.end(), {in->mTextureCoords[0][v].x, 1.0f - in->mTextureCoords[0][v].y});
         if (scene->mMaterials && in->mMaterialIndex < scene->mNumMaterials) {
             const aiMaterial* mat = scene->mMaterials[in->mMaterialIndex];
             aiColor4D c;
             if (api.materialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) m.albedo = {c.r, c.g, c.b};
             if (api.materialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) m.emission = {c.r, c.g, c.b};
+            aiString texture;
+            if ((api.materialTexture(mat, aiTextureType_BASE_COLOR, 0, &texture, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) ==
+                     aiReturn_SUCCESS ||
+                 api.materialTexture(mat, aiTextureType_DIFFUSE, 0, &texture, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) ==
+                     aiReturn_SUCCESS) &&
+                texture.length) {
+                const std::string name = texture.C_Str();
+                if (name[0] == '*') {
+                    s.warnings.push_back("mesh '" + m.name + "': embedded texture " + name + " is not supported yet; base colour factor used");
+                } else if (m.uvs.empty()) {
+                    s.warnings.push_back("mesh '" + m.name + "': texture '" + name + "' but no texture coordinates; base colour factor used");
+                } else {
+                    const size_t slash = path.find_last_of('/');
+                    m.baseColorTexture = name[0] == '/' || slash == std::string::npos ? name : path.substr(0, slash + 1) + name;
+                }
+            }
         }
         s.instances.push_back({uint32_t(s.meshes.size()), glm::mat4(1.0f)});
         s.meshes.push_back(std::move(m));

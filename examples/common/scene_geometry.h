@@ -16,6 +16,8 @@ struct TriangleMesh {
     std::string name;
     std::vector<float> positions;   // xyz per vertex
     std::vector<uint32_t> indices;  // 3 per triangle
+    std::vector<float> uvs;         // optional: 2 per vertex (texture coordinates, v down the image)
+    std::string baseColorTexture;   // optional: an image file; multiplies `albedo` (sRGB-encoded)
     glm::vec3 albedo{0.8f};    // base colour (linear)
     glm::vec3 emission{0.0f};  // emitted radiance (linear, W / (sr m^2) in the scene's units)
     float roughness = 1.0f;
@@ -59,6 +61,7 @@ struct SceneGeometry {
     Environment environment;
     std::vector<PointLight> pointLights;
     Camera camera;                               // the scene's default view
+    std::vector<std::string> warnings;           // what loading skipped (e.g. embedded textures)
     // Animated scenes: moves instances (and lights, which are emissive instances) to `frame`.
     std::function<void(SceneGeometry&, uint32_t frame)> animate;
     uint64_t triangleCount() const;              // over instances

@@ -1,9 +1,11 @@
 #include "gpu_scene.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 
 #include "bvh.h"
+#include "texture_loader.h"
 
 namespace bricklight::render {
 
@@ -24,6 +26,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         return std::unique_ptr<GpuScene>();
     };
     std::vector<glm::vec3> positions;
+    std::vector<glm::vec2> uvs;
     std::vector<uint32_t> materialOf;
     for (const auto& inst : scene.instances) {
         if (inst.mesh >= scene.meshes.size()) return fail("an instance names mesh " + std::to_string(inst.mesh) + ", which does not exist");
@@ -36,6 +39,8 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
                 const glm::vec3 p = glm::vec3(inst.transform * glm::vec4(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2], 1.0f));
                 if (!finite(p)) return fail("mesh '" + m.name + "': vertex " + std::to_string(v) + " is not finite");
                 positions.push_back(p);
+                const bool hasUv = 2 * size_t(v) + 1 < m.uvs.size();
+                uvs.push_back(hasUv ? glm::vec2(m.uvs[2 * v], m.uvs[2 * v + 1]) : glm::vec2(0.0f));
             }
             materialOf.push_back(inst.mesh);
         }
@@ -67,7 +72,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     const uint32_t n = uint32_t(positions.size() / 3);
     std::vector<glm::vec4> tris(3 * size_t(n)), lights;
     std::vector<float> vertices;
-    vertices.reserve(size_t(n) * 30);
+    vertices.reserve(size_t(n) * 36);
     const bool hasPrevious = previous && previous->size() == positions.size();
     for (uint32_t t = 0; t < n; ++t) {
         const glm::vec3 a = positions[3 * t], b = positions[3 * t + 1], c = positions[3 * t + 2];
@@ -75,7 +80,8 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         const glm::vec3 normal = glm::length(cr) > 0.0f ? glm::normalize(cr) : glm::vec3(0, 1, 0);
         for (int k = 0; k < 3; ++k) {
             const glm::vec3 p = positions[3 * t + size_t(k)], q = hasPrevious ? (*previous)[3 * t + size_t(k)] : p;
-            vertices.insert(vertices.end(), {p.x, p.y, p.z, normal.x, normal.y, normal.z, bitsOf(materialOf[t]), q.x, q.y, q.z});
+            const glm::vec2 uv = uvs[3 * t + size_t(k)];
+            vertices.insert(vertices.end(), {p.x, p.y, p.z, normal.x, normal.y, normal.z, bitsOf(materialOf[t]), q.x, q.y, q.z, uv.x, uv.y});
         }
     }
     float total = 0.0f;
@@ -94,10 +100,40 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
             lights.push_back(glm::vec4(bitsOf(slot), area, total, weight));
         }
     }
-    std::vector<glm::vec4> materials;
+    // Base-colour textures: one layer each (a file used by several meshes is loaded once).
+    std::vector<std::string> texturePaths;
+    std::vector<float> layerOf;
     for (const auto& m : scene.meshes) {
+        float layer = -1.0f;
+        if (!m.baseColorTexture.empty()) {
+            auto it = std::find(texturePaths.begin(), texturePaths.end(), m.baseColorTexture);
+            layer = float(it - texturePaths.begin());
+            if (it == texturePaths.end()) texturePaths.push_back(m.baseColorTexture);
+        }
+        layerOf.push_back(layer);
+    }
+    std::vector<uint8_t> texels;
+    for (const std::string& path : texturePaths) {
+        std::string textureError;
+        if (!loadTextureLayer(path, kTextureSize, &texels, &textureError)) {
+            for (size_t i = 0; i < scene.meshes.size(); ++i)
+                if (scene.meshes[i].baseColorTexture == path)
+                    return fail("mesh '" + scene.meshes[i].name + "': base colour texture " + textureError);
+        }
+    }
+    if (texturePaths.empty()) texels.assign(size_t(kTextureSize) * kTextureSize * 4, 255);  // one white layer
+    std::vector<glm::vec4> materials;
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+        const auto& m = scene.meshes[i];
         materials.push_back(glm::vec4(m.albedo, m.roughness));
         materials.push_back(glm::vec4(m.emission, m.metalness));
+        materials.push_back(glm::vec4(layerOf[i], 0.0f, 0.0f, 0.0f));
+    }
+    std::vector<glm::vec4> triangleUvs(2 * size_t(n));
+    for (uint32_t slot = 0; slot < n; ++slot) {
+        const uint32_t t = bvh.order[slot];
+        triangleUvs[2 * slot] = glm::vec4(uvs[3 * t], uvs[3 * t + 1]);
+        triangleUvs[2 * slot + 1] = glm::vec4(uvs[3 * t + 2], 0.0f, 0.0f);
     }
     const uint32_t lightCount = uint32_t(lights.size());
     if (lights.empty()) lights.push_back(glm::vec4(0.0f));  // a buffer is never empty
@@ -125,17 +161,35 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->pointLights_ = buffer("point lights", points.data(), points.size() * 16, ShaderRead);
     s->pointLightCount_ = pointCount;
     s->vertices_ = buffer("vertices", vertices.data(), vertices.size() * 4, Vertex);
-    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->pointLights_ || !s->vertices_)
+    s->uvs_ = buffer("texture coordinates", triangleUvs.data(), triangleUvs.size() * 16, ShaderRead);
+    rhi::TextureDesc td;
+    td.dimension = rhi::TextureDimension::Texture2DArray;
+    td.format = rhi::Format::RGBA8_SRGB;
+    td.width = td.height = kTextureSize;
+    td.depthOrLayers = uint32_t(std::max<size_t>(1, texturePaths.size()));
+    td.debugName = "base colour textures";
+    s->textures_ = device.createTexture(td, texels.data());
+    rhi::SamplerDesc sd;
+    sd.mipFilter = rhi::Filter::Nearest;
+    sd.addressU = sd.addressV = rhi::AddressMode::Repeat;
+    sd.debugName = "base colour";
+    s->sampler_ = device.createSampler(sd);
+    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->pointLights_ || !s->vertices_ || !s->uvs_ ||
+        !s->textures_ || !s->sampler_)
         return fail("the device could not create the scene's buffers (see its messages)");
     return s;
 }
 
 GpuScene::~GpuScene() {
-    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_})
+    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_})
         if (b) device_.destroy(b);
+    if (textures_) device_.destroy(textures_);
+    if (sampler_) device_.destroy(sampler_);
 }
 
-void GpuScene::bind(rhi::Bindings& b) const {
+void GpuScene::bind(rhi::Bindings& b, bool textures) const {
+    b.readBuffers.push({5, uvs_, {}});
+    if (textures) b.textures.push({4, rhi::wholeTexture(textures_), sampler_});
     b.readBuffers.push({0, triangleBuffer_, {}});
     b.readBuffers.push({1, nodes_, {}});
     b.readBuffers.push({2, materials_, {}});

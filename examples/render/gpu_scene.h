@@ -28,21 +28,28 @@ public:
     static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
                                             const std::vector<glm::vec3>* previous = nullptr);
     ~GpuScene();
-    // Read buffers 0..4 (triangles, BVH, materials, emitters, point lights) as scene_trace.glsl declares them.
-    void bind(rhi::Bindings& bindings) const;
+    // Read buffers 0..5 (triangles, BVH, materials, emitters, point lights, texture coordinates) as
+    // scene_trace.glsl declares them; with `textures`, also the base-colour texture array (texture slot 4,
+    // for shaders that define BL_SCENE_TEXTURES).
+    void bind(rhi::Bindings& bindings, bool textures = false) const;
+    rhi::TextureHandle textureArray() const { return textures_; }
+    rhi::SamplerHandle textureSampler() const { return sampler_; }
+    static constexpr uint32_t kTextureSize = 256;  // every base-colour texture is resampled to this square
     SceneLightConstants lightConstants(uint32_t seed, uint32_t maxBounces) const;
     uint32_t triangleCount() const { return triangles_; }
     // 3 vertices per triangle, in the scene's order: position, normal, material, previous position.
     rhi::BufferHandle vertexBuffer() const { return vertices_; }
     rhi::BufferHandle materialBuffer() const { return materials_; }
-    static constexpr uint32_t kVertexStride = 40;
+    static constexpr uint32_t kVertexStride = 48;  // + texture coordinates
     const std::vector<glm::vec3>& worldPositions() const { return positions_; }
     float rayOffset() const { return epsilon_; }
 
 private:
     explicit GpuScene(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
-    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_;
+    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_;
+    rhi::TextureHandle textures_;
+    rhi::SamplerHandle sampler_;
     uint32_t pointLightCount_ = 0;
     scenes::Environment environment_;
     std::vector<glm::vec3> positions_;

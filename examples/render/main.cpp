@@ -127,6 +127,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bricklight-render: %s\n", error.empty() ? "the scene is empty" : error.c_str());
         return 1;
     }
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "bricklight-render: warning: %s\n", w.c_str());
     if (o.haveCamera) {
         scene.camera.eye = glm::vec3(o.camera[0], o.camera[1], o.camera[2]);
         scene.camera.at = glm::vec3(o.camera[3], o.camera[4], o.camera[5]);

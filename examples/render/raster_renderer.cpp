@@ -112,6 +112,7 @@ void RasterRenderer::render() {
     d.vertexInputs.push({1, rhi::VertexFormat::Float3, 0, 12});
     d.vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
     d.vertexInputs.push({3, rhi::VertexFormat::Float3, 0, 28});
+    d.vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
     d.vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_}) {
         rhi::ColorTarget c;
@@ -127,6 +128,7 @@ void RasterRenderer::render() {
     d.depth.compare = rhi::CompareOp::Less;
     d.bindings.constants.push(rhi::constants(0, cam));
     d.bindings.readBuffers.push({2, scene_->materialBuffer(), {}});
+    d.bindings.textures.push({0, rhi::wholeTexture(scene_->textureArray()), scene_->textureSampler()});
     rhi::DrawArgs args;
     args.vertexCount = 3 * scene_->triangleCount();
     device_.draw(d, args);

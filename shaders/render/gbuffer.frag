@@ -9,12 +9,14 @@ BL_CONSTANTS(0) uniform Camera {
     mat4 previousViewProjection;
     vec4 eye;
 } camera;
-BL_READ_BUFFER(2) Materials { vec4 materials[]; };  // 2 per material: albedo, roughness; emission, metalness
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };  // 3 per material: albedo, roughness; emission, metalness; layer
+BL_TEXTURE(0) uniform sampler2DArray baseColorTextures;
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) flat in uint vMaterial;
 layout(location = 2) in vec4 vClip;
 layout(location = 3) in vec4 vPreviousClip;
 layout(location = 4) in vec3 vWorld;
+layout(location = 5) in vec2 vUv;
 layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outEmission;
@@ -24,7 +26,10 @@ void main() {
     // The front face (counter-clockwise in the world, as the path tracer's one-sided emitters) is the side
     // its normal points to; decided from the geometry, not from the rasterizer's winding rule.
     bool front = dot(vNormal, camera.eye.xyz - vWorld) > 0.0;
-    vec4 a = materials[2u * vMaterial], e = materials[2u * vMaterial + 1u];
+    vec4 a = materials[3u * vMaterial], e = materials[3u * vMaterial + 1u];
+    float layer = materials[3u * vMaterial + 2u].x;
+    // Level 0, as the path tracer samples it (no derivatives there).
+    if (layer >= 0.0) a.rgb *= textureLod(baseColorTextures, vec3(vUv, layer), 0.0).rgb;
     outAlbedo = a;
     outNormal = vec4(front ? vNormal : -vNormal, 0.0);
     outEmission = vec4(front ? e.rgb : vec3(0.0), e.a);

@@ -12,14 +12,17 @@ layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in uint material;
 layout(location = 3) in vec3 previousPosition;  // the same vertex one frame earlier (animated scenes)
+layout(location = 4) in vec2 uv;
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) flat out uint vMaterial;
 layout(location = 2) out vec4 vClip;
 layout(location = 3) out vec4 vPreviousClip;
 layout(location = 4) out vec3 vWorld;
+layout(location = 5) out vec2 vUv;
 void main() {
     vNormal = normal;
     vWorld = position;
+    vUv = uv;
     vMaterial = material;
     vClip = camera.viewProjection * vec4(position, 1.0);
     vPreviousClip = camera.previousViewProjection * vec4(previousPosition, 1.0);

@@ -23,6 +23,7 @@ BL_CONSTANTS(0) uniform Params {
     uvec4 size;          // xy image size, z first sample index, w samples in this dispatch
 } params;
 BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 6 AOVs x pixels: sums, w = samples
+#define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
 
 void main() {
@@ -52,8 +53,8 @@ void main() {
         bool front = dot(ng, dir) < 0.0;
         vec3 n = front ? ng : -ng;
         uint material = floatBitsToUint(triangles[3u * hit.triangle].w);
-        vec3 albedo = materials[2u * material].rgb;
-        vec3 emission = front ? materials[2u * material + 1u].rgb : vec3(0.0);
+        vec3 albedo = surfaceAlbedo(material, hit.triangle, hit.bary);
+        vec3 emission = front ? materials[3u * material + 1u].rgb : vec3(0.0);
         sums[3] += albedo;
         sums[4] += n;
         sums[5] += vec3(dot(p - origin, params.forward.xyz));
@@ -75,7 +76,7 @@ void main() {
             ng = triangleNormal(hit.triangle);
             n = dot(ng, d) < 0.0 ? ng : -ng;
             material = floatBitsToUint(triangles[3u * hit.triangle].w);
-            albedo = materials[2u * material].rgb;
+            albedo = surfaceAlbedo(material, hit.triangle, hit.bary);
             vec3 light = directLight(p, n, albedo, eps);
             radiance += throughput * light;
             indirect += relative * light;

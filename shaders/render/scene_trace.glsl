@@ -13,9 +13,13 @@ BL_CONSTANTS(1) uniform SceneLight {
 } sceneLight;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits)
 BL_READ_BUFFER(1) Nodes { vec4 nodes[]; };           // 2 per node: min, rightOrFirst; max, count
-BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 2 per material: albedo, roughness; emission, metalness
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 3 per material: albedo, roughness; emission, metalness; texture layer (-1 none)
 BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, cumulative weight, weight
 BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
+BL_READ_BUFFER(5) TriangleUvs { vec4 triangleUvs[]; };  // 2 per triangle: uv0, uv1; uv2
+#ifdef BL_SCENE_TEXTURES
+BL_TEXTURE(4) uniform sampler2DArray baseColorTextures;  // one layer per texture (GpuScene::kTextureSize square)
+#endif
 
 const float PI = 3.14159265358979;
 
@@ -33,6 +37,7 @@ float rand() {
 struct Hit {
     float t;
     uint triangle;
+    vec2 bary;  // weights of vertices 1 and 2
 };
 
 // Nearest hit in (tMin, tMax), or any hit when `anyHit` (shadow rays).
@@ -73,6 +78,7 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
                 if (t > tMin && t < hit.t) {
                     hit.t = t;
                     hit.triangle = i;
+                    hit.bary = vec2(u, v);
                     if (anyHit) return true;
                 }
             }
@@ -81,6 +87,21 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
         node = stack[--top];
     }
     return hit.triangle != 0xFFFFFFFFu;
+}
+
+// Base colour at a hit: the material's factor, times its texture where it has one (and the including
+// shader binds the textures).
+vec3 surfaceAlbedo(uint material, uint tri, vec2 bary) {
+    vec3 albedo = materials[3u * material].rgb;
+#ifdef BL_SCENE_TEXTURES
+    float layer = materials[3u * material + 2u].x;
+    if (layer >= 0.0) {
+        vec4 a = triangleUvs[2u * tri], b = triangleUvs[2u * tri + 1u];
+        vec2 uv = a.xy * (1.0 - bary.x - bary.y) + a.zw * bary.x + b.xy * bary.y;
+        albedo *= textureLod(baseColorTextures, vec3(uv, layer), 0.0).rgb;
+    }
+#endif
+    return albedo;
 }
 
 vec3 triangleNormal(uint tri) {
@@ -123,7 +144,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 albedo, float eps) {
             Hit h;
             if (!traceRay(p, l, eps, dist * (1.0 - 1e-4), true, h)) {
                 uint material = floatBitsToUint(triangles[3u * tri].w);
-                vec3 emission = materials[2u * material + 1u].rgb;
+                vec3 emission = materials[3u * material + 1u].rgb;
                 // pdf = (weight / total) / area
                 sum += albedo / PI * emission * cosP * cosL / dist2 * light.y * sceneLight.lightWeight.x / light.w;
             }

@@ -21,6 +21,7 @@ expect_failure "cannot load .*missing\.obj" "${common[@]}" --scene "$data/missin
 expect_failure "cannot load .*unsupported\.xyz" "${common[@]}" --scene "$data/unsupported.xyz" --out "$out/x.png"
 expect_failure "vertex 1 is not finite" "${common[@]}" --scene "$data/nan_vertex.obj" --out "$out/x.png"
 expect_failure "out of range" "${common[@]}" --scene "$data/index_out_of_range.obj" --out "$out/x.png"
+expect_failure "base colour texture .*nothere\.png' cannot be loaded" "${common[@]}" --scene "$data/missing_texture.obj" --out "$out/x.png"
 expect_failure "unsupported output format" "${common[@]}" --scene cornell --out "$out/x.bmp"
 expect_failure "--width expects a whole number in 1\.\.8192" "${common[@]}" --width 0
 expect_failure "--spp expects" --reference --spp -3

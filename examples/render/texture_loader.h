@@ -1,0 +1,14 @@
+// Base-colour textures for the renderer: any image OpenImageIO reads, resampled to a square layer of
+// RGBA8 sRGB texels (rows top to bottom).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bricklight::render {
+
+// Appends size * size * 4 bytes to `texels`; false with `error` ("'path': why") if the file cannot be read.
+bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_t>* texels, std::string* error);
+
+}  // namespace bricklight::render
