@@ -5,6 +5,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/texture.h>
 #include <dlfcn.h>
 
 #include <array>
@@ -306,10 +307,23 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
                      aiReturn_SUCCESS) &&
                 texture.length) {
                 const std::string name = texture.C_Str();
-                if (name[0] == '*') {
-                    s.warnings.push_back("mesh '" + m.name + "': embedded texture " + name + " is not supported yet; base colour factor used");
-                } else if (m.uvs.empty()) {
+                if (m.uvs.empty()) {
                     s.warnings.push_back("mesh '" + m.name + "': texture '" + name + "' but no texture coordinates; base colour factor used");
+                } else if (name[0] == '*') {
+                    // Embedded: "*N" is the N-th of the scene's textures; compressed ones (height 0) are kept
+                    // as bytes for the renderer to decode.
+                    const unsigned index = unsigned(std::atoi(name.c_str() + 1));
+                    const aiTexture* t = index < scene->mNumTextures ? scene->mTextures[index] : nullptr;
+                    if (t && t->mHeight == 0 && t->mWidth > 0) {
+                        const auto* bytes = reinterpret_cast<const uint8_t*>(t->pcData);
+                        m.embeddedTexture = std::make_shared<std::vector<uint8_t>>(bytes, bytes + t->mWidth);
+                        // The format hint as an extension: the decoder picks its reader by it.
+                        const std::string hint = t->achFormatHint[0] ? std::string(t->achFormatHint) : std::string("png");
+                        m.baseColorTexture = path + name + "." + hint;
+                    } else {
+                        s.warnings.push_back("mesh '" + m.name + "': embedded texture " + name +
+                                             " is missing or uncompressed (not supported); base colour factor used");
+                    }
                 } else {
                     const size_t slash = path.find_last_of('/');
                     m.baseColorTexture = name[0] == '/' || slash == std::string::npos ? name : path.substr(0, slash + 1) + name;

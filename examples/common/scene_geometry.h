@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct TriangleMesh {
     std::vector<uint32_t> indices;  // 3 per triangle
     std::vector<float> uvs;         // optional: 2 per vertex (texture coordinates, v down the image)
     std::string baseColorTexture;   // optional: an image file; multiplies `albedo` (sRGB-encoded)
+    // ...or the encoded bytes of a texture embedded in the model file (PNG, JPEG...), named for messages
+    // by baseColorTexture ("file.glb*0.png": the index and the format).
+    std::shared_ptr<std::vector<uint8_t>> embeddedTexture;
     glm::vec3 albedo{0.8f};    // base colour (linear)
     glm::vec3 emission{0.0f};  // emitted radiance (linear, W / (sr m^2) in the scene's units)
     float roughness = 1.0f;

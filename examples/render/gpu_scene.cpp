@@ -102,20 +102,25 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     }
     // Base-colour textures: one layer each (a file used by several meshes is loaded once).
     std::vector<std::string> texturePaths;
+    std::vector<const std::vector<uint8_t>*> textureBytes;  // embedded textures' encoded bytes
     std::vector<float> layerOf;
     for (const auto& m : scene.meshes) {
         float layer = -1.0f;
         if (!m.baseColorTexture.empty()) {
             auto it = std::find(texturePaths.begin(), texturePaths.end(), m.baseColorTexture);
             layer = float(it - texturePaths.begin());
-            if (it == texturePaths.end()) texturePaths.push_back(m.baseColorTexture);
+            if (it == texturePaths.end()) {
+                texturePaths.push_back(m.baseColorTexture);
+                textureBytes.push_back(m.embeddedTexture.get());
+            }
         }
         layerOf.push_back(layer);
     }
     std::vector<uint8_t> texels;
-    for (const std::string& path : texturePaths) {
+    for (size_t k = 0; k < texturePaths.size(); ++k) {
+        const std::string& path = texturePaths[k];
         std::string textureError;
-        if (!loadTextureLayer(path, kTextureSize, &texels, &textureError)) {
+        if (!loadTextureLayer(path, kTextureSize, &texels, &textureError, textureBytes[k])) {
             for (size_t i = 0; i < scene.meshes.size(); ++i)
                 if (scene.meshes[i].baseColorTexture == path)
                     return fail("mesh '" + scene.meshes[i].name + "': base colour texture " + textureError);

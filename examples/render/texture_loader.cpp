@@ -2,11 +2,14 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/filesystem.h>
 
 namespace bricklight::render {
 
-bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_t>* texels, std::string* error) {
-    OIIO::ImageBuf source(path);
+bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_t>* texels, std::string* error,
+                      const std::vector<uint8_t>* encoded) {
+    OIIO::Filesystem::IOMemReader memory(encoded ? encoded->data() : nullptr, encoded ? encoded->size() : 0);
+    OIIO::ImageBuf source = encoded ? OIIO::ImageBuf(path, 0, 0, nullptr, nullptr, &memory) : OIIO::ImageBuf(path);
     if (!source.read(0, 0, true, OIIO::TypeDesc::UINT8)) {
         if (error) *error = "'" + path + "' cannot be loaded: " + source.geterror();
         return false;

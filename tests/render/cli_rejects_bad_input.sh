@@ -31,4 +31,17 @@ expect_failure "--backend must be vulkan or gl" "${common[@]}" --backend metal
 expect_failure "unknown option '--frobnicate'" --frobnicate
 log=$("$render" "${common[@]}" --scene "$data/non_manifold_degenerate.obj" --out "$out/ok.png" 2>&1); rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: non-manifold/degenerate geometry: exit $rc: $log"; failures=$((failures + 1)); else echo "ok: non-manifold/degenerate geometry renders: $log"; fi
+# Textures from a file and embedded in a binary glTF give the same albedo (Debian's assimp-testmodels).
+models=/usr/share/assimp/models/glTF2
+if [ -d "$models/BoxTextured-glTF" ]; then
+  compare="$(dirname "$render")/bricklight-compare"
+  "$render" --scene "$models/BoxTextured-glTF/BoxTextured.gltf" --width 32 --height 32 --out "$out/external.exr" --aov albedo >/dev/null &&
+  "$render" --scene "$models/BoxTextured-glTF-Binary/BoxTextured.glb" --width 32 --height 32 --out "$out/embedded.exr" --aov albedo >/dev/null
+  rc=$?
+  if [ $rc -ne 0 ] || ! "$compare" "$out/embedded.albedo.exr" "$out/external.albedo.exr" --max-relmse 1e-9; then
+    echo "FAIL: external and embedded textures differ (exit $rc)"; failures=$((failures + 1))
+  else
+    echo "ok: external and embedded textures give the same albedo"
+  fi
+fi
 exit $failures
