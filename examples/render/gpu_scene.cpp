@@ -19,6 +19,21 @@ float bitsOf(uint32_t v) {
 constexpr uint32_t kMaxBvhDepth = 48;  // the traversal stack of scene_trace.glsl
 }  // namespace
 
+bool checkImageSize(uint32_t width, uint32_t height, std::string* error) {
+    if (width && height && width <= 16384 && height <= 16384) return true;
+    if (error) *error = "image size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range (1..16384)";
+    return false;
+}
+
+bool checkCamera(const scenes::Camera& camera, std::string* error) {
+    const glm::vec3 forward = camera.at - camera.eye;
+    if (finite(camera.eye) && finite(camera.at) && glm::length(forward) > 0.0f && glm::length(glm::cross(forward, camera.up)) > 0.0f &&
+        camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f)
+        return true;
+    if (error) *error = "the camera needs eye != at, an up vector not along the view, and a field of view in (0, 180)";
+    return false;
+}
+
 std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
                                            const std::vector<glm::vec3>* previous) {
     auto fail = [&](const std::string& m) {

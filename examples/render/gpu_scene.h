@@ -19,6 +19,10 @@ struct SceneLightConstants {
     glm::vec4 lightWeight;    // x total emitter weight, y ray offset (self-intersection)
 };
 
+// What both renderers check before they start: the image size and the camera. False with `error` set.
+bool checkImageSize(uint32_t width, uint32_t height, std::string* error);
+bool checkCamera(const scenes::Camera& camera, std::string* error);
+
 class GpuScene {
 public:
     // Null with `error` set for an empty scene, non-finite positions, indices out of range, negative

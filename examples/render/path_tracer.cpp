@@ -8,7 +8,6 @@ namespace bricklight::render {
 
 namespace {
 const char* kAovNames[] = {"combined", "direct", "indirect-diffuse", "albedo", "normal", "depth"};
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 
 const char* aovName(Aov aov) { return aov < Aov::Count ? kAovNames[uint32_t(aov)] : "?"; }
@@ -25,9 +24,8 @@ std::unique_ptr<PathTracer> PathTracer::create(rhi::IDevice& device, const scene
         if (error) *error = "path tracer: " + m;
         return std::unique_ptr<PathTracer>();
     };
-    if (!options.width || !options.height || options.width > 16384 || options.height > 16384)
-        return fail("image size " + std::to_string(options.width) + "x" + std::to_string(options.height) + " is out of range");
     std::string sceneError;
+    if (!checkImageSize(options.width, options.height, &sceneError)) return fail(sceneError);
     std::unique_ptr<GpuScene> gpuScene = GpuScene::create(device, scene, &sceneError);
     if (!gpuScene) return fail(sceneError);
     std::unique_ptr<PathTracer> pt(new PathTracer(device));
@@ -52,10 +50,9 @@ PathTracer::~PathTracer() {
 }
 
 bool PathTracer::setCamera(const scenes::Camera& camera, std::string* error) {
-    const glm::vec3 forward = camera.at - camera.eye;
-    if (!finite(camera.eye) || !finite(camera.at) || glm::length(forward) <= 0.0f ||
-        glm::length(glm::cross(forward, camera.up)) <= 0.0f || !(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f)) {
-        if (error) *error = "path tracer: the camera needs eye != at, an up vector not along the view, and a field of view in (0, 180)";
+    std::string why;
+    if (!checkCamera(camera, &why)) {
+        if (error) *error = "path tracer: " + why;
         return false;
     }
     camera_ = camera;

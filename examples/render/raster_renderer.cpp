@@ -6,7 +6,6 @@
 namespace bricklight::render {
 
 namespace {
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 float halfToFloat(uint16_t h) {  // IEEE binary16 -> float (the G-buffer's RGBA16F/RG16F targets)
     const uint32_t e = (h >> 10) & 0x1Fu, m = h & 0x3FFu;
     float f = e == 0 ? std::ldexp(float(m), -24) : e == 31 ? (m ? NAN : INFINITY) : std::ldexp(float(m | 0x400u), int(e) - 25);
@@ -29,9 +28,8 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
         if (error) *error = "raster renderer: " + m;
         return std::unique_ptr<RasterRenderer>();
     };
-    if (!options.width || !options.height || options.width > 16384 || options.height > 16384)
-        return fail("image size " + std::to_string(options.width) + "x" + std::to_string(options.height) + " is out of range");
     std::string sceneError;
+    if (!checkImageSize(options.width, options.height, &sceneError)) return fail(sceneError);
     std::unique_ptr<GpuScene> gpuScene = GpuScene::create(device, scene, &sceneError);
     if (!gpuScene) return fail(sceneError);
     std::unique_ptr<RasterRenderer> r(new RasterRenderer(device));
@@ -87,10 +85,9 @@ RasterRenderer::~RasterRenderer() {
 }
 
 bool RasterRenderer::setCamera(const scenes::Camera& camera, std::string* error) {
-    const glm::vec3 forward = camera.at - camera.eye;
-    if (!finite(camera.eye) || !finite(camera.at) || glm::length(forward) <= 0.0f ||
-        glm::length(glm::cross(forward, camera.up)) <= 0.0f || !(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f)) {
-        if (error) *error = "raster renderer: the camera needs eye != at, an up vector not along the view, and a field of view in (0, 180)";
+    std::string why;
+    if (!checkCamera(camera, &why)) {
+        if (error) *error = "raster renderer: " + why;
         return false;
     }
     camera_ = camera;
