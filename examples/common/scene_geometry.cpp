@@ -8,6 +8,7 @@
 #include <assimp/texture.h>
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -192,6 +193,7 @@ struct AssimpApi {
     decltype(&aiGetErrorString) errorString = nullptr;
     decltype(&aiGetMaterialColor) materialColor = nullptr;
     decltype(&aiGetMaterialTexture) materialTexture = nullptr;
+    decltype(&aiGetMaterialFloatArray) materialFloats = nullptr;
     std::string loadError;
     AssimpApi() {
         void* lib = nullptr;
@@ -206,7 +208,8 @@ struct AssimpApi {
         errorString = reinterpret_cast<decltype(errorString)>(dlsym(lib, "aiGetErrorString"));
         materialColor = reinterpret_cast<decltype(materialColor)>(dlsym(lib, "aiGetMaterialColor"));
         materialTexture = reinterpret_cast<decltype(materialTexture)>(dlsym(lib, "aiGetMaterialTexture"));
-        if (!importFile || !releaseImport || !errorString || !materialColor || !materialTexture)
+        materialFloats = reinterpret_cast<decltype(materialFloats)>(dlsym(lib, "aiGetMaterialFloatArray"));
+        if (!importFile || !releaseImport || !errorString || !materialColor || !materialTexture || !materialFloats)
             loadError = "libassimp lacks its C API";
     }
 };
@@ -300,6 +303,12 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
             aiColor4D c;
             if (api.materialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) m.albedo = {c.r, c.g, c.b};
             if (api.materialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) m.emission = {c.r, c.g, c.b};
+            // glTF's metallic-roughness factors (carried to the G-buffer; shading is Lambertian for now).
+            ai_real value = 0;
+            unsigned one = 1;
+            if (api.materialFloats(mat, AI_MATKEY_ROUGHNESS_FACTOR, &value, &one) == aiReturn_SUCCESS) m.roughness = std::clamp(float(value), 0.0f, 1.0f);
+            one = 1;
+            if (api.materialFloats(mat, AI_MATKEY_METALLIC_FACTOR, &value, &one) == aiReturn_SUCCESS) m.metalness = std::clamp(float(value), 0.0f, 1.0f);
             aiString texture;
             if ((api.materialTexture(mat, aiTextureType_BASE_COLOR, 0, &texture, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) ==
                      aiReturn_SUCCESS ||
