@@ -296,6 +296,14 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
             if (in->mFaces[f].mNumIndices == 3)
                 m.indices.insert(m.indices.end(), {in->mFaces[f].mIndices[0], in->mFaces[f].mIndices[1], in->mFaces[f].mIndices[2]});
         if (m.indices.empty()) continue;
+        if (in->mNormals)
+            for (unsigned v = 0; v < in->mNumVertices; ++v) {
+                aiVector3D n = in->mNormals[v];
+                const float length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+                if (!(length > 0.0f) || !std::isfinite(length)) n = aiVector3D(0.0f);  // falls back to the triangle's
+                else n /= length;
+                m.normals.insert(m.normals.end(), {n.x, n.y, n.z});
+            }
         if (in->mTextureCoords[0])
             for (unsigned v = 0; v < in->mNumVertices; ++v) m.uvs.insert(m.uvs.end(), {in->mTextureCoords[0][v].x, 1.0f - in->mTextureCoords[0][v].y});
         if (scene->mMaterials && in->mMaterialIndex < scene->mNumMaterials) {

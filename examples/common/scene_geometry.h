@@ -17,6 +17,7 @@ struct TriangleMesh {
     std::string name;
     std::vector<float> positions;   // xyz per vertex
     std::vector<uint32_t> indices;  // 3 per triangle
+    std::vector<float> normals;     // optional: 3 per vertex (shading normals; else the triangles' own)
     std::vector<float> uvs;         // optional: 2 per vertex (texture coordinates, v down the image)
     std::string baseColorTexture;   // optional: an image file; multiplies `albedo` (sRGB-encoded)
     // ...or the encoded bytes of a texture embedded in the model file (PNG, JPEG...), named for messages

@@ -42,6 +42,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     };
     std::vector<glm::vec3> positions;
     std::vector<glm::vec2> uvs;
+    std::vector<glm::vec3> shadingNormals;  // zero: use the triangle's normal
     std::vector<uint32_t> materialOf;
     for (const auto& inst : scene.instances) {
         if (inst.mesh >= scene.meshes.size()) return fail("an instance names mesh " + std::to_string(inst.mesh) + ", which does not exist");
@@ -54,6 +55,13 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
                 const glm::vec3 p = glm::vec3(inst.transform * glm::vec4(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2], 1.0f));
                 if (!finite(p)) return fail("mesh '" + m.name + "': vertex " + std::to_string(v) + " is not finite");
                 positions.push_back(p);
+                glm::vec3 sn(0.0f);
+                if (3 * size_t(v) + 2 < m.normals.size()) {
+                    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
+                    sn = normalMatrix * glm::vec3(m.normals[3 * v], m.normals[3 * v + 1], m.normals[3 * v + 2]);
+                    sn = finite(sn) && glm::length(sn) > 0.0f ? glm::normalize(sn) : glm::vec3(0.0f);
+                }
+                shadingNormals.push_back(sn);
                 const bool hasUv = 2 * size_t(v) + 1 < m.uvs.size();
                 uvs.push_back(hasUv ? glm::vec2(m.uvs[2 * v], m.uvs[2 * v + 1]) : glm::vec2(0.0f));
             }
@@ -87,7 +95,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     const uint32_t n = uint32_t(positions.size() / 3);
     std::vector<glm::vec4> tris(3 * size_t(n)), lights;
     std::vector<float> vertices;
-    vertices.reserve(size_t(n) * 36);
+    vertices.reserve(size_t(n) * 45);
     const bool hasPrevious = previous && previous->size() == positions.size();
     for (uint32_t t = 0; t < n; ++t) {
         const glm::vec3 a = positions[3 * t], b = positions[3 * t + 1], c = positions[3 * t + 2];
@@ -96,7 +104,9 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         for (int k = 0; k < 3; ++k) {
             const glm::vec3 p = positions[3 * t + size_t(k)], q = hasPrevious ? (*previous)[3 * t + size_t(k)] : p;
             const glm::vec2 uv = uvs[3 * t + size_t(k)];
-            vertices.insert(vertices.end(), {p.x, p.y, p.z, normal.x, normal.y, normal.z, bitsOf(materialOf[t]), q.x, q.y, q.z, uv.x, uv.y});
+            const glm::vec3 sn = shadingNormals[3 * t + size_t(k)] == glm::vec3(0.0f) ? normal : shadingNormals[3 * t + size_t(k)];
+            vertices.insert(vertices.end(), {p.x, p.y, p.z, sn.x, sn.y, sn.z, bitsOf(materialOf[t]), q.x, q.y, q.z, uv.x, uv.y,
+                                             normal.x, normal.y, normal.z});
         }
     }
     float total = 0.0f;
@@ -149,11 +159,12 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         materials.push_back(glm::vec4(m.emission, m.metalness));
         materials.push_back(glm::vec4(layerOf[i], 0.0f, 0.0f, 0.0f));
     }
-    std::vector<glm::vec4> triangleUvs(2 * size_t(n));
+    std::vector<glm::vec4> triangleUvs(2 * size_t(n)), triangleNormals(3 * size_t(n));
     for (uint32_t slot = 0; slot < n; ++slot) {
         const uint32_t t = bvh.order[slot];
         triangleUvs[2 * slot] = glm::vec4(uvs[3 * t], uvs[3 * t + 1]);
         triangleUvs[2 * slot + 1] = glm::vec4(uvs[3 * t + 2], 0.0f, 0.0f);
+        for (int k = 0; k < 3; ++k) triangleNormals[3 * slot + size_t(k)] = glm::vec4(shadingNormals[3 * t + size_t(k)], 0.0f);
     }
     const uint32_t lightCount = uint32_t(lights.size());
     if (lights.empty()) lights.push_back(glm::vec4(0.0f));  // a buffer is never empty
@@ -182,6 +193,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->pointLightCount_ = pointCount;
     s->vertices_ = buffer("vertices", vertices.data(), vertices.size() * 4, Vertex);
     s->uvs_ = buffer("texture coordinates", triangleUvs.data(), triangleUvs.size() * 16, ShaderRead);
+    s->normals_ = buffer("shading normals", triangleNormals.data(), triangleNormals.size() * 16, ShaderRead);
     rhi::TextureDesc td;
     td.dimension = rhi::TextureDimension::Texture2DArray;
     td.format = rhi::Format::RGBA8_SRGB;
@@ -194,14 +206,14 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     sd.addressU = sd.addressV = rhi::AddressMode::Repeat;
     sd.debugName = "base colour";
     s->sampler_ = device.createSampler(sd);
-    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->pointLights_ || !s->vertices_ || !s->uvs_ ||
+    if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->pointLights_ || !s->vertices_ || !s->uvs_ || !s->normals_ ||
         !s->textures_ || !s->sampler_)
         return fail("the device could not create the scene's buffers (see its messages)");
     return s;
 }
 
 GpuScene::~GpuScene() {
-    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_})
+    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_, normals_})
         if (b) device_.destroy(b);
     if (textures_) device_.destroy(textures_);
     if (sampler_) device_.destroy(sampler_);
@@ -209,6 +221,7 @@ GpuScene::~GpuScene() {
 
 void GpuScene::bind(rhi::Bindings& b, bool textures) const {
     b.readBuffers.push({5, uvs_, {}});
+    b.readBuffers.push({6, normals_, {}});
     if (textures) b.textures.push({4, rhi::wholeTexture(textures_), sampler_});
     b.readBuffers.push({0, triangleBuffer_, {}});
     b.readBuffers.push({1, nodes_, {}});

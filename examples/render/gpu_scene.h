@@ -32,7 +32,7 @@ public:
     static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
                                             const std::vector<glm::vec3>* previous = nullptr);
     ~GpuScene();
-    // Read buffers 0..5 (triangles, BVH, materials, emitters, point lights, texture coordinates) as
+    // Read buffers 0..6 (triangles, BVH, materials, emitters, point lights, texture coordinates, normals) as
     // scene_trace.glsl declares them; with `textures`, also the base-colour texture array (texture slot 4,
     // for shaders that define BL_SCENE_TEXTURES).
     void bind(rhi::Bindings& bindings, bool textures = false) const;
@@ -41,17 +41,18 @@ public:
     static constexpr uint32_t kTextureSize = 256;  // every base-colour texture is resampled to this square
     SceneLightConstants lightConstants(uint32_t seed, uint32_t maxBounces) const;
     uint32_t triangleCount() const { return triangles_; }
-    // 3 vertices per triangle, in the scene's order: position, normal, material, previous position.
+    // 3 vertices per triangle, in the scene's order (layout: kVertexStride).
     rhi::BufferHandle vertexBuffer() const { return vertices_; }
     rhi::BufferHandle materialBuffer() const { return materials_; }
-    static constexpr uint32_t kVertexStride = 48;  // + texture coordinates
+    // position, shading normal, material, previous position, uv, geometric normal
+    static constexpr uint32_t kVertexStride = 60;
     const std::vector<glm::vec3>& worldPositions() const { return positions_; }
     float rayOffset() const { return epsilon_; }
 
 private:
     explicit GpuScene(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
-    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_;
+    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_, normals_;
     rhi::TextureHandle textures_;
     rhi::SamplerHandle sampler_;
     uint32_t pointLightCount_ = 0;

@@ -110,6 +110,7 @@ void RasterRenderer::render() {
     d.vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
     d.vertexInputs.push({3, rhi::VertexFormat::Float3, 0, 28});
     d.vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
+    d.vertexInputs.push({5, rhi::VertexFormat::Float3, 0, 48});
     d.vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_}) {
         rhi::ColorTarget c;

@@ -17,6 +17,7 @@ layout(location = 2) in vec4 vClip;
 layout(location = 3) in vec4 vPreviousClip;
 layout(location = 4) in vec3 vWorld;
 layout(location = 5) in vec2 vUv;
+layout(location = 6) flat in vec3 vGeometricNormal;
 layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outEmission;
@@ -25,13 +26,16 @@ layout(location = 4) out vec4 outPosition;
 void main() {
     // The front face (counter-clockwise in the world, as the path tracer's one-sided emitters) is the side
     // its normal points to; decided from the geometry, not from the rasterizer's winding rule.
-    bool front = dot(vNormal, camera.eye.xyz - vWorld) > 0.0;
+    bool front = dot(vGeometricNormal, camera.eye.xyz - vWorld) > 0.0;
+    vec3 facing = front ? vGeometricNormal : -vGeometricNormal;
+    vec3 shading = normalize(vNormal);  // interpolated vertex normals (the triangle's own where none)
+    if (dot(shading, facing) < 0.0) shading = -shading;
     vec4 a = materials[3u * vMaterial], e = materials[3u * vMaterial + 1u];
     float layer = materials[3u * vMaterial + 2u].x;
     // Level 0, as the path tracer samples it (no derivatives there).
     if (layer >= 0.0) a.rgb *= textureLod(baseColorTextures, vec3(vUv, layer), 0.0).rgb;
     outAlbedo = a;
-    outNormal = vec4(front ? vNormal : -vNormal, 0.0);
+    outNormal = vec4(shading, 0.0);
     outEmission = vec4(front ? e.rgb : vec3(0.0), e.a);
     vec2 uv = vClip.xy / vClip.w * 0.5 + 0.5;
     vec2 previousUv = vPreviousClip.xy / vPreviousClip.w * 0.5 + 0.5;

@@ -51,7 +51,7 @@ void main() {
         vec3 p = origin + dir * hit.t;
         vec3 ng = triangleNormal(hit.triangle);
         bool front = dot(ng, dir) < 0.0;
-        vec3 n = front ? ng : -ng;
+        vec3 n = shadingNormal(hit.triangle, hit.bary, front ? ng : -ng);
         uint material = floatBitsToUint(triangles[3u * hit.triangle].w);
         vec3 albedo = surfaceAlbedo(material, hit.triangle, hit.bary);
         vec3 emission = front ? materials[3u * material + 1u].rgb : vec3(0.0);
@@ -74,7 +74,7 @@ void main() {
             }
             p = p + d * hit.t;
             ng = triangleNormal(hit.triangle);
-            n = dot(ng, d) < 0.0 ? ng : -ng;
+            n = shadingNormal(hit.triangle, hit.bary, dot(ng, d) < 0.0 ? ng : -ng);
             material = floatBitsToUint(triangles[3u * hit.triangle].w);
             albedo = surfaceAlbedo(material, hit.triangle, hit.bary);
             vec3 light = directLight(p, n, albedo, eps);

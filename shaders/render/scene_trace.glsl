@@ -17,6 +17,7 @@ BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 3 per material: albedo, 
 BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, cumulative weight, weight
 BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
 BL_READ_BUFFER(5) TriangleUvs { vec4 triangleUvs[]; };  // 2 per triangle: uv0, uv1; uv2
+BL_READ_BUFFER(6) TriangleNormals { vec4 triangleNormals[]; };  // 3 per triangle: shading normals (zero: none)
 #ifdef BL_SCENE_TEXTURES
 BL_TEXTURE(4) uniform sampler2DArray baseColorTextures;  // one layer per texture (GpuScene::kTextureSize square)
 #endif
@@ -102,6 +103,18 @@ vec3 surfaceAlbedo(uint material, uint tri, vec2 bary) {
     }
 #endif
     return albedo;
+}
+
+// The shading normal at a hit (interpolated vertex normals where the mesh has them), on the side of
+// `facing` (the geometric normal turned towards the incoming ray).
+vec3 shadingNormal(uint tri, vec2 bary, vec3 facing) {
+    vec3 n0 = triangleNormals[3u * tri].xyz;
+    if (n0 == vec3(0.0)) return facing;
+    vec3 n = n0 * (1.0 - bary.x - bary.y) + triangleNormals[3u * tri + 1u].xyz * bary.x + triangleNormals[3u * tri + 2u].xyz * bary.y;
+    float len = length(n);
+    if (len < 1e-6) return facing;
+    n /= len;
+    return dot(n, facing) < 0.0 ? -n : n;
 }
 
 vec3 triangleNormal(uint tri) {

@@ -156,3 +156,58 @@ TEST_CASE("scenes: lights from a file", "[metrics]") {
     for (const auto& l : s.pointLights) spot |= l.outerConeRadians < 3.0f;
     CHECK(spot);
 }
+
+namespace {
+
+void shadingNormals(const std::string& backend) {
+    // A coarse sphere with vertex normals: both paths report the interpolated normal (equal per pixel
+    // with centre-sampled camera rays), which differs from the flat normal of the same sphere without them.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    auto sphere = [](bool smooth) {
+        scenes::SceneGeometry s;
+        scenes::TriangleMesh m = scenes::icosphere(1);
+        if (smooth) m.normals = m.positions;  // unit sphere: the position is the normal
+        s.meshes.push_back(m);
+        s.instances.push_back({0, glm::mat4(1.0f)});
+        s.environment.skyRadiance = glm::vec3(1.0f);
+        s.camera = {glm::vec3(0, 0, 4), glm::vec3(0), glm::vec3(0, 1, 0), 35.0f};
+        s.computeBounds();
+        return s;
+    };
+    std::string error;
+    render::PathTracerOptions po;
+    po.width = po.height = 48;
+    po.pixelJitter = false;
+    render::RasterOptions ro;
+    ro.width = ro.height = 48;
+    ro.lightSamples = 1;
+    auto ptSmooth = render::PathTracer::create(*td.device, sphere(true), po, &error);
+    auto ptFlat = render::PathTracer::create(*td.device, sphere(false), po, &error);
+    auto raster = render::RasterRenderer::create(*td.device, sphere(true), ro, &error);
+    REQUIRE(ptSmooth);
+    REQUIRE(ptFlat);
+    REQUIRE(raster);
+    ptSmooth->addSamples(1);
+    ptFlat->addSamples(1);
+    raster->render();
+    const render::Image a = ptSmooth->read(render::Aov::Normal), b = raster->read(render::Aov::Normal), flat = ptFlat->read(render::Aov::Normal);
+    size_t differ = 0, smoothVsFlat = 0, covered = 0;
+    for (size_t p = 0; p < size_t(48) * 48; ++p) {
+        const glm::vec3 na(a.rgb[3 * p], a.rgb[3 * p + 1], a.rgb[3 * p + 2]), nb(b.rgb[3 * p], b.rgb[3 * p + 1], b.rgb[3 * p + 2]);
+        const glm::vec3 nf(flat.rgb[3 * p], flat.rgb[3 * p + 1], flat.rgb[3 * p + 2]);
+        if (glm::length(na) < 0.5f) continue;  // sky
+        covered++;
+        differ += glm::length(na - nb) > 2e-3f;
+        smoothVsFlat += glm::length(na - nf) > 1e-2f;
+    }
+    INFO(covered << " sphere pixels; " << differ << " differ between the paths; " << smoothVsFlat << " differ from flat shading");
+    CHECK(covered > 400);
+    CHECK(differ <= covered / 100);
+    CHECK(smoothVsFlat > covered / 2);
+    REQUIRE_NO_MESSAGES(td);
+}
+
+}  // namespace
+
+BACKEND_TEST("scenes: shading normals from vertex normals, the same in both paths", "[render]", shadingNormals)
