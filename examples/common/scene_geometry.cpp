@@ -311,7 +311,8 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
             aiColor4D c;
             if (api.materialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) m.albedo = {c.r, c.g, c.b};
             if (api.materialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) m.emission = {c.r, c.g, c.b};
-            // glTF's metallic-roughness factors (carried to the G-buffer; shading is Lambertian for now).
+            // Metallic-roughness materials (glTF's factors where the file has them; defaults otherwise).
+            m.specular = true;
             ai_real value = 0;
             unsigned one = 1;
             if (api.materialFloats(mat, AI_MATKEY_ROUGHNESS_FACTOR, &value, &one) == aiReturn_SUCCESS) m.roughness = std::clamp(float(value), 0.0f, 1.0f);

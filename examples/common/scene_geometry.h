@@ -27,6 +27,9 @@ struct TriangleMesh {
     glm::vec3 emission{0.0f};  // emitted radiance (linear, W / (sr m^2) in the scene's units)
     float roughness = 1.0f;
     float metalness = 0.0f;
+    // A dielectric specular layer (reflectance 0.04 at normal incidence, GGX with `roughness`), as
+    // metallic-roughness materials have; off: plain Lambertian (the measured scenes' materials).
+    bool specular = false;
     uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
 };
 

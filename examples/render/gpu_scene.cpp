@@ -70,6 +70,10 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     }
     if (positions.empty()) return fail("the scene has no triangles");
     for (const auto& m : scene.meshes)
+        if (!std::isfinite(m.roughness) || !std::isfinite(m.metalness) || m.roughness < 0.0f || m.roughness > 1.0f ||
+            m.metalness < 0.0f || m.metalness > 1.0f)
+            return fail("mesh '" + m.name + "': roughness and metalness must be in [0, 1]");
+    for (const auto& m : scene.meshes)
         if (!finite(m.albedo) || !finite(m.emission) || glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) ||
             glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1.0f))))
             return fail("mesh '" + m.name + "': albedo must be in [0, 1] and emission >= 0");
@@ -157,7 +161,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         const auto& m = scene.meshes[i];
         materials.push_back(glm::vec4(m.albedo, m.roughness));
         materials.push_back(glm::vec4(m.emission, m.metalness));
-        materials.push_back(glm::vec4(layerOf[i], 0.0f, 0.0f, 0.0f));
+        materials.push_back(glm::vec4(layerOf[i], m.specular ? 0.04f : 0.0f, 0.0f, 0.0f));
     }
     std::vector<glm::vec4> triangleUvs(2 * size_t(n)), triangleNormals(3 * size_t(n));
     for (uint32_t slot = 0; slot < n; ++slot) {

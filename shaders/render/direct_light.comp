@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 // Direct lighting of the G-buffer: per pixel, emission plus light straight from the emitters (next-event
-// estimation, `samples` emitter samples), the sun and the sky (cosine-weighted visibility samples), with
+// estimation, `samples` emitter samples), the sun and the sky (BRDF-sampled visibility), with
 // ray-traced shadows against the scene's BVH. The same estimator as the path tracer's first vertex, so the
 // two agree up to noise. Writes the direct radiance (w = 1) per pixel.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -28,20 +28,27 @@ void main() {
         return;
     }
     vec3 p = position.xyz;
-    vec3 n = normalize(texelFetch(gNormal, ivec2(pixel), 0).xyz);
-    vec3 albedo = texelFetch(gAlbedo, ivec2(pixel), 0).rgb;
-    vec3 emission = texelFetch(gEmission, ivec2(pixel), 0).rgb;
+    vec4 normal = texelFetch(gNormal, ivec2(pixel), 0);
+    vec4 albedo = texelFetch(gAlbedo, ivec2(pixel), 0);
+    vec4 emission = texelFetch(gEmission, ivec2(pixel), 0);
+    vec3 n = normalize(normal.xyz);
+    Surface surface;
+    surface.baseColor = albedo.rgb;
+    surface.roughness = albedo.a;
+    surface.metalness = emission.a;
+    surface.dielectricF0 = normal.w;
+    vec3 v = normalize(params.eye.xyz - p);
     float eps = sceneLight.lightWeight.y;
     rngState = pcg(index ^ pcg(params.size.w + pcg(sceneLight.counts.y)));
     vec3 sum = vec3(0.0);
     uint samples = max(params.size.z, 1u);
     for (uint s = 0u; s < samples; ++s) {
-        sum += directLight(p, n, albedo, eps);
-        if (any(greaterThan(sceneLight.sky.rgb, vec3(0.0)))) {
-            vec3 d = cosineDirection(n);
+        sum += directLight(p, n, v, surface, eps);
+        vec3 d, weight;
+        if (any(greaterThan(sceneLight.sky.rgb, vec3(0.0))) && sampleBrdf(surface, n, v, d, weight)) {
             Hit h;
-            if (!traceRay(p, d, eps, 1e30, true, h)) sum += albedo * sceneLight.sky.rgb;
+            if (!traceRay(p, d, eps, 1e30, true, h)) sum += weight * sceneLight.sky.rgb;
         }
     }
-    radiance[index] = vec4(emission + sum / float(samples), 1.0);
+    radiance[index] = vec4(emission.rgb + sum / float(samples), 1.0);
 }

@@ -35,7 +35,7 @@ void main() {
     // Level 0, as the path tracer samples it (no derivatives there).
     if (layer >= 0.0) a.rgb *= textureLod(baseColorTextures, vec3(vUv, layer), 0.0).rgb;
     outAlbedo = a;
-    outNormal = vec4(shading, 0.0);
+    outNormal = vec4(shading, materials[3u * vMaterial + 2u].y);  // w: dielectric specular reflectance
     outEmission = vec4(front ? e.rgb : vec3(0.0), e.a);
     vec2 uv = vClip.xy / vClip.w * 0.5 + 0.5;
     vec2 previousUv = vPreviousClip.xy / vPreviousClip.w * 0.5 + 0.5;

@@ -2,10 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 // Reference path tracer: unbiased path tracing of the scene's triangles (BVH built on the CPU) with
-// Lambertian materials, one-sided emitters, a uniform sky and a sun. Direct light from emitters and the
+// Lambertian + GGX materials (scene_trace.glsl's BRDF), one-sided emitters, a uniform sky and a sun. Direct light from emitters and the
 // sun by next-event estimation only (emission is counted on camera rays; a path that hits an emitter
 // later carries its reflected light but not its emission, which NEE has already counted), light from the
-// sky by escaping paths. Russian roulette from the fourth vertex on. Each dispatch adds `samples` samples
+// sky by escaping paths; directions sampled from the BRDF. Russian roulette from the fourth vertex on. Each dispatch adds `samples` samples
 // per pixel to running sums of the AOVs:
 //   0 combined   radiance along the camera ray
 //   1 direct     emission seen + light that reaches the primary hit straight from an emitter, the sun or the sky
@@ -13,6 +13,7 @@
 //                as irradiance / pi (a white Lambertian surface's outgoing radiance), before albedo
 //   3 albedo     4 normal (world, facing the camera)     5 depth (view-space distance along the camera axis)
 // so that combined = direct + albedo * indirect for Lambertian scenes.
+// (For glossy surfaces the indirect AOV is still the diffuse irradiance estimate, weighted cos/(pi pdf).)
 layout(local_size_x = 8, local_size_y = 8) in;
 
 BL_CONSTANTS(0) uniform Params {
@@ -53,42 +54,48 @@ void main() {
         bool front = dot(ng, dir) < 0.0;
         vec3 n = shadingNormal(hit.triangle, hit.bary, front ? ng : -ng);
         uint material = floatBitsToUint(triangles[3u * hit.triangle].w);
-        vec3 albedo = surfaceAlbedo(material, hit.triangle, hit.bary);
+        Surface surface = surfaceAt(material, hit.triangle, hit.bary);
         vec3 emission = front ? materials[3u * material + 1u].rgb : vec3(0.0);
-        sums[3] += albedo;
+        sums[3] += surface.baseColor;
         sums[4] += n;
         sums[5] += vec3(dot(p - origin, params.forward.xyz));
-        vec3 direct = emission + directLight(p, n, albedo, eps);
+        vec3 v = -dir;
+        vec3 direct = emission + directLight(p, n, v, surface, eps);
         vec3 radiance = direct;
-        // The first bounce: escaping to the sky is still direct light at the primary hit.
         vec3 indirect = vec3(0.0);
-        vec3 throughput = albedo;    // cosine sampling: brdf * cos / pdf = albedo
-        vec3 relative = vec3(1.0);   // throughput after the primary hit, without its albedo
-        vec3 d = cosineDirection(n);
-        for (uint bounce = 1u; bounce <= sceneLight.counts.z; ++bounce) {
-            if (!traceRay(p, d, eps, 1e30, false, hit)) {
-                if (bounce == 1u) direct += throughput * sceneLight.sky.rgb;
-                else indirect += relative * sceneLight.sky.rgb;
-                radiance += throughput * sceneLight.sky.rgb;
-                break;
+        vec3 d, throughput;
+        if (sampleBrdf(surface, n, v, d, throughput)) {
+            // Indirect diffuse at the primary hit, as irradiance / pi: cos / (pi pdf) per unit incoming
+            // radiance (1 for a Lambertian surface's cosine sampling).
+            vec3 relative = vec3(max(dot(n, d), 0.0) / (PI * brdfPdf(surface, n, v, d)));
+            for (uint bounce = 1u; bounce <= sceneLight.counts.z; ++bounce) {
+                if (!traceRay(p, d, eps, 1e30, false, hit)) {
+                    // The first bounce escaping to the sky is still direct light at the primary hit.
+                    if (bounce == 1u) direct += throughput * sceneLight.sky.rgb;
+                    else indirect += relative * sceneLight.sky.rgb;
+                    radiance += throughput * sceneLight.sky.rgb;
+                    break;
+                }
+                p = p + d * hit.t;
+                ng = triangleNormal(hit.triangle);
+                n = shadingNormal(hit.triangle, hit.bary, dot(ng, d) < 0.0 ? ng : -ng);
+                material = floatBitsToUint(triangles[3u * hit.triangle].w);
+                surface = surfaceAt(material, hit.triangle, hit.bary);
+                v = -d;
+                vec3 light = directLight(p, n, v, surface, eps);
+                radiance += throughput * light;
+                indirect += relative * light;
+                if (bounce >= 3u) {
+                    float keep = min(max(throughput.r, max(throughput.g, throughput.b)), 0.95);
+                    if (rand() >= keep) break;
+                    throughput /= keep;
+                    relative /= keep;
+                }
+                vec3 weight;
+                if (!sampleBrdf(surface, n, v, d, weight)) break;
+                throughput *= weight;
+                relative *= weight;
             }
-            p = p + d * hit.t;
-            ng = triangleNormal(hit.triangle);
-            n = shadingNormal(hit.triangle, hit.bary, dot(ng, d) < 0.0 ? ng : -ng);
-            material = floatBitsToUint(triangles[3u * hit.triangle].w);
-            albedo = surfaceAlbedo(material, hit.triangle, hit.bary);
-            vec3 light = directLight(p, n, albedo, eps);
-            radiance += throughput * light;
-            indirect += relative * light;
-            if (bounce >= 3u) {
-                float keep = min(max(throughput.r, max(throughput.g, throughput.b)), 0.95);
-                if (rand() >= keep) break;
-                throughput /= keep;
-                relative /= keep;
-            }
-            throughput *= albedo;
-            relative *= albedo;
-            d = cosineDirection(n);
         }
         sums[0] += radiance;
         sums[1] += direct;

@@ -130,9 +130,93 @@ vec3 cosineDirection(vec3 n) {
     return normalize(t * (cos(phi) * s) + b * (sin(phi) * s) + n * sqrt(max(0.0, 1.0 - r2)));
 }
 
-// Light reflected towards the viewer by a Lambertian surface (albedo, normal n facing the viewer) at p,
-// straight from the emitters (one sample, chosen by weight = area x luminance) and the sun.
-vec3 directLight(vec3 p, vec3 n, vec3 albedo, float eps) {
+// A surface's material at a hit: base colour (factor x texture), roughness, metalness and the dielectric
+// reflectance at normal incidence (0.04 for metallic-roughness materials, 0 for plain Lambertian ones).
+struct Surface {
+    vec3 baseColor;
+    float roughness;
+    float metalness;
+    float dielectricF0;
+};
+
+Surface surfaceAt(uint material, uint tri, vec2 bary) {
+    Surface s;
+    s.baseColor = surfaceAlbedo(material, tri, bary);
+    s.roughness = materials[3u * material].w;
+    s.metalness = materials[3u * material + 1u].w;
+    s.dielectricF0 = materials[3u * material + 2u].y;
+    return s;
+}
+
+vec3 specularF0(Surface s) { return mix(vec3(s.dielectricF0), s.baseColor, s.metalness); }
+bool hasSpecular(Surface s) { return any(greaterThan(specularF0(s), vec3(0.0))); }
+float ggxAlpha(Surface s) { return max(s.roughness * s.roughness, 1e-3); }
+
+// The BRDF (without the cosine): Lambertian diffuse (1 - metalness) * base / pi, and where the surface has
+// a specular reflectance, a GGX lobe (height-correlated Smith visibility, Schlick Fresnel) over it. With
+// F0 = 0 it is exactly Lambertian.
+vec3 evalBrdf(Surface s, vec3 n, vec3 v, vec3 l) {
+    float nl = dot(n, l), nv = dot(n, v);
+    if (nl <= 0.0 || nv <= 0.0) return vec3(0.0);
+    vec3 diffuse = (1.0 - s.metalness) * s.baseColor / PI;
+    if (!hasSpecular(s)) return diffuse;
+    vec3 h = normalize(v + l);
+    float nh = max(dot(n, h), 0.0), vh = max(dot(v, h), 0.0);
+    float a2 = ggxAlpha(s) * ggxAlpha(s);
+    float d = nh * nh * (a2 - 1.0) + 1.0;
+    float D = a2 / (PI * d * d);
+    float V = 0.5 / (nl * sqrt(nv * nv * (1.0 - a2) + a2) + nv * sqrt(nl * nl * (1.0 - a2) + a2));
+    vec3 f0 = specularF0(s);
+    vec3 F = f0 + (1.0 - f0) * pow(1.0 - vh, 5.0);
+    // The diffuse part gets what the coat transmits on the way in and out (Schlick at both angles),
+    // which keeps diffuse + specular at or below 1 (the white furnace test).
+    vec3 inOut = (1.0 - (f0 + (1.0 - f0) * pow(1.0 - nl, 5.0))) * (1.0 - (f0 + (1.0 - f0) * pow(1.0 - nv, 5.0)));
+    return diffuse * inOut + D * V * F;
+}
+
+// The probability of sampling the specular lobe (0 for Lambertian surfaces).
+float specularProbability(Surface s) { return hasSpecular(s) ? mix(0.25, 1.0, s.metalness) : 0.0; }
+
+float brdfPdf(Surface s, vec3 n, vec3 v, vec3 l) {
+    float nl = dot(n, l);
+    if (nl <= 0.0) return 0.0;
+    float ps = specularProbability(s);
+    float pdf = (1.0 - ps) * nl / PI;
+    if (ps > 0.0) {
+        vec3 h = normalize(v + l);
+        float nh = max(dot(n, h), 0.0), vh = max(dot(v, h), 1e-6);
+        float a2 = ggxAlpha(s) * ggxAlpha(s);
+        float d = nh * nh * (a2 - 1.0) + 1.0;
+        pdf += ps * (a2 / (PI * d * d)) * nh / (4.0 * vh);
+    }
+    return pdf;
+}
+
+// Samples a direction from the BRDF (cosine lobe or GGX normal distribution); returns false when the
+// sample points below the surface. weight = brdf * cos / pdf.
+bool sampleBrdf(Surface s, vec3 n, vec3 v, out vec3 l, out vec3 weight) {
+    float ps = specularProbability(s);
+    if (ps > 0.0 && rand() < ps) {  // (Lambertian surfaces draw no lobe choice)
+        float a2 = ggxAlpha(s) * ggxAlpha(s);
+        float u1 = rand(), u2 = rand();
+        float cosTheta = sqrt((1.0 - u2) / (1.0 + (a2 - 1.0) * u2)), sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+        float phi = 2.0 * PI * u1;
+        vec3 t = normalize(abs(n.x) > 0.5 ? cross(n, vec3(0, 1, 0)) : cross(n, vec3(1, 0, 0)));
+        vec3 b = cross(n, t);
+        vec3 h = normalize(t * (cos(phi) * sinTheta) + b * (sin(phi) * sinTheta) + n * cosTheta);
+        l = reflect(-v, h);
+    } else {
+        l = cosineDirection(n);
+    }
+    float pdf = brdfPdf(s, n, v, l);
+    if (pdf <= 0.0) return false;
+    weight = evalBrdf(s, n, v, l) * max(dot(n, l), 0.0) / pdf;
+    return true;
+}
+
+// Light reflected towards v by the surface at p (normal n) straight from the emitters (one sample,
+// chosen by weight = area x luminance), the point and spot lights and the sun.
+vec3 directLight(vec3 p, vec3 n, vec3 v, Surface surface, float eps) {
     vec3 sum = vec3(0.0);
     if (sceneLight.counts.x > 0u) {
         float u = rand() * sceneLight.lightWeight.x;
@@ -159,7 +243,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 albedo, float eps) {
                 uint material = floatBitsToUint(triangles[3u * tri].w);
                 vec3 emission = materials[3u * material + 1u].rgb;
                 // pdf = (weight / total) / area
-                sum += albedo / PI * emission * cosP * cosL / dist2 * light.y * sceneLight.lightWeight.x / light.w;
+                sum += evalBrdf(surface, n, v, l) * emission * cosP * cosL / dist2 * light.y * sceneLight.lightWeight.x / light.w;
             }
         }
     }
@@ -174,12 +258,13 @@ vec3 directLight(vec3 p, vec3 n, vec3 albedo, float eps) {
         float cone = a.w > -1.0 ? smoothstep(a.w, c.w, dot(-l, c.xyz)) : 1.0;
         if (cone <= 0.0) continue;
         Hit h;
-        if (!traceRay(p, l, eps, sqrt(dist2) * (1.0 - 1e-4), true, h)) sum += albedo / PI * intensity.rgb * cone * cosP / dist2;
+        if (!traceRay(p, l, eps, sqrt(dist2) * (1.0 - 1e-4), true, h)) sum += evalBrdf(surface, n, v, l) * intensity.rgb * cone * cosP / dist2;
     }
     float cosS = dot(n, sceneLight.sunDirection.xyz);
     if (cosS > 0.0 && any(greaterThan(sceneLight.sunIrradiance.rgb, vec3(0.0)))) {
         Hit h;
-        if (!traceRay(p, sceneLight.sunDirection.xyz, eps, 1e30, true, h)) sum += albedo / PI * sceneLight.sunIrradiance.rgb * cosS;
+        if (!traceRay(p, sceneLight.sunDirection.xyz, eps, 1e30, true, h))
+            sum += evalBrdf(surface, n, v, sceneLight.sunDirection.xyz) * sceneLight.sunIrradiance.rgb * cosS;
     }
     return sum;
 }
