@@ -234,8 +234,9 @@ bool nodeTransform(const aiNode* node, const aiString& name, const aiMatrix4x4& 
     return false;
 }
 
-// Lights of the file: directional -> the sun (the first one), point and spot -> point lights. Colours
-// are taken as radiant intensity (W/sr; directional: irradiance). Area and ambient lights are skipped.
+// Lights of the file: directional -> the sun (the first one), point and spot -> point lights (colour =
+// radiant intensity, W/sr; directional: irradiance), area -> an emissive rectangle (colour = radiance)
+// facing the light's direction. Ambient lights are skipped.
 void importLights(const aiScene* scene, SceneGeometry& s) {
     bool sun = false;
     for (unsigned i = 0; i < scene->mNumLights; ++i) {
@@ -261,6 +262,24 @@ void importLights(const aiScene* scene, SceneGeometry& s) {
                 pl.outerConeRadians = l->mAngleOuterCone;
             }
             s.pointLights.push_back(pl);
+        } else if (l->mType == aiLightSource_AREA && l->mSize.x > 0.0f && l->mSize.y > 0.0f) {
+            aiVector3D up = r * l->mUp;
+            glm::vec3 n(d.x, d.y, d.z), u = glm::normalize(glm::vec3(up.x, up.y, up.z));
+            if (!std::isfinite(u.x) || std::fabs(glm::dot(u, n)) > 0.999f) u = std::fabs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+            const glm::vec3 right = glm::normalize(glm::cross(u, n)) * (0.5f * l->mSize.x);
+            const glm::vec3 upHalf = glm::normalize(glm::cross(n, right)) * (0.5f * l->mSize.y);
+            const glm::vec3 c(p.x, p.y, p.z);
+            TriangleMesh quad;
+            quad.name = std::string("area light ") + l->mName.C_Str();
+            quad.albedo = glm::vec3(0.0f);
+            quad.emission = colour;
+            for (const glm::vec3& q : {c - right - upHalf, c + right - upHalf, c + right + upHalf, c - right + upHalf})
+                quad.positions.insert(quad.positions.end(), {q.x, q.y, q.z});
+            // Counter-clockwise seen from the side the light faces (its direction): emits that way.
+            const bool ccw = glm::dot(glm::cross(right, upHalf), n) > 0.0f;
+            quad.indices = ccw ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3} : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
+            s.instances.push_back({uint32_t(s.meshes.size()), glm::mat4(1.0f)});
+            s.meshes.push_back(std::move(quad));
         }
     }
 }
@@ -362,6 +381,7 @@ SceneGeometry loadModel(const std::string& path, std::string* error) {
     const float size = glm::length(s.boundsMax - s.boundsMin);
     s.camera = {centre + glm::vec3(0.0f, 0.25f * size, 1.2f * size), centre, glm::vec3(0, 1, 0), 45.0f};
     importLights(scene, s);
+    s.computeBounds();  // area lights became geometry
     if (scene->mNumLights == 0)
         s.environment = {glm::vec3(0.35f, 0.45f, 0.6f), glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f)), glm::vec3(3.0f)};
     api.releaseImport(scene);
