@@ -7,6 +7,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "render_test_support.h"
 
 using namespace bricklight;
 using namespace bricklight::testing;
@@ -87,19 +88,8 @@ void mirrorHighlight(const std::string& backend) {
     s.computeBounds();
     const double c = std::sqrt(0.5), a2 = 0.0625, e = 2.0;
     const double expected = 1.0 / (M_PI * a2) * 1.0 / (4.0 * c * std::sqrt(c * c * (1 - a2) + a2)) * e * c;
-    std::string error;
-    render::PathTracerOptions po;
-    po.width = po.height = 9;
-    po.pixelJitter = false;
-    auto pt = render::PathTracer::create(*td.device, s, po, &error);
-    REQUIRE(pt);
-    pt->addSamples(1);
-    render::RasterOptions ro;
-    ro.width = ro.height = 9;
-    auto r = render::RasterRenderer::create(*td.device, s, ro, &error);
-    REQUIRE(r);
-    r->render();
-    const double traced = pt->read(render::Aov::Direct).at(4, 4).x, rastered = r->read(render::Aov::Direct).at(4, 4).x;
+    Pair both = makePair(td, s, 9, 16, 1, false);
+    const double traced = both.tracer->read(render::Aov::Direct).at(4, 4).x, rastered = both.raster->read(render::Aov::Direct).at(4, 4).x;
     INFO("expected " << expected << ", path tracer " << traced << ", fast path " << rastered);
     CHECK(traced == Approx(expected).epsilon(2e-3));
     CHECK(rastered == Approx(expected).epsilon(2e-3));  // 16-bit G-buffer roughness
@@ -117,20 +107,8 @@ void glossyDirectMatches(const std::string& backend) {
         m.roughness = 0.35f;
     }
     s.meshes[0].metalness = 0.7f;
-    std::string error;
-    render::PathTracerOptions po;
-    po.width = po.height = 48;
-    po.pixelJitter = false;
-    auto pt = render::PathTracer::create(*td.device, s, po, &error);
-    REQUIRE(pt);
-    pt->addSamples(256);
-    render::RasterOptions ro;
-    ro.width = ro.height = 48;
-    ro.lightSamples = 256;
-    auto r = render::RasterRenderer::create(*td.device, s, ro, &error);
-    REQUIRE(r);
-    r->render();
-    const render::ImageMetrics m = render::compareImages(r->read(render::Aov::Direct), pt->read(render::Aov::Direct));
+    Pair both = makePair(td, s, 48, 256, 256, false);
+    const render::ImageMetrics m = render::compareImages(both.raster->read(render::Aov::Direct), both.tracer->read(render::Aov::Direct));
     WARN("glossy atrium " << backend << ": rasterized direct vs path-traced direct: relMSE " << m.relMse << ", means " << m.meanA
                           << " / " << m.meanB);
     CHECK(m.relMse < 0.02);

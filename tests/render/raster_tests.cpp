@@ -7,36 +7,12 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "render_test_support.h"
 
 using namespace bricklight;
 using namespace bricklight::testing;
 
 namespace {
-
-struct Pair {
-    std::unique_ptr<render::RasterRenderer> raster;
-    std::unique_ptr<render::PathTracer> tracer;
-};
-
-Pair makePair(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size, uint32_t lightSamples, uint32_t spp,
-              bool jitter = true) {
-    std::string error;
-    render::RasterOptions ro;
-    ro.width = ro.height = size;
-    ro.lightSamples = lightSamples;
-    Pair p;
-    p.raster = render::RasterRenderer::create(*td.device, scene, ro, &error);
-    INFO(error);
-    REQUIRE(p.raster);
-    render::PathTracerOptions po;
-    po.width = po.height = size;
-    po.pixelJitter = jitter;
-    p.tracer = render::PathTracer::create(*td.device, scene, po, &error);
-    REQUIRE(p.tracer);
-    p.raster->render();
-    p.tracer->addSamples(spp);
-    return p;
-}
 
 void gbufferMatchesPathTracer(const std::string& backend) {
     // The path tracer with camera rays through the pixel centres, as the rasterizer samples: the primary

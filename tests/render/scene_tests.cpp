@@ -7,6 +7,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "render_test_support.h"
 
 using namespace bricklight;
 using namespace bricklight::testing;
@@ -122,19 +123,8 @@ void pointAndSpotLights(const std::string& backend) {
     s.camera = {glm::vec3(0.0f, 5.0f, 0.001f), glm::vec3(0.0f), glm::vec3(0, 0, 1), 20.0f};
     s.computeBounds();
     const double expected = 0.5 / M_PI * intensity / (h * h);
-    std::string error;
-    render::PathTracerOptions po;
-    po.width = po.height = 9;
-    po.pixelJitter = false;
-    auto pt = render::PathTracer::create(*td.device, s, po, &error);
-    REQUIRE(pt);
-    pt->addSamples(4);
-    render::RasterOptions ro;
-    ro.width = ro.height = 9;
-    auto r = render::RasterRenderer::create(*td.device, s, ro, &error);
-    REQUIRE(r);
-    r->render();
-    const glm::vec3 traced = pt->read(render::Aov::Direct).at(4, 4), rastered = r->read(render::Aov::Direct).at(4, 4);
+    Pair both = makePair(td, s, 9, 16, 4, false);
+    const glm::vec3 traced = both.tracer->read(render::Aov::Direct).at(4, 4), rastered = both.raster->read(render::Aov::Direct).at(4, 4);
     INFO("expected " << expected << ", path tracer " << traced.x << ", fast path " << rastered.x);
     CHECK(traced.x == Approx(expected).epsilon(1e-3));
     CHECK(rastered.x == Approx(expected).epsilon(1e-3));

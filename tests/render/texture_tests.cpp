@@ -7,6 +7,7 @@
 #include "backend_test.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "render_test_support.h"
 
 using namespace bricklight;
 using namespace bricklight::testing;
@@ -50,20 +51,8 @@ void texturedAlbedo(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry s = texturedQuad(writeChecker(backend));
-    std::string error;
-    render::PathTracerOptions po;
-    po.width = po.height = 32;
-    po.pixelJitter = false;
-    auto pt = render::PathTracer::create(*td.device, s, po, &error);
-    INFO(error);
-    REQUIRE(pt);
-    pt->addSamples(1);
-    render::RasterOptions ro;
-    ro.width = ro.height = 32;
-    auto r = render::RasterRenderer::create(*td.device, s, ro, &error);
-    REQUIRE(r);
-    r->render();
-    const render::Image traced = pt->read(render::Aov::Albedo), rastered = r->read(render::Aov::Albedo);
+    Pair both = makePair(td, s, 32, 1, 1, false);
+    const render::Image traced = both.tracer->read(render::Aov::Albedo), rastered = both.raster->read(render::Aov::Albedo);
     // The quad fills the middle of the view; the quadrants' centres show the texels (sRGB 255 -> 1, 0 -> 0).
     struct Probe { uint32_t x, y; glm::vec3 colour; };
     for (const Probe& p : {Probe{12, 12, {1, 0, 0}}, Probe{19, 12, {0, 1, 0}}, Probe{12, 19, {0, 0, 1}}, Probe{19, 19, {1, 1, 1}}}) {
