@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "bricklight/rhi.h"
 
@@ -14,5 +15,11 @@ namespace bricklight::rhi {
 bool dimensionCompatible(ResourceDimension s, TextureDimension t, uint32_t layers);
 // Whether a view of format `f` returns the scalar type `s` the shader's sampler or image declares.
 bool scalarCompatible(ResourceScalar s, Format f);
+
+// For messages: "textures[2] (slot 5)", a class in the singular ("read buffer", by class index) and a
+// declared dimension's name ("2D array").
+const char* bindingClassSingular(unsigned bindingClass);
+std::string slotField(BindingClass c, size_t index, uint32_t slot);
+const char* dimensionName(ResourceDimension d);
 
 }  // namespace bricklight::rhi

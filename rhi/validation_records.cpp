@@ -11,22 +11,6 @@ namespace bricklight::rhi::validation {
 
 namespace {
 
-const char* kClassSingular[] = {"constants block", "texture", "read buffer", "storage buffer", "storage image"};
-
-std::string slotField(BindingClass c, size_t index, uint32_t slot) {
-    return std::string(bindingClassName(c)) + "[" + std::to_string(index) + "] (slot " + std::to_string(slot) + ")";
-}
-
-const char* dimensionName(ResourceDimension d) {
-    switch (d) {
-        case ResourceDimension::Texture2D: return "2D";
-        case ResourceDimension::Texture2DArray: return "2D array";
-        case ResourceDimension::Texture3D: return "3D";
-        case ResourceDimension::TextureCube: return "cube";
-        case ResourceDimension::Buffer: return "buffer";
-        default: return "none";
-    }
-}
 
 // The union of the bindings declared by the stages of one call, keyed by (class, slot).
 struct DeclaredBindings {
@@ -42,7 +26,7 @@ struct DeclaredBindings {
             auto key = std::make_pair(int(b.bindingClass), int(b.slot));
             auto [it, inserted] = byClassSlot.emplace(key, &b);
             if (!inserted && (it->second->dimension != b.dimension || it->second->imageFormat != b.imageFormat))
-                r.error(std::string("stages disagree on ") + kClassSingular[b.bindingClass] + " slot " +
+                r.error(std::string("stages disagree on ") + bindingClassSingular(unsigned(b.bindingClass)) + " slot " +
                         std::to_string(b.slot) + " ('" + it->second->name + "' vs '" + b.name + "')");
         }
     }
@@ -116,7 +100,7 @@ public:
         // Every slot the shaders declare must be bound.
         for (const auto& [key, rb] : declared.byClassSlot)
             if (!isBound(b, BindingClass(key.first), key.second))
-                r_.error(std::string("missing binding: shader declares ") + kClassSingular[key.first] + " '" +
+                r_.error(std::string("missing binding: shader declares ") + bindingClassSingular(unsigned(key.first)) + " '" +
                          rb->name + "' at slot " + std::to_string(key.second) + " but " +
                          bindingClassName(BindingClass(key.first)) + " has no entry for it");
     }
@@ -181,10 +165,10 @@ private:
         std::string other;
         for (int k = 0; k < 5; ++k)
             if (k != int(c) && declared.find(BindingClass(k), slot))
-                other = std::string(" (it declares a ") + kClassSingular[k] + " at slot " + std::to_string(slot) +
+                other = std::string(" (it declares a ") + bindingClassSingular(unsigned(k)) + " at slot " + std::to_string(slot) +
                         ": wrong binding class?)";
         r_.warning(slotField(c, i, slot) + ": shader " + declared.shaderNames + " declares no " +
-                   kClassSingular[int(c)] + " at this slot" + other);
+                   bindingClassSingular(unsigned(int(c))) + " at this slot" + other);
         return nullptr;
     }
 

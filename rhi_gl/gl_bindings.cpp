@@ -16,24 +16,8 @@ namespace bricklight::gl::detail {
 using namespace rhi;
 
 namespace {
-const char* kClassSingular[] = {"constants block", "texture", "read buffer", "storage buffer", "storage image"};
 const uint32_t kClassSlots[] = {kMaxConstantsSlots, kMaxTextureSlots, kMaxReadBufferSlots, kMaxStorageBufferSlots,
                                 kMaxStorageImageSlots};
-
-std::string slotField(BindingClass c, size_t index, uint32_t slot) {
-    return std::string(bindingClassName(c)) + "[" + std::to_string(index) + "] (slot " + std::to_string(slot) + ")";
-}
-
-const char* dimensionName(ResourceDimension d) {
-    switch (d) {
-        case ResourceDimension::Texture2D: return "2D";
-        case ResourceDimension::Texture2DArray: return "2D array";
-        case ResourceDimension::Texture3D: return "3D";
-        case ResourceDimension::TextureCube: return "cube";
-        case ResourceDimension::Buffer: return "buffer";
-        default: return "none";
-    }
-}
 
 GLenum dimensionTarget(ResourceDimension d) {
     switch (d) {
@@ -89,7 +73,7 @@ bool Device::declare(const Call& call, const ShaderRecord& shader, Declared* dec
         if (b.bindingClass >= 5 || b.slot >= kClassSlots[b.bindingClass]) continue;  // the compiler rejects these
         const ReflectedBinding*& at = declared->at[b.bindingClass][b.slot];
         if (at && (at->dimension != b.dimension || at->imageFormat != b.imageFormat))
-            return fail(call, std::string("stages disagree on ") + kClassSingular[b.bindingClass] + " slot " +
+            return fail(call, std::string("stages disagree on ") + bindingClassSingular(unsigned(b.bindingClass)) + " slot " +
                                   std::to_string(b.slot) + " ('" + at->name + "' vs '" + b.name + "')");
         at = &b;
     }
@@ -259,7 +243,7 @@ bool Device::resolveBindings(const Call& call, const Bindings& b, const Declared
         for (uint32_t slot = 0; slot < kClassSlots[c]; ++slot)
             if (declared.at[c][slot] && !bound[c][slot])
                 return fail(call, std::string("missing binding: shader ") + declared.shaderNames + " declares " +
-                                      kClassSingular[c] + " '" + declared.at[c][slot]->name + "' at slot " +
+                                      bindingClassSingular(unsigned(c)) + " '" + declared.at[c][slot]->name + "' at slot " +
                                       std::to_string(slot) + " but " + bindingClassName(BindingClass(c)) +
                                       " has no entry for it");
     return true;
