@@ -31,13 +31,7 @@ scenes::SceneGeometry sphereUnderSky(float roughness, float metalness) {
 }
 
 double meanOverSphere(TestDevice& td, const scenes::SceneGeometry& s) {
-    render::PathTracerOptions o;
-    o.width = o.height = 32;
-    std::string error;
-    auto pt = render::PathTracer::create(*td.device, s, o, &error);
-    INFO(error);
-    REQUIRE(pt);
-    pt->addSamples(256);
+    auto pt = traced(td, s, 32, 256);
     const render::Image c = pt->read(render::Aov::Combined), depth = pt->read(render::Aov::Depth);
     double sum = 0.0;
     size_t n = 0;
@@ -73,10 +67,7 @@ void mirrorHighlight(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry s;
-    scenes::TriangleMesh plane;
-    plane.positions = {-50, 0, -50, 50, 0, -50, 50, 0, 50, -50, 0, 50};
-    plane.indices = {0, 2, 1, 0, 3, 2};
-    plane.albedo = glm::vec3(1.0f);
+    scenes::TriangleMesh plane = groundPlane(50.0f, glm::vec3(1.0f));
     plane.metalness = 1.0f;
     plane.roughness = 0.5f;
     plane.specular = true;

@@ -5,6 +5,7 @@
 #include "backend_test.h"
 #include "image_metrics.h"
 #include "path_tracer.h"
+#include "render_test_support.h"
 
 using namespace bricklight;
 using namespace bricklight::testing;
@@ -13,15 +14,7 @@ namespace {
 
 render::Image renderScene(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size, uint32_t spp,
                           render::Aov aov = render::Aov::Combined, uint32_t seed = 1) {
-    render::PathTracerOptions o;
-    o.width = o.height = size;
-    o.seed = seed;
-    std::string error;
-    auto pt = render::PathTracer::create(*td.device, scene, o, &error);
-    INFO(error);
-    REQUIRE(pt);
-    pt->addSamples(spp);
-    return pt->read(aov);
+    return traced(td, scene, size, spp, true, seed)->read(aov);
 }
 
 glm::dvec3 mean(const render::Image& img) {
@@ -49,13 +42,7 @@ void whiteFurnace(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const float rho = 0.5f, le = 1.0f;
-    scenes::SceneGeometry s = furnace(rho, le);
-    render::PathTracerOptions o;
-    o.width = o.height = 32;
-    std::string error;
-    auto pt = render::PathTracer::create(*td.device, s, o, &error);
-    REQUIRE(pt);
-    pt->addSamples(256);
+    auto pt = traced(td, furnace(rho, le), 32, 256);
     // Radiance everywhere Le / (1 - rho); direct = Le + rho Le; indirect (irradiance / pi of light that
     // bounced) = rho Le / (1 - rho).
     const glm::dvec3 combined = mean(pt->read(render::Aov::Combined));
@@ -73,22 +60,12 @@ void planeUnderSky(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry s;
-    scenes::TriangleMesh plane;
-    const float h = 1e4f;
-    plane.positions = {-h, 0, -h, h, 0, -h, h, 0, h, -h, 0, h};
-    plane.indices = {0, 2, 1, 0, 3, 2};
-    plane.albedo = glm::vec3(0.6f, 0.3f, 0.9f);
-    s.meshes.push_back(plane);
+    s.meshes.push_back(groundPlane(1e4f, glm::vec3(0.6f, 0.3f, 0.9f)));
     s.instances.push_back({0, glm::mat4(1.0f)});
     s.environment.skyRadiance = glm::vec3(1.0f, 2.0f, 0.5f);
     s.camera = {glm::vec3(0, 1, 0), glm::vec3(0, -1, 1), glm::vec3(0, 1, 0), 60.0f};  // looking down at 45 degrees
     s.computeBounds();
-    render::PathTracerOptions o;
-    o.width = o.height = 32;
-    std::string error;
-    auto pt = render::PathTracer::create(*td.device, s, o, &error);
-    REQUIRE(pt);
-    pt->addSamples(256);
+    auto pt = traced(td, s, 32, 256);
     // Every pixel sees the plane (the view's upper edge is 15 degrees below the horizon): L = albedo * Lsky.
     const glm::dvec3 combined = mean(pt->read(render::Aov::Combined));
     const glm::dvec3 indirect = mean(pt->read(render::Aov::IndirectDiffuse));

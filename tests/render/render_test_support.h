@@ -36,4 +36,29 @@ inline Pair makePair(TestDevice& td, const scenes::SceneGeometry& scene, uint32_
     return p;
 }
 
+// The path tracer alone: `spp` samples per pixel added (not read yet).
+inline std::unique_ptr<render::PathTracer> traced(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size, uint32_t spp,
+                                                  bool jitter = true, uint32_t seed = 1) {
+    render::PathTracerOptions o;
+    o.width = o.height = size;
+    o.pixelJitter = jitter;
+    o.seed = seed;
+    std::string error;
+    auto pt = render::PathTracer::create(*td.device, scene, o, &error);
+    INFO(error);
+    REQUIRE(pt);
+    pt->addSamples(spp);
+    return pt;
+}
+
+// A square in the y = 0 plane, `half` wide each way, facing +y (counter-clockwise seen from above).
+inline scenes::TriangleMesh groundPlane(float half, glm::vec3 albedo) {
+    scenes::TriangleMesh plane;
+    plane.name = "plane";
+    plane.positions = {-half, 0, -half, half, 0, -half, half, 0, half, -half, 0, half};
+    plane.indices = {0, 2, 1, 0, 3, 2};
+    plane.albedo = albedo;
+    return plane;
+}
+
 }  // namespace bricklight::testing
