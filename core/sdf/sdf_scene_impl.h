@@ -90,6 +90,8 @@ public:
 
     void traceBindings(rhi::Bindings& bindings, TraceSlots slots) const override;
     bool debugView(const DebugViewDesc& desc) override;
+    rhi::BufferHandle brickOwnerBuffer() const override { return brickOwners_; }
+    uint32_t brickCapacity() const override;
 
     Stats latestStats() const override { return stats_; }
     MemoryUse memoryUse() const override;
@@ -103,7 +105,6 @@ private:
     bool fail(const std::string& message);  // reports, returns false
     float voxelSize(uint32_t cascade) const;
     float band(uint32_t cascade) const;
-    uint32_t brickCapacity() const;
     rhi::BufferHandle makeBuffer(const char* name, uint64_t size, uint32_t usage, const void* data = nullptr);
 
     // sdf_geometry.cpp

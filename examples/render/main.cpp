@@ -2,10 +2,11 @@
 //
 //   bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]
 //                     [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr] [--aov NAME ...] [--reference --spp N]
-//                     [--exposure E]
+//                     [--exposure E] [--gi sdf|none] [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]
 //
-// Without --reference: a rasterized G-buffer and direct lighting (GI comes with the GI issue); with it,
-// the path tracer (the ground truth). AOVs go next to --out as <stem>.<aov>.exr (linear float). See
+// Without --reference: a rasterized G-buffer, direct lighting and GI from the sparse brick distance field
+// (--gi sdf, the default; over --frames frames the bounces accumulate); with it, the path tracer (the
+// ground truth). AOVs go next to --out as <stem>.<aov>.exr (linear float). See
 // docs/render.md.
 #include <unistd.h>
 
@@ -37,7 +38,13 @@ struct Options {
     std::string out = "out/render.png";
     std::vector<render::Aov> aovs;
     float exposure = 1.0f;
+    bool gi = true;
+    bricklight::gi::InternalResolution giScale = bricklight::gi::InternalResolution::Native;
+    bool framesGiven = false;
+    std::vector<std::string> giDebug;
 };
+
+const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
 
 [[noreturn]] void usage(const std::string& problem) {
     std::fprintf(stderr, "bricklight-render: %s\n", problem.c_str());
@@ -45,7 +52,8 @@ struct Options {
                  "usage: bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                         [--frames N] [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr]\n"
                  "                         [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
-                 "                         [--reference --spp N] [--exposure E]\n"
+                 "                         [--reference --spp N] [--exposure E] [--gi sdf|none]\n"
+                 "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]\n"
                  "scenes: %s\n", scenes::builtinSceneNames());
     std::exit(2);
 }
@@ -70,7 +78,29 @@ Options parse(int argc, char** argv) {
         else if (a == "--backend") o.backend = value();
         else if (a == "--width") o.width = number(value(), a, 1, 8192);
         else if (a == "--height") o.height = number(value(), a, 1, 8192);
-        else if (a == "--frames") o.frames = number(value(), a, 1, 100000);
+        else if (a == "--frames") {
+            o.frames = number(value(), a, 1, 100000);
+            o.framesGiven = true;
+        } else if (a == "--gi") {
+            const std::string v = value();
+            if (v == "sdf") o.gi = true;
+            else if (v == "none") o.gi = false;
+            else usage("--gi must be sdf or none (got '" + v + "')");
+        } else if (a == "--gi-debug") {
+            const std::string v = value();
+            bool known = false;
+            for (const char* n : kGiDebugNames) known = known || v == n;
+            if (!known) usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (got '" + v + "')");
+            o.giDebug.push_back(v);
+        } else if (a == "--gi-scale") {
+            const uint32_t v = number(value(), a, 25, 100);
+            using R = bricklight::gi::InternalResolution;
+            if (v == 100) o.giScale = R::Native;
+            else if (v == 75) o.giScale = R::Percent75;
+            else if (v == 50) o.giScale = R::Percent50;
+            else if (v == 25) o.giScale = R::Percent25;
+            else usage("--gi-scale must be 100, 75, 50 or 25");
+        }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
         else if (a == "--reference") o.reference = true;
         else if (a == "--out") o.out = value();
@@ -175,12 +205,16 @@ int main(int argc, char** argv) {
         render::RasterOptions ro;
         ro.width = o.width;
         ro.height = o.height;
+        ro.gi = o.gi;
+        ro.giResolution = o.giScale;
+        // GI converges over frames (each frame's light feeds the next): a still image gets 64 by default.
+        const uint32_t frames = o.gi && !o.framesGiven && !scene.animate ? 64u : o.frames;
         raster = render::RasterRenderer::create(*device, scene, ro, &error);
         if (!raster) {
             std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
             return 1;
         }
-        for (uint32_t f = 0; f < o.frames; ++f) {
+        for (uint32_t f = 0; f < frames; ++f) {
             if (f > 0 && scene.animate) {
                 scene.animate(scene, f);
                 if (!raster->setScene(scene, &error)) {
@@ -191,7 +225,8 @@ int main(int argc, char** argv) {
             raster->render();
             device->endFrame();
         }
-        how = "rasterized, direct light only (" + std::to_string(ro.lightSamples) + " light samples per pixel)";
+        how = o.gi ? "rasterized, direct light + SDF GI over " + std::to_string(frames) + " frames"
+                   : "rasterized, direct light only (" + std::to_string(ro.lightSamples) + " light samples per pixel)";
     }
     auto read = [&](render::Aov aov) { return tracer ? tracer->read(aov) : raster->read(aov); };
     render::Image combined = read(render::Aov::Combined);
@@ -203,6 +238,19 @@ int main(int argc, char** argv) {
     std::printf("wrote %s (%ux%u, %s, %u triangles, %s on %s) in %.2f s\n", o.out.c_str(), o.width, o.height,
                 scene.name.c_str(), tracer ? tracer->triangleCount() : raster->triangleCount(), how.c_str(), o.backend.c_str(),
                 seconds);
+    for (const std::string& view : o.giDebug) {
+        if (!raster) usage("--gi-debug needs the fast path with GI (not --reference or --gi none)");
+        uint32_t mode = 0;
+        while (view != kGiDebugNames[mode]) ++mode;
+        render::Image img = raster->giDebugView(gi::DebugMode(mode), o.exposure);
+        const size_t dot = o.out.find_last_of('.');
+        const std::string path = (dot == std::string::npos ? o.out : o.out.substr(0, dot)) + ".gi-" + view + ".exr";
+        if (img.rgb.empty() || !render::writeImage(path, img, 1.0f, &error)) {
+            std::fprintf(stderr, "bricklight-render: the GI debug view %s failed%s%s\n", view.c_str(), error.empty() ? "" : ": ", error.c_str());
+            return 1;
+        }
+        std::printf("wrote %s\n", path.c_str());
+    }
     for (render::Aov aov : o.aovs) {
         const std::string path = aovPath(o.out, aov);
         if (!render::writeImage(path, read(aov), 1.0f, &error)) {

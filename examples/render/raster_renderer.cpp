@@ -13,13 +13,19 @@ float halfToFloat(uint16_t h) {  // IEEE binary16 -> float (the G-buffer's RGBA1
 }
 }
 
-glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize) {
+glm::mat4 viewMatrix(const scenes::Camera& camera) { return glm::lookAtRH(camera.eye, camera.at, camera.up); }
+
+glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sceneSize) {
     const float distance = glm::length(camera.at - camera.eye);
     const float farPlane = 4.0f * (sceneSize + distance);
     const float nearPlane = farPlane * 1e-5f;
     glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(camera.verticalFovDegrees), aspect, nearPlane, farPlane);
     projection[1][1] = -projection[1][1];  // clip-space y down: the contract's image origin is top-left
-    return projection * glm::lookAtRH(camera.eye, camera.at, camera.up);
+    return projection;
+}
+
+glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize) {
+    return projectionMatrix(camera, aspect, sceneSize) * viewMatrix(camera);
 }
 
 std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, const scenes::SceneGeometry& scene,
@@ -43,6 +49,7 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     r->vertex_ = shader("render/gbuffer.vert");
     r->fragment_ = shader("render/gbuffer.frag");
     r->lighting_ = shader("render/direct_light.comp");
+    r->composite_ = shader("render/composite.comp");
     auto target = [&](rhi::Format format, const char* name, uint32_t usage) {
         rhi::TextureDesc d;
         d.format = format;
@@ -59,6 +66,9 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     r->motion_ = target(rhi::Format::RG16_FLOAT, "motion", RenderTarget);
     r->position_ = target(rhi::Format::RGBA32_FLOAT, "position", RenderTarget);
     r->depth_ = target(rhi::Format::D32_FLOAT, "depth", DepthTarget);
+    r->lit_ = target(rhi::Format::RGBA16_FLOAT, "lit", Storage);
+    r->giDiffuse_ = target(rhi::Format::RGBA16_FLOAT, "diffuse GI", Storage);
+    r->giSpecular_ = target(rhi::Format::RGBA16_FLOAT, "specular GI", Storage);
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
     sd.debugName = "gbuffer point";
@@ -67,21 +77,102 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     bd.size = uint64_t(options.width) * options.height * 16;
     bd.debugName = "direct lighting";
     r->direct_ = device.createBuffer(bd);
-    if (!r->vertex_ || !r->fragment_ || !r->lighting_ || !r->albedo_ || !r->normal_ || !r->emission_ || !r->motion_ || !r->position_ ||
-        !r->depth_ || !r->point_ || !r->direct_)
+    bd.debugName = "combined";
+    r->combined_ = device.createBuffer(bd);
+    if (!r->vertex_ || !r->fragment_ || !r->lighting_ || !r->composite_ || !r->albedo_ || !r->normal_ || !r->emission_ || !r->motion_ ||
+        !r->position_ || !r->depth_ || !r->lit_ || !r->giDiffuse_ || !r->giSpecular_ || !r->point_ || !r->direct_ || !r->combined_)
         return fail("the device could not create the G-buffer or the lighting pass (see its messages)");
+    rhi::ClearValue zero{};
+    for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
+    if (options.gi && !r->createGi(scene, error)) return nullptr;
     if (!r->setCamera(scene.camera, error)) return nullptr;
     r->previousViewProjection_ = r->viewProjection_;
+    r->previousView_ = r->view_;
+    r->previousProjection_ = r->projection_;
     return r;
 }
 
+bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
+    auto fail = [&](const std::string& m) {
+        if (error) *error = "raster renderer: " + m;
+        return false;
+    };
+    const glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+    const float side = std::max(extent.x, std::max(extent.y, extent.z));
+    sdf::SceneDesc sd;
+    sd.cascadeCount = options_.sdfCascades;
+    // The finest cascade holds the whole scene with a margin; coarser ones catch rays that leave it.
+    sd.finestVoxelSize = sdf::suggestVoxelSize(side * 1.1f, 1);
+    sd.debugName = "render sdf";
+    std::string why;
+    sdf_ = sdf::SdfScene::create(device_, sd, &why);
+    if (!sdf_) return fail("the distance field for GI: " + why);
+    std::vector<sdf::MeshHandle> meshes;
+    for (const scenes::TriangleMesh& m : scene.meshes) {
+        sdf::MeshArrays a;
+        a.positions = m.positions.data();
+        a.vertexCount = uint32_t(m.positions.size() / 3);
+        a.indices = m.indices.data();
+        a.indexCount = uint32_t(m.indices.size());
+        a.name = m.name;
+        meshes.push_back(sdf_->createMesh(a));
+        if (!meshes.back()) return fail("the distance field rejected mesh '" + m.name + "': " + sdf_->lastError());
+    }
+    for (const scenes::MeshInstance& i : scene.instances) {
+        sdf::InstanceDesc id;
+        id.mesh = meshes[i.mesh];
+        id.transform = i.transform;
+        sdfInstances_.push_back(sdf_->addInstance(id));
+        sdfTransforms_.push_back(i.transform);
+        if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError());
+    }
+    sdfCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
+    gi::ContextDesc gd;
+    gd.displayWidth = options_.width;
+    gd.displayHeight = options_.height;
+    gd.internalResolution = options_.giResolution;
+    gd.debugName = "render gi";
+    gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
+    if (!gi_) return fail(why);
+    return true;
+}
+
+void RasterRenderer::syncSdf(const scenes::SceneGeometry& scene) {
+    if (!sdf_) return;
+    for (size_t i = 0; i < scene.instances.size() && i < sdfInstances_.size(); ++i)
+        if (scene.instances[i].transform != sdfTransforms_[i]) {
+            sdf_->setTransform(sdfInstances_[i], scene.instances[i].transform);
+            sdfTransforms_[i] = scene.instances[i].transform;
+        }
+}
+
+GBufferView RasterRenderer::gbuffer() const {
+    GBufferView g;
+    g.albedo = albedo_;
+    g.normal = normal_;
+    g.emission = emission_;
+    g.motion = motion_;
+    g.position = position_;
+    g.depth = depth_;
+    g.lit = lit_;
+    g.view = view_;
+    g.projection = projection_;
+    g.previousView = previousView_;
+    g.previousProjection = previousProjection_;
+    g.eye = camera_.eye;
+    return g;
+}
+
 RasterRenderer::~RasterRenderer() {
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_})
+    gi_.reset();
+    sdf_.reset();
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_})
         if (t) device_.destroy(t);
-    for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_})
+    for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_})
         if (s) device_.destroy(s);
     if (point_) device_.destroy(point_);
     if (direct_) device_.destroy(direct_);
+    if (combined_) device_.destroy(combined_);
 }
 
 bool RasterRenderer::setCamera(const scenes::Camera& camera, std::string* error) {
@@ -92,7 +183,11 @@ bool RasterRenderer::setCamera(const scenes::Camera& camera, std::string* error)
     }
     camera_ = camera;
     previousViewProjection_ = viewProjection_;
-    viewProjection_ = viewProjection(camera, float(options_.width) / float(options_.height), scene_->rayOffset() * 1e5f);
+    previousView_ = view_;
+    previousProjection_ = projection_;
+    view_ = viewMatrix(camera);
+    projection_ = projectionMatrix(camera, float(options_.width) / float(options_.height), scene_->rayOffset() * 1e5f);
+    viewProjection_ = projection_ * view_;
     return true;
 }
 
@@ -147,6 +242,52 @@ void RasterRenderer::render() {
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_}) s.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     s.bindings.storageBuffers.push({0, direct_, {}, rhi::Access::Write});
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
+
+    if (gi_) {
+        sdf_->update(sdfCenter_);
+        gi::DispatchDesc g;
+        g.view = view_;
+        g.projection = projection_;
+        g.previousView = previousView_;
+        g.previousProjection = previousProjection_;
+        g.cameraPosition = camera_.eye;
+        g.depth = depth_;
+        g.normals = normal_;
+        g.normalsUnpackScale = glm::vec3(1.0f);
+        g.normalsUnpackOffset = glm::vec3(0.0f);
+        g.roughness = albedo_;
+        g.roughnessChannel = 3;
+        g.motionVectors = motion_;
+        g.previousLitOutput = lit_;
+        g.outputDiffuse = giDiffuse_;
+        g.outputSpecular = giSpecular_;
+        g.resetHistory = cut_;
+        cut_ = false;
+        gi_->dispatch(g);
+    }
+    struct {
+        glm::vec4 eye;
+        uint32_t size[4];
+    } c{glm::vec4(camera_.eye, 1.0f), {options_.width, options_.height, gi_ ? 1u : 0u, 0u}};
+    rhi::DispatchState k;
+    k.shader = composite_;
+    k.label = "composite";
+    k.bindings.constants.push(rhi::constants(0, c));
+    slot = 0;
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_})
+        k.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
+    k.bindings.readBuffers.push({0, direct_, {}});
+    k.bindings.storageBuffers.push({0, combined_, {}, rhi::Access::Write});
+    rhi::StorageImageBinding li;
+    li.slot = 0;
+    li.view = rhi::textureMip(lit_, 0);
+    li.access = rhi::Access::Write;
+    k.bindings.storageImages.push(li);
+    device_.dispatch(k, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
+    // The next frame's motion vectors and GI reprojection start from this camera.
+    previousViewProjection_ = viewProjection_;
+    previousView_ = view_;
+    previousProjection_ = projection_;
 }
 
 bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* error) {
@@ -157,6 +298,7 @@ bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* e
         return false;
     }
     scene_ = std::move(next);
+    syncSdf(scene);
     return true;
 }
 
@@ -172,9 +314,11 @@ Image RasterRenderer::read(Aov aov) {
     };
     if (aov == Aov::Combined || aov == Aov::Direct) {
         std::vector<glm::vec4> v(pixels);
-        device_.readBuffer(direct_, 0, pixels * 16, v.data());
+        device_.readBuffer(aov == Aov::Combined ? combined_ : direct_, 0, pixels * 16, v.data());
         for (size_t i = 0; i < pixels; ++i)
             for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = v[i][c];
+    } else if (aov == Aov::IndirectDiffuse) {
+        return readGi(giDiffuse_);
     } else if (aov == Aov::Albedo || aov == Aov::Normal) {
         std::vector<uint16_t> h;
         readTarget(aov == Aov::Albedo ? albedo_ : normal_, 4, h);
@@ -191,6 +335,49 @@ Image RasterRenderer::read(Aov aov) {
             if (position[i].w != 0.0f)
                 img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = glm::dot(glm::vec3(position[i]) - camera_.eye, forward);
     }
+    return img;
+}
+
+Image RasterRenderer::readGi(rhi::TextureHandle t) {
+    Image img;
+    img.width = options_.width;
+    img.height = options_.height;
+    const size_t pixels = size_t(img.width) * img.height;
+    img.rgb.assign(pixels * 3, 0.0f);
+    std::vector<uint16_t> h(pixels * 4);
+    device_.readTexture(t, {}, h.data());
+    for (size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = halfToFloat(h[4 * i + size_t(c)]);
+    return img;
+}
+
+Image RasterRenderer::readSpecularGi() { return readGi(giSpecular_); }
+
+Image RasterRenderer::giDebugView(gi::DebugMode mode, float exposure) {
+    Image img;
+    if (!gi_) return img;
+    rhi::TextureDesc d;
+    d.format = rhi::Format::RGBA8_UNORM;
+    d.width = options_.width;
+    d.height = options_.height;
+    d.usage = rhi::TextureUsage::Storage;
+    d.debugName = "gi debug view";
+    rhi::TextureHandle t = device_.createTexture(d);
+    if (!t) return img;
+    gi::DebugViewDesc desc;
+    desc.mode = mode;
+    desc.output = t;
+    desc.exposure = exposure;
+    if (gi_->debugView(desc)) {
+        std::vector<uint8_t> bytes(size_t(d.width) * d.height * 4);
+        device_.readTexture(t, {}, bytes.data());
+        img.width = d.width;
+        img.height = d.height;
+        img.rgb.resize(size_t(d.width) * d.height * 3);
+        for (size_t i = 0; i < img.rgb.size() / 3; ++i)
+            for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = float(bytes[4 * i + size_t(c)]) / 255.0f;
+    }
+    device_.destroy(t);
     return img;
 }
 

@@ -1,11 +1,15 @@
 // The renderer's fast path: a G-buffer rasterized through DrawCallState records (albedo + roughness,
-// normal, emission + metalness, motion vectors, depth), then direct lighting from emitters, the sun and the
-// sky with ray-traced shadows (shaders/render/direct_light.comp, the path tracer's estimator).
+// normal, emission + metalness, motion vectors, depth), direct lighting from emitters, the sun and the
+// sky with ray-traced shadows (shaders/render/direct_light.comp, the path tracer's estimator), then GI
+// (gi::GiContext on an sdf::SdfScene of the scene) composited with it (shaders/render/composite.comp).
+// Each frame's lit image feeds the next frame's GI, so bounces accumulate over frames.
 #pragma once
 
 #include <memory>
 #include <string>
 
+#include "bricklight/gi.h"
+#include "bricklight/sdf.h"
 #include "gpu_scene.h"
 #include "path_tracer.h"
 
@@ -15,6 +19,16 @@ struct RasterOptions {
     uint32_t width = 256, height = 256;
     uint32_t lightSamples = 16;  // emitter (and sky) samples per pixel for direct lighting
     uint32_t seed = 1;
+    bool gi = false;  // true: GI from the distance field (bricklight-render turns it on)
+    gi::InternalResolution giResolution = gi::InternalResolution::Native;
+    uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
+};
+
+// The G-buffer and camera of the latest frame, for tools that drive GI themselves (the benchmark).
+struct GBufferView {
+    rhi::TextureHandle albedo, normal, emission, motion, position, depth, lit;
+    glm::mat4 view{1.0f}, projection{1.0f}, previousView{1.0f}, previousProjection{1.0f};
+    glm::vec3 eye{0.0f};
 };
 
 class RasterRenderer {
@@ -27,27 +41,50 @@ public:
     // The scene of the next frame (an animated scene's next state): its vertices' previous positions are
     // this frame's, for motion vectors. Fails, changing nothing, on a bad scene.
     bool setScene(const scenes::SceneGeometry& scene, std::string* error);
-    void render();  // records the G-buffer draw and the lighting dispatch
-    // Combined (= direct until GI lands), direct, albedo, normal, depth; indirect-diffuse is zero.
+    void render();  // records the G-buffer draw, the direct lighting, GI and the composite
+    // Combined (direct + GI), direct, indirect-diffuse (GI's diffuse output; zero without GI), albedo,
+    // normal, depth.
     Image read(Aov aov);
+    Image readSpecularGi();  // GI's specular output (zero without GI)
+    // A GI debug view of the latest frame (tone-mapped, 0..1); empty without GI.
+    Image giDebugView(gi::DebugMode mode, float exposure);
+    GBufferView gbuffer() const;
+    gi::GiContext* giContext() { return gi_.get(); }
+    sdf::SdfScene* sdfScene() { return sdf_.get(); }
+    // The next frame starts a new shot: GI forgets its screen history.
+    void cameraCut() { cut_ = true; }
     Image readMotion();  // rg = UV motion (current - previous), b = 0
     uint32_t triangleCount() const { return scene_->triangleCount(); }
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
+    bool createGi(const scenes::SceneGeometry& scene, std::string* error);
+    void syncSdf(const scenes::SceneGeometry& scene);
+    Image readGi(rhi::TextureHandle t);
     rhi::IDevice& device_;
     RasterOptions options_;
     std::unique_ptr<GpuScene> scene_;
-    rhi::ShaderHandle vertex_, fragment_, lighting_;
+    rhi::ShaderHandle vertex_, fragment_, lighting_, composite_;
     rhi::TextureHandle albedo_, normal_, emission_, motion_, position_, depth_;
+    rhi::TextureHandle lit_, giDiffuse_, giSpecular_;
     rhi::SamplerHandle point_;
-    rhi::BufferHandle direct_;
+    rhi::BufferHandle direct_, combined_;
+    std::unique_ptr<sdf::SdfScene> sdf_;
+    std::vector<sdf::InstanceHandle> sdfInstances_;
+    std::vector<glm::mat4> sdfTransforms_;
+    glm::vec3 sdfCenter_{0.0f};
+    std::unique_ptr<gi::GiContext> gi_;
+    bool cut_ = false;
     scenes::Camera camera_;
+    glm::mat4 view_{1.0f}, projection_{1.0f}, previousView_{1.0f}, previousProjection_{1.0f};
     glm::mat4 viewProjection_{1.0f}, previousViewProjection_{1.0f};
     uint32_t frame_ = 0;
 };
 
-// The renderer's camera matrix: right-handed view, depth [0, 1], clip-space y down (row 0 at the top).
+// The renderer's camera matrices: right-handed view; projection with depth [0, 1] and clip-space y down
+// (row 0 at the top).
+glm::mat4 viewMatrix(const scenes::Camera& camera);
+glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sceneSize);
 glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize);
 
 }  // namespace bricklight::render

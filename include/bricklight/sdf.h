@@ -206,6 +206,11 @@ public:
     // constants a caller needs none of: everything is in the bound buffers.
     virtual void traceBindings(rhi::Bindings& bindings, TraceSlots slots = {}) const = 0;
     virtual bool debugView(const DebugViewDesc& desc) = 0;
+    // Per brick (uint32 each, brick capacity entries): the voxel that owns it, as cascade << 24 | physical
+    // voxel index, or 0xFFFFFFFF for a brick never allocated. A brick whose owner changes was freed and
+    // reused: caches keyed by brick id (the GI's) compare owners to know what to forget.
+    virtual rhi::BufferHandle brickOwnerBuffer() const = 0;
+    virtual uint32_t brickCapacity() const = 0;
 
     virtual Stats latestStats() const = 0;
     virtual MemoryUse memoryUse() const = 0;

@@ -44,6 +44,7 @@ struct BlSdfRay {
     float tMax;
     uint startCascade;
     uint endCascade;  // inclusive; clamped to the scene's cascades
+    float epsilonScale;  // multiplies the cascades' hit epsilon (1 by default)
 };
 
 struct BlSdfHit {
@@ -64,6 +65,7 @@ BlSdfRay blSdfMakeRay(vec3 origin, vec3 direction, float tMin, float tMax) {
     r.tMax = tMax;
     r.startCascade = 0u;
     r.endCascade = BL_SDF_MAX_CASCADES - 1u;
+    r.epsilonScale = 1.0;
     return r;
 }
 
@@ -117,7 +119,7 @@ BlSdfHit blSdfTrace(BlSdfRay ray) {
     for (uint c = ray.startCascade; c <= lastCascade && t < ray.tMax; ++c) {
         BlSdfCascade info = blSdfTable.cascades[c];
         if (info.origin.w == 0) continue;
-        float inv = info.voxelSize.y, eps = info.voxelSize.z, band = info.voxelSize.w;
+        float inv = info.voxelSize.y, eps = info.voxelSize.z * ray.epsilonScale, band = info.voxelSize.w;
         // Logical voxel space of this cascade; t stays in world units.
         vec3 o = ray.origin * inv - vec3(info.origin.xyz);
         vec3 d = ray.direction * inv;

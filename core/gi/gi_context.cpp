@@ -1,0 +1,276 @@
+#include <cmath>
+#include <cstdio>
+
+#include "gi_context_impl.h"
+
+namespace bricklight::gi {
+
+float internalScale(InternalResolution r) {
+    switch (r) {
+        case InternalResolution::Native: return 1.0f;
+        case InternalResolution::Percent75: return 0.75f;
+        case InternalResolution::Percent50: return 0.5f;
+        case InternalResolution::Percent25: return 0.25f;
+    }
+    return 1.0f;
+}
+
+std::unique_ptr<GiContext> GiContext::create(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc,
+                                             std::string* error) {
+    auto context = std::make_unique<detail::GiContextImpl>(device, scene, desc);
+    if (!context->init(error)) return nullptr;
+    return context;
+}
+
+namespace detail {
+
+namespace {
+float halfToFloat(uint16_t h) {
+    const uint32_t e = (h >> 10) & 0x1Fu, m = h & 0x3FFu;
+    float f = e == 0 ? std::ldexp(float(m), -24) : e == 31 ? (m ? NAN : INFINITY) : std::ldexp(float(m | 0x400u), int(e) - 25);
+    return (h & 0x8000u) ? -f : f;
+}
+}  // namespace
+
+bool GiContextImpl::fail(const std::string& message) {
+    lastError_ = desc_.debugName + ": " + message;
+    if (desc_.errorCallback) desc_.errorCallback(rhi::Severity::Error, lastError_);
+    else std::fprintf(stderr, "%s\n", lastError_.c_str());
+    return false;
+}
+
+bool GiContextImpl::init(std::string* error) {
+    auto bad = [&](const std::string& m) {
+        fail(m);
+        if (error) *error = lastError_;
+        return false;
+    };
+    if (desc_.displayWidth == 0 || desc_.displayHeight == 0 || desc_.displayWidth > 16384 || desc_.displayHeight > 16384)
+        return bad("display size " + std::to_string(desc_.displayWidth) + "x" + std::to_string(desc_.displayHeight) +
+                   " is not in 1..16384");
+    if (uint32_t(desc_.internalResolution) > uint32_t(InternalResolution::Percent25))
+        return bad("internalResolution " + std::to_string(uint32_t(desc_.internalResolution)) + " is not one of the four scales");
+    if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth))
+        return bad("unknown flag bits in flags");
+    const rhi::Capabilities& caps = device_.capabilities();
+    using F = rhi::Format;
+    for (F f : {F::R32_FLOAT, F::R32_UINT, F::RG16_FLOAT, F::R8_UNORM, F::RGBA16_FLOAT})
+        if (!caps.supports(f, rhi::FormatSupport::Storage | rhi::FormatSupport::Sampled))
+            return bad(std::string("the device cannot use ") + rhi::formatName(f) + " as a storage image and a texture");
+    const float scale = internalScale(desc_.internalResolution);
+    width_ = std::max(1u, uint32_t(std::lround(desc_.displayWidth * scale)));
+    height_ = std::max(1u, uint32_t(std::lround(desc_.displayHeight * scale)));
+    tilesX_ = (width_ + kProbeTile - 1) / kProbeTile;
+    tilesY_ = (height_ + kProbeTile - 1) / kProbeTile;
+    const uint32_t bricksPerAxis = scene_.desc().atlasBricksPerAxis;
+    cacheSize_ = bricksPerAxis * kCacheTexelsPerBrick;
+    if (cacheSize_ > caps.limits.maxTextureSize3D)
+        return bad("the radiance cache (" + std::to_string(cacheSize_) + "³) exceeds the device's 3D texture limit");
+    const uint32_t capacity = scene_.brickCapacity();
+
+    auto shader = [&](const char* name) {
+        rhi::ShaderDesc sd;
+        sd.blob = rhi::findShader(name);
+        return sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
+    };
+    shaders_.downsample = shader("gi/downsample.comp");
+    shaders_.disocclusion = shader("gi/disocclusion_mask.comp");
+    shaders_.clearFreed = shader("gi/clear_freed_bricks.comp");
+    shaders_.inject = shader("gi/inject_radiance.comp");
+    shaders_.propagate = shader("gi/propagate_sh.comp");
+    shaders_.spawn = shader("gi/spawn_probes.comp");
+    shaders_.reprojectProbes = shader("gi/reproject_probes.comp");
+    shaders_.fill = shader("gi/fill_probes.comp");
+    shaders_.pretrace = shader("gi/specular_pretrace.comp");
+    shaders_.reprojectGi = shader("gi/reproject_gi.comp");
+    shaders_.specularTrace = shader("gi/specular_trace.comp");
+    shaders_.project = shader("gi/project_probes.comp");
+    shaders_.emit = shader("gi/emit_irradiance.comp");
+    shaders_.interpolate = shader("gi/interpolate.comp");
+    shaders_.blur = shader("gi/blur.comp");
+    shaders_.upsample = shader("gi/upsample.comp");
+    shaders_.debug = shader("gi/debug_view.comp");
+
+    using namespace rhi::TextureUsage;
+    auto texture = [&](const std::string& name, F format, uint32_t w, uint32_t h, uint32_t usage = Sampled | Storage) {
+        rhi::TextureDesc d;
+        d.format = format;
+        d.width = w;
+        d.height = h;
+        d.usage = usage;
+        d.debugName = desc_.debugName + " " + name;
+        return device_.createTexture(d);
+    };
+    for (int i = 0; i < 2; ++i) {
+        const std::string s = std::to_string(i);
+        depth_[i] = texture("depth" + s, F::R32_FLOAT, width_, height_);
+        surface_[i] = texture("surface" + s, F::R32_UINT, width_, height_);
+        probes_[i] = texture("probes" + s, F::RGBA16_FLOAT, tilesX_ * kProbeTile, tilesY_ * kProbeTile);
+        diffuseHistory_[i] = texture("diffuseHistory" + s, F::RGBA16_FLOAT, width_, height_);
+        specularHistory_[i] = texture("specularHistory" + s, F::RGBA16_FLOAT, width_, height_);
+    }
+    motion_ = texture("motion", F::RG16_FLOAT, width_, height_);
+    disocclusion_ = texture("disocclusion", F::R8_UNORM, width_, height_);
+    pretrace_ = texture("specularPretrace", F::R32_UINT, (width_ + kPretraceTile - 1) / kPretraceTile,
+                        (height_ + kPretraceTile - 1) / kPretraceTile);
+    specularTraced_ = texture("specularTraced", F::RGBA16_FLOAT, width_, height_);
+    if (!(desc_.flags & ContextFlags::NoDenoiser)) {
+        blurDiffuse_ = texture("blurDiffuse", F::RGBA16_FLOAT, width_, height_);
+        blurSpecular_ = texture("blurSpecular", F::RGBA16_FLOAT, width_, height_);
+        resolvedDiffuse_ = texture("resolvedDiffuse", F::RGBA16_FLOAT, width_, height_);
+        resolvedSpecular_ = texture("resolvedSpecular", F::RGBA16_FLOAT, width_, height_);
+    }
+    dummyStorage_ = texture("unusedSpecularOutput", F::RGBA16_FLOAT, 1, 1);
+    black2D_ = texture("noEnvironment2D", F::RGBA16_FLOAT, 1, 1, Sampled);
+    {
+        rhi::TextureDesc d;
+        d.dimension = rhi::TextureDimension::TextureCube;
+        d.format = F::RGBA16_FLOAT;
+        d.depthOrLayers = 6;
+        d.usage = Sampled;
+        d.debugName = desc_.debugName + " noEnvironmentCube";
+        const std::vector<uint16_t> zeros(6 * 4, 0);
+        blackCube_ = device_.createTexture(d, zeros.data());
+        const std::vector<uint16_t> zero(4, 0);
+        if (black2D_) device_.writeTexture(black2D_, {}, zero.data());
+    }
+    {
+        rhi::TextureDesc d;
+        d.dimension = rhi::TextureDimension::Texture3D;
+        d.format = F::R32_UINT;
+        d.width = d.height = d.depthOrLayers = cacheSize_;
+        d.usage = Storage;
+        d.debugName = desc_.debugName + " radianceCache";
+        radianceCache_ = device_.createTexture(d);
+    }
+    auto buffer = [&](const std::string& name, uint64_t size, const void* data = nullptr) {
+        rhi::BufferDesc d;
+        d.size = size;
+        d.debugName = desc_.debugName + " " + name;
+        return device_.createBuffer(d, data);
+    };
+    const uint64_t tiles = uint64_t(tilesX_) * tilesY_;
+    probeInfo_[0] = buffer("probeInfo0", tiles * 16);
+    probeInfo_[1] = buffer("probeInfo1", tiles * 16);
+    probeSH_ = buffer("probeSH", tiles * kShCoefficients * 16);
+    brickSH_ = buffer("brickSH", uint64_t(capacity) * kShCoefficients * 8);
+    const std::vector<uint32_t> noOwner(capacity, 0xFFFFFFFFu);
+    cacheOwners_ = buffer("cacheOwners", uint64_t(capacity) * 4, noOwner.data());
+
+    rhi::SamplerDesc sd;
+    sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
+    sd.debugName = desc_.debugName + " point";
+    point_ = device_.createSampler(sd);
+    sd.minFilter = sd.magFilter = rhi::Filter::Linear;
+    sd.debugName = desc_.debugName + " linear";
+    linear_ = device_.createSampler(sd);
+    sd.addressU = rhi::AddressMode::Repeat;
+    sd.mipFilter = rhi::Filter::Linear;
+    sd.debugName = desc_.debugName + " environment";
+    environment_ = device_.createSampler(sd);
+
+    const Shaders& s = shaders_;
+    for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
+                                s.pretrace, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
+        if (!h) return bad("the device could not create the GI shaders (see its messages)");
+    bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && point_ && linear_ && environment_;
+    for (int i = 0; i < 2; ++i)
+        ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
+    if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && blurDiffuse_ && blurSpecular_ && resolvedDiffuse_ && resolvedSpecular_;
+    if (!ok) return bad("the device could not create the GI resources (see its messages)");
+    reset();
+    return true;
+}
+
+GiContextImpl::~GiContextImpl() {
+    const Shaders& s = shaders_;
+    for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
+                                s.pretrace, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
+        if (h) device_.destroy(h);
+    for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
+                                 specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
+                                 blurDiffuse_, blurSpecular_, resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
+                                 dummyStorage_})
+        if (t) device_.destroy(t);
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_})
+        if (b) device_.destroy(b);
+    for (rhi::SamplerHandle h : {point_, linear_, environment_})
+        if (h) device_.destroy(h);
+}
+
+void GiContextImpl::reset() {
+    rhi::ClearValue zero{};
+    device_.clearTexture(radianceCache_, 0, 1, zero);
+    device_.clearBuffer(brickSH_, {}, 0);
+    for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
+                                 specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
+                                 blurDiffuse_, blurSpecular_, resolvedDiffuse_, resolvedSpecular_, dummyStorage_})
+        if (t) device_.clearTexture(t, 0, 1, zero);
+    device_.clearBuffer(probeInfo_[0], {}, 0);
+    device_.clearBuffer(probeInfo_[1], {}, 0);
+    device_.clearBuffer(probeSH_, {}, 0);
+    historyValid_ = false;
+}
+
+MemoryUse GiContextImpl::memoryUse() const {
+    MemoryUse m;
+    auto add = [&](const char* name, uint64_t bytes) {
+        m.resources.push_back({name, bytes});
+        m.totalBytes += bytes;
+    };
+    auto tex = [&](rhi::TextureHandle t) -> uint64_t {
+        const rhi::TextureDesc* d = t ? device_.describe(t) : nullptr;
+        if (!d) return 0;
+        return uint64_t(d->width) * d->height * std::max(1u, d->depthOrLayers) * rhi::formatInfo(d->format).bytesPerTexel;
+    };
+    auto buf = [&](rhi::BufferHandle b) -> uint64_t {
+        const rhi::BufferDesc* d = b ? device_.describe(b) : nullptr;
+        return d ? d->size : 0;
+    };
+    add("radianceCache", tex(radianceCache_));
+    add("brickSH", buf(brickSH_));
+    add("cacheOwners", buf(cacheOwners_));
+    add("depth (2)", tex(depth_[0]) + tex(depth_[1]));
+    add("surface (2)", tex(surface_[0]) + tex(surface_[1]));
+    add("motion", tex(motion_));
+    add("disocclusion", tex(disocclusion_));
+    add("probes (2)", tex(probes_[0]) + tex(probes_[1]));
+    add("probeInfo (2)", buf(probeInfo_[0]) + buf(probeInfo_[1]));
+    add("probeSH", buf(probeSH_));
+    add("specularPretrace", tex(pretrace_));
+    add("specularTraced", tex(specularTraced_));
+    add("diffuseHistory (2)", tex(diffuseHistory_[0]) + tex(diffuseHistory_[1]));
+    add("specularHistory (2)", tex(specularHistory_[0]) + tex(specularHistory_[1]));
+    add("blur (2)", tex(blurDiffuse_) + tex(blurSpecular_));
+    add("resolved (2)", tex(resolvedDiffuse_) + tex(resolvedSpecular_));
+    add("environment/dummies", tex(blackCube_) * 6 + tex(black2D_) + tex(dummyStorage_));
+    return m;
+}
+
+void GiContextImpl::readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) {
+    if (radiance) {
+        std::vector<uint32_t> packed(size_t(cacheSize_) * cacheSize_ * cacheSize_);
+        device_.readTexture(radianceCache_, {}, packed.data());
+        radiance->resize(packed.size() * 3);
+        for (size_t i = 0; i < packed.size(); ++i) {
+            const uint32_t v = packed[i];
+            const float scale = std::ldexp(1.0f, int(v >> 27) - 24);
+            for (int c = 0; c < 3; ++c) (*radiance)[3 * i + size_t(c)] = float((v >> (9 * c)) & 511u) * scale;
+        }
+    }
+    if (brickSH) {
+        const uint32_t capacity = scene_.brickCapacity();
+        std::vector<uint16_t> halves(size_t(capacity) * kShCoefficients * 4);
+        device_.readBuffer(brickSH_, 0, halves.size() * 2, halves.data());
+        brickSH->assign(size_t(capacity) * 28, 0.0f);
+        for (size_t b = 0; b < capacity; ++b) {
+            for (size_t k = 0; k < kShCoefficients; ++k)
+                for (size_t c = 0; c < 3; ++c) (*brickSH)[b * 28 + 3 * k + c] = halfToFloat(halves[(b * kShCoefficients + k) * 4 + c]);
+            (*brickSH)[b * 28 + 27] = halfToFloat(halves[b * kShCoefficients * 4 + 3]);
+        }
+    }
+}
+
+}  // namespace detail
+}  // namespace bricklight::gi

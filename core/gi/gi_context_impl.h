@@ -1,0 +1,67 @@
+// The GiContext implementation, split by concept:
+//   gi_context.cpp    creation, resources, capability checks, memory, reset, cache read-back
+//   gi_inputs.cpp     checks of a frame's inputs (names the input and the problem)
+//   gi_dispatch.cpp   the frame's passes as records
+//   gi_debug_view.cpp the debug views
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bricklight/gi.h"
+#include "gi_constants.h"
+
+namespace bricklight::gi::detail {
+
+class GiContextImpl final : public GiContext {
+public:
+    GiContextImpl(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc)
+        : device_(device), scene_(scene), desc_(desc) {}
+    ~GiContextImpl() override;
+    bool init(std::string* error);
+
+    bool dispatch(const DispatchDesc& desc) override;
+    bool debugView(const DebugViewDesc& desc) override;
+    void reset() override;
+    MemoryUse memoryUse() const override;
+    const ContextDesc& desc() const override { return desc_; }
+    uint32_t internalWidth() const override { return width_; }
+    uint32_t internalHeight() const override { return height_; }
+    const std::string& lastError() const override { return lastError_; }
+    void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
+
+private:
+    bool fail(const std::string& message);
+    // gi_inputs.cpp
+    bool checkInputs(const DispatchDesc& d);
+    // gi_dispatch.cpp
+    void fillConstants(const DispatchDesc& d);
+    void addTrace(rhi::Bindings& b) const;
+    void run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z = 1);
+
+    rhi::IDevice& device_;
+    const sdf::SdfScene& scene_;
+    ContextDesc desc_;
+    std::string lastError_;
+    uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
+    uint32_t cacheSize_ = 0;  // radiance cache texels per side
+
+    struct Shaders {
+        rhi::ShaderHandle downsample, disocclusion, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
+            reprojectGi, specularTrace, project, emit, interpolate, blur, upsample, debug;
+    } shaders_;
+
+    rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
+    rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], blurDiffuse_, blurSpecular_, resolvedDiffuse_, resolvedSpecular_;
+    rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
+    rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_;
+    rhi::SamplerHandle point_, linear_, environment_;
+
+    GpuCamera camera_{};
+    GpuFrame frame_{};
+    uint64_t frameIndex_ = 0;
+    int lastFrame_ = 0;  // [cur] of the latest dispatch (for the debug views)
+    bool historyValid_ = false;
+};
+
+}  // namespace bricklight::gi::detail

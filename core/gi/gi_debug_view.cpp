@@ -1,0 +1,46 @@
+// The debug views (shaders/gi/debug_view.comp) of the latest dispatch.
+#include "gi_context_impl.h"
+
+namespace bricklight::gi::detail {
+
+bool GiContextImpl::debugView(const DebugViewDesc& desc) {
+    if (uint32_t(desc.mode) > uint32_t(DebugMode::SampleCount)) return fail("debugView: unknown mode " + std::to_string(uint32_t(desc.mode)));
+    const rhi::TextureDesc* td = desc.output ? device_.describe(desc.output) : nullptr;
+    if (!td) return fail("debugView: output is missing or not a live texture");
+    if (td->dimension != rhi::TextureDimension::Texture2D || td->format != rhi::Format::RGBA8_UNORM || !(td->usage & rhi::TextureUsage::Storage))
+        return fail("debugView: output '" + td->debugName + "' must be a 2D RGBA8_UNORM texture with Storage usage");
+    if (td->width != desc_.displayWidth || td->height != desc_.displayHeight)
+        return fail("debugView: output '" + td->debugName + "' must be the display size");
+    if (!(desc.exposure > 0.0f)) return fail("debugView: exposure must be > 0");
+    if (!historyValid_) return fail("debugView: nothing to show before the first dispatch");
+    const int cur = lastFrame_;
+    struct {
+        uint32_t mode[4];
+        float exposure[4];
+    } pass{{uint32_t(desc.mode), 0, 0, 0}, {desc.exposure, 0, 0, 0}};
+    rhi::DispatchState s;
+    s.bindings.constants.push(rhi::constants(2, pass));
+    s.bindings.textures.push({0, rhi::wholeTexture(depth_[cur]), point_});
+    s.bindings.textures.push({1, rhi::wholeTexture(surface_[cur]), point_});
+    s.bindings.textures.push({2, rhi::wholeTexture(probes_[cur]), point_});
+    s.bindings.textures.push({3, rhi::wholeTexture(disocclusion_), point_});
+    s.bindings.textures.push({4, rhi::wholeTexture(diffuseHistory_[cur]), point_});
+    s.bindings.readBuffers.push({0, probeInfo_[cur], {}});
+    s.bindings.readBuffers.push({1, probeSH_, {}});
+    s.bindings.readBuffers.push({2, brickSH_, {}});
+    rhi::StorageImageBinding out;
+    out.slot = 0;
+    out.view = rhi::textureMip(desc.output, 0);
+    out.access = rhi::Access::Write;
+    s.bindings.storageImages.push(out);
+    rhi::StorageImageBinding cache;
+    cache.slot = 1;
+    cache.view = rhi::textureMip(radianceCache_, 0);
+    cache.access = rhi::Access::Read;
+    s.bindings.storageImages.push(cache);
+    addTrace(s.bindings);
+    run("gi debug view", shaders_.debug, s, (desc_.displayWidth + 7) / 8, (desc_.displayHeight + 7) / 8);
+    return true;
+}
+
+}  // namespace bricklight::gi::detail

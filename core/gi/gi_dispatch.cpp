@@ -1,0 +1,286 @@
+// One GI frame as records, in the order of docs/gi.md's pass table. Ping-pong resources alternate with the
+// frame index: [cur] is written this frame, [prev] holds last frame's.
+#include <algorithm>
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "gi_context_impl.h"
+
+namespace bricklight::gi::detail {
+
+namespace {
+
+using rhi::Access;
+
+void texture(rhi::Bindings& b, uint8_t slot, rhi::TextureHandle t, rhi::SamplerHandle s) {
+    b.textures.push({slot, rhi::wholeTexture(t), s});
+}
+void image(rhi::Bindings& b, uint8_t slot, rhi::TextureHandle t, Access access) {
+    rhi::StorageImageBinding i;
+    i.slot = slot;
+    i.view = rhi::textureMip(t, 0);
+    i.access = access;
+    b.storageImages.push(i);
+}
+void readBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer) { b.readBuffers.push({slot, buffer, {}}); }
+void storageBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer, Access access) {
+    b.storageBuffers.push({slot, buffer, {}, access});
+}
+uint32_t groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
+
+}  // namespace
+
+void GiContextImpl::addTrace(rhi::Bindings& b) const { scene_.traceBindings(b); }
+
+void GiContextImpl::run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z) {
+    s.shader = shader;
+    s.label = label;
+    s.bindings.constants.push(rhi::constants(0, camera_));
+    s.bindings.constants.push(rhi::constants(1, frame_));
+    device_.beginMarker(label);
+    device_.dispatch(s, x, y, z);
+    device_.endMarker();
+}
+
+void GiContextImpl::fillConstants(const DispatchDesc& d) {
+    // Inverted in double: with a near plane far below the far plane (standard depth) a float inverse
+    // loses most of the depth range's precision, and positions rebuilt from depth land metres off.
+    const glm::dmat4 viewProjection = glm::dmat4(d.projection) * glm::dmat4(d.view);
+    const glm::dmat4 previousViewProjection = glm::dmat4(d.previousProjection) * glm::dmat4(d.previousView);
+    camera_.viewProjection = glm::mat4(viewProjection);
+    camera_.inverseViewProjection = glm::mat4(glm::inverse(viewProjection));
+    camera_.previousViewProjection = glm::mat4(previousViewProjection);
+    camera_.previousInverseViewProjection = glm::mat4(glm::inverse(previousViewProjection));
+    const uint32_t cascades = scene_.desc().cascadeCount;
+    const uint32_t start = d.trace.startCascade, end = std::min(d.trace.endCascade, cascades - 1);
+    uint32_t flags = 0;
+    if (desc_.flags & ContextFlags::ReversedDepth) flags |= FlagReversedDepth;
+    if (d.resetHistory) flags |= FlagResetHistory;
+    if (desc_.flags & ContextFlags::NoSpecular) flags |= FlagNoSpecular;
+    if (historyValid_) flags |= FlagHistoryValid;
+    frame_ = GpuFrame{};
+    frame_.size[0] = width_;
+    frame_.size[1] = height_;
+    frame_.size[2] = desc_.displayWidth;
+    frame_.size[3] = desc_.displayHeight;
+    frame_.tiles[0] = tilesX_;
+    frame_.tiles[1] = tilesY_;
+    frame_.tiles[2] = uint32_t(frameIndex_);
+    frame_.tiles[3] = flags;
+    frame_.camera = glm::vec4(d.cameraPosition, scene_.cascadeVoxelSize(start));
+    frame_.normalScale = glm::vec4(d.normalsUnpackScale, d.roughnessThreshold);
+    frame_.normalOffset = glm::vec4(d.normalsUnpackOffset, d.environmentIntensity);
+    frame_.inputs[0] = d.roughnessChannel;
+    frame_.inputs[1] = d.roughnessPerceptual ? 1u : 0u;
+    frame_.inputs[2] = uint32_t(d.environmentKind);
+    frame_.inputs[3] = kMaxDiffuseHistory;
+    frame_.motion = glm::vec4(d.motionVectorScale, 0.0f, 0.0f);
+    frame_.trace = glm::vec4(d.trace.rayPushOff, d.trace.specularRayPushOff, d.trace.tMin, d.trace.tMax);
+    frame_.cascades[0] = start;
+    frame_.cascades[1] = end;
+    frame_.cascades[2] = scene_.desc().atlasBricksPerAxis;
+    frame_.cascades[3] = scene_.brickCapacity();
+    frame_.epsilon = glm::vec4(d.trace.epsilonScale, d.trace.specularEpsilonScale, 0.0f, 0.0f);
+}
+
+bool GiContextImpl::dispatch(const DispatchDesc& d) {
+    if (!checkInputs(d)) return false;
+    fillConstants(d);
+    const int cur = int(frameIndex_ & 1u), prev = cur ^ 1;
+    const bool specular = !(desc_.flags & ContextFlags::NoSpecular);
+    const bool denoise = !(desc_.flags & ContextFlags::NoDenoiser);
+    const uint32_t capacity = scene_.brickCapacity();
+    const rhi::BufferHandle owners = scene_.brickOwnerBuffer();
+    device_.beginMarker(desc_.debugName.c_str());
+
+    {  // 1. downsample
+        rhi::DispatchState s;
+        texture(s.bindings, 0, d.depth, point_);
+        texture(s.bindings, 1, d.normals, point_);
+        texture(s.bindings, 2, d.roughness, point_);
+        texture(s.bindings, 3, d.motionVectors, point_);
+        image(s.bindings, 0, depth_[cur], Access::Write);
+        image(s.bindings, 1, surface_[cur], Access::Write);
+        image(s.bindings, 2, motion_, Access::Write);
+        run("downsample", shaders_.downsample, s, groups(width_, 8), groups(height_, 8));
+    }
+    {  // 2. disocclusion mask
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        texture(s.bindings, 2, motion_, point_);
+        texture(s.bindings, 3, depth_[prev], point_);
+        texture(s.bindings, 4, surface_[prev], point_);
+        image(s.bindings, 0, disocclusion_, Access::Write);
+        run("disocclusion mask", shaders_.disocclusion, s, groups(width_, 8), groups(height_, 8));
+    }
+    {  // 3. clear the cache entries of freed bricks
+        rhi::DispatchState s;
+        struct {
+            uint32_t mode[4];
+        } pass{{0, 0, 0, 0}};
+        s.bindings.constants.push(rhi::constants(2, pass));
+        readBuffer(s.bindings, 0, owners);
+        storageBuffer(s.bindings, 0, cacheOwners_, Access::ReadWrite);
+        storageBuffer(s.bindings, 1, brickSH_, Access::Write);
+        image(s.bindings, 0, radianceCache_, Access::Write);
+        run("clear freed bricks", shaders_.clearFreed, s, groups(capacity, 64), 1);
+    }
+    {  // 4. inject last frame's lit image into the radiance cache
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        texture(s.bindings, 2, motion_, point_);
+        texture(s.bindings, 3, disocclusion_, point_);
+        texture(s.bindings, 4, d.previousLitOutput, linear_);
+        image(s.bindings, 0, radianceCache_, Access::ReadWrite);
+        addTrace(s.bindings);
+        run("inject radiance", shaders_.inject, s, groups(groups(width_, kInjectTile), 8), groups(groups(height_, kInjectTile), 8));
+    }
+    {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
+        const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];
+        const uint32_t cascade = std::min(end, start + uint32_t(__builtin_ctzll(frameIndex_ + 1)));
+        rhi::DispatchState s;
+        struct {
+            uint32_t cascade[4];
+        } pass{{cascade, 0, 0, 0}};
+        s.bindings.constants.push(rhi::constants(2, pass));
+        readBuffer(s.bindings, 0, owners);
+        storageBuffer(s.bindings, 0, brickSH_, Access::ReadWrite);
+        addTrace(s.bindings);
+        run("propagate SH", shaders_.propagate, s, groups(capacity, 64), 1);
+    }
+    {  // 6. spawn screen probes
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        storageBuffer(s.bindings, 0, probeInfo_[cur], Access::Write);
+        run("spawn probes", shaders_.spawn, s, groups(tilesX_, 8), groups(tilesY_, 8));
+    }
+    {  // 7. reproject screen probes
+        rhi::DispatchState s;
+        readBuffer(s.bindings, 0, probeInfo_[prev]);
+        storageBuffer(s.bindings, 0, probeInfo_[cur], Access::ReadWrite);
+        texture(s.bindings, 0, probes_[prev], point_);
+        texture(s.bindings, 1, motion_, point_);
+        image(s.bindings, 0, probes_[cur], Access::Write);
+        run("reproject probes", shaders_.reprojectProbes, s, tilesX_, tilesY_);
+    }
+    {  // 8. fill screen probes by tracing the field
+        rhi::DispatchState s;
+        readBuffer(s.bindings, 0, probeInfo_[cur]);
+        image(s.bindings, 0, probes_[cur], Access::ReadWrite);
+        image(s.bindings, 1, radianceCache_, Access::Read);
+        addTrace(s.bindings);
+        texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
+        texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
+        run("fill probes", shaders_.fill, s, tilesX_, tilesY_);
+    }
+    if (specular) {  // 9. specular pre-trace (one ray per 4×4 tile)
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        image(s.bindings, 0, pretrace_, Access::Write);
+        addTrace(s.bindings);
+        run("specular pretrace", shaders_.pretrace, s, groups(groups(width_, kPretraceTile), 8), groups(groups(height_, kPretraceTile), 8));
+    }
+    {  // 10. reproject GI history
+        rhi::DispatchState s;
+        texture(s.bindings, 0, motion_, point_);
+        texture(s.bindings, 1, disocclusion_, point_);
+        texture(s.bindings, 2, diffuseHistory_[prev], linear_);
+        texture(s.bindings, 3, specularHistory_[prev], linear_);
+        image(s.bindings, 0, diffuseHistory_[cur], Access::Write);
+        image(s.bindings, 1, specularHistory_[cur], Access::Write);
+        run("reproject GI", shaders_.reprojectGi, s, groups(width_, 8), groups(height_, 8));
+    }
+    if (specular) {  // 11. specular trace (full internal resolution, inside the pre-traced brick)
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        texture(s.bindings, 2, pretrace_, point_);
+        readBuffer(s.bindings, 0, owners);
+        image(s.bindings, 0, specularTraced_, Access::Write);
+        image(s.bindings, 1, radianceCache_, Access::Read);
+        addTrace(s.bindings);
+        texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
+        texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
+        run("specular trace", shaders_.specularTrace, s, groups(width_, 8), groups(height_, 8));
+    }
+    {  // 12. project probes to SH
+        rhi::DispatchState s;
+        readBuffer(s.bindings, 0, probeInfo_[cur]);
+        texture(s.bindings, 0, probes_[cur], point_);
+        storageBuffer(s.bindings, 0, probeSH_, Access::Write);
+        run("project probes", shaders_.project, s, tilesX_, tilesY_);
+    }
+    {  // 13. emit the probes into the brick SH irradiance cache
+        rhi::DispatchState s;
+        readBuffer(s.bindings, 0, probeInfo_[cur]);
+        readBuffer(s.bindings, 1, probeSH_);
+        storageBuffer(s.bindings, 0, brickSH_, Access::ReadWrite);
+        addTrace(s.bindings);
+        run("emit irradiance", shaders_.emit, s, groups(tilesX_ * tilesY_, 64), 1);
+    }
+    {  // 14. interpolate and accumulate
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        texture(s.bindings, 2, specularTraced_, point_);
+        readBuffer(s.bindings, 0, probeInfo_[cur]);
+        readBuffer(s.bindings, 1, probeSH_);
+        readBuffer(s.bindings, 2, brickSH_);
+        image(s.bindings, 0, diffuseHistory_[cur], Access::ReadWrite);
+        image(s.bindings, 1, specularHistory_[cur], Access::ReadWrite);
+        addTrace(s.bindings);
+        run("interpolate", shaders_.interpolate, s, groups(width_, 8), groups(height_, 8));
+    }
+    rhi::TextureHandle finalDiffuse = diffuseHistory_[cur], finalSpecular = specularHistory_[cur];
+    if (denoise) {  // 15, 16. bilateral blur, x then y
+        struct {
+            int32_t direction[4];
+        } x{{1, 0, 0, 0}}, y{{0, 1, 0, 0}};
+        rhi::DispatchState s;
+        s.bindings.constants.push(rhi::constants(2, x));
+        texture(s.bindings, 0, diffuseHistory_[cur], point_);
+        texture(s.bindings, 1, specularHistory_[cur], point_);
+        texture(s.bindings, 2, depth_[cur], point_);
+        texture(s.bindings, 3, surface_[cur], point_);
+        image(s.bindings, 0, blurDiffuse_, Access::Write);
+        image(s.bindings, 1, blurSpecular_, Access::Write);
+        run("blur x", shaders_.blur, s, groups(width_, 8), groups(height_, 8));
+        rhi::DispatchState t;
+        t.bindings.constants.push(rhi::constants(2, y));
+        texture(t.bindings, 0, blurDiffuse_, point_);
+        texture(t.bindings, 1, blurSpecular_, point_);
+        texture(t.bindings, 2, depth_[cur], point_);
+        texture(t.bindings, 3, surface_[cur], point_);
+        image(t.bindings, 0, resolvedDiffuse_, Access::Write);
+        image(t.bindings, 1, resolvedSpecular_, Access::Write);
+        run("blur y", shaders_.blur, t, groups(width_, 8), groups(height_, 8));
+        finalDiffuse = resolvedDiffuse_;
+        finalSpecular = resolvedSpecular_;
+    }
+    {  // 17. upsample to the display outputs
+        rhi::DispatchState s;
+        struct {
+            uint32_t options[4];
+        } pass{{d.outputSpecular ? 1u : 0u, 0, 0, 0}};
+        s.bindings.constants.push(rhi::constants(2, pass));
+        texture(s.bindings, 0, finalDiffuse, point_);
+        texture(s.bindings, 1, finalSpecular, point_);
+        texture(s.bindings, 2, depth_[cur], point_);
+        texture(s.bindings, 3, surface_[cur], point_);
+        texture(s.bindings, 4, d.depth, point_);
+        texture(s.bindings, 5, d.normals, point_);
+        image(s.bindings, 0, d.outputDiffuse, Access::Write);
+        image(s.bindings, 1, d.outputSpecular ? d.outputSpecular : dummyStorage_, Access::Write);
+        run("upsample", shaders_.upsample, s, groups(desc_.displayWidth, 8), groups(desc_.displayHeight, 8));
+    }
+    device_.endMarker();
+    lastFrame_ = cur;
+    ++frameIndex_;
+    historyValid_ = true;
+    return true;
+}
+
+}  // namespace bricklight::gi::detail

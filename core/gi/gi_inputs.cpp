@@ -1,0 +1,114 @@
+// Checks of one frame's inputs before anything is recorded: every message names the input (and its debug
+// name) and the problem, and a failed check records nothing.
+#include <cmath>
+
+#include "gi_context_impl.h"
+
+namespace bricklight::gi::detail {
+
+namespace {
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+bool invertible(const glm::mat4& m) {
+    const float d = glm::determinant(m);
+    return std::isfinite(d) && std::fabs(d) > 1e-30f;
+}
+
+}  // namespace
+
+bool GiContextImpl::checkInputs(const DispatchDesc& d) {
+    const uint32_t dw = desc_.displayWidth, dh = desc_.displayHeight;
+    const std::string displaySize = std::to_string(dw) + "x" + std::to_string(dh);
+    using K = rhi::FormatInfo::Kind;
+    // A texture input: live, sampled, 2D, display-sized when `display`, with at least `channels` float
+    // (or unorm/depth) channels.
+    auto input = [&](const char* what, rhi::TextureHandle t, uint32_t channels, bool display) -> bool {
+        if (!t) return fail(std::string("dispatch: input '") + what + "' is missing");
+        const rhi::TextureDesc* td = device_.describe(t);
+        if (!td) return fail(std::string("dispatch: input '") + what + "' is not a live texture");
+        const std::string name = std::string("dispatch: input '") + what + "' (texture '" + td->debugName + "')";
+        if (td->dimension != rhi::TextureDimension::Texture2D) return fail(name + " must be a 2D texture");
+        if (!(td->usage & rhi::TextureUsage::Sampled)) return fail(name + " was not created with Sampled usage");
+        const rhi::FormatInfo& fi = rhi::formatInfo(td->format);
+        if (fi.kind == K::Uint || fi.kind == K::Sint || fi.kind == K::None)
+            return fail(name + " has format " + fi.name + "; it must be a float, unorm or depth format");
+        if (fi.channels < channels)
+            return fail(name + " has format " + fi.name + " with " + std::to_string(fi.channels) + " channel(s); it needs " +
+                        std::to_string(channels));
+        if (display && (td->width != dw || td->height != dh))
+            return fail(name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) +
+                        "; it must be the display size " + displaySize);
+        return true;
+    };
+    auto output = [&](const char* what, rhi::TextureHandle t) -> bool {
+        if (!t) return fail(std::string("dispatch: output '") + what + "' is missing");
+        const rhi::TextureDesc* td = device_.describe(t);
+        if (!td) return fail(std::string("dispatch: output '") + what + "' is not a live texture");
+        const std::string name = std::string("dispatch: output '") + what + "' (texture '" + td->debugName + "')";
+        if (td->dimension != rhi::TextureDimension::Texture2D || td->format != rhi::Format::RGBA16_FLOAT)
+            return fail(name + " must be a 2D RGBA16_FLOAT texture, not " + rhi::formatName(td->format));
+        if (!(td->usage & rhi::TextureUsage::Storage)) return fail(name + " was not created with Storage usage");
+        if (td->width != dw || td->height != dh)
+            return fail(name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + "; it must be " + displaySize);
+        return true;
+    };
+    if (!input("depth", d.depth, 1, true) || !input("normals", d.normals, 3, true) || !input("roughness", d.roughness, 1, true) ||
+        !input("motionVectors", d.motionVectors, 2, true) || !input("previousLitOutput", d.previousLitOutput, 3, false))
+        return false;
+    const rhi::FormatInfo& roughness = rhi::formatInfo(device_.describe(d.roughness)->format);
+    if (d.roughnessChannel >= roughness.channels)
+        return fail("dispatch: roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture (" +
+                    roughness.name + ")");
+    if (!output("outputDiffuse", d.outputDiffuse)) return false;
+    if (!(desc_.flags & ContextFlags::NoSpecular) || d.outputSpecular)
+        if (!output("outputSpecular", d.outputSpecular)) return false;
+    if (d.outputSpecular && d.outputSpecular == d.outputDiffuse) return fail("dispatch: outputDiffuse and outputSpecular are the same texture");
+    for (rhi::TextureHandle in : {d.depth, d.normals, d.roughness, d.motionVectors, d.previousLitOutput})
+        if (in == d.outputDiffuse || (d.outputSpecular && in == d.outputSpecular))
+            return fail("dispatch: an output is also bound as an input");
+    if (d.environmentKind != EnvironmentKind::None) {
+        if (!d.environmentMap) return fail("dispatch: environmentKind is set but environmentMap is missing");
+        const rhi::TextureDesc* td = device_.describe(d.environmentMap);
+        if (!td) return fail("dispatch: environmentMap is not a live texture");
+        const std::string name = "dispatch: environmentMap (texture '" + td->debugName + "')";
+        const bool cube = d.environmentKind == EnvironmentKind::Cube;
+        if (cube && td->dimension != rhi::TextureDimension::TextureCube) return fail(name + " must be a cube texture (environmentKind Cube)");
+        if (!cube && td->dimension != rhi::TextureDimension::Texture2D)
+            return fail(name + " must be a 2D texture (environmentKind Equirectangular)");
+        if (!(td->usage & rhi::TextureUsage::Sampled)) return fail(name + " was not created with Sampled usage");
+        const rhi::FormatInfo& fi = rhi::formatInfo(td->format);
+        if (fi.kind == K::Uint || fi.kind == K::Sint || fi.kind == K::Depth || fi.channels < 3)
+            return fail(name + " has format " + fi.name + "; it needs an RGB float, unorm or sRGB format");
+        if (!(d.environmentIntensity >= 0.0f) || !std::isfinite(d.environmentIntensity))
+            return fail("dispatch: environmentIntensity must be finite and >= 0");
+    }
+    if (uint32_t(d.environmentKind) > uint32_t(EnvironmentKind::Equirectangular)) return fail("dispatch: unknown environmentKind");
+    for (const auto& [m, what] : {std::pair{&d.view, "view"}, std::pair{&d.projection, "projection"},
+                                  std::pair{&d.previousView, "previousView"}, std::pair{&d.previousProjection, "previousProjection"}})
+        if (!finite(*m) || !invertible(*m)) return fail(std::string("dispatch: matrix '") + what + "' is not finite and invertible");
+    if (!std::isfinite(d.cameraPosition.x) || !std::isfinite(d.cameraPosition.y) || !std::isfinite(d.cameraPosition.z))
+        return fail("dispatch: cameraPosition is not finite");
+    for (float v : {d.normalsUnpackScale.x, d.normalsUnpackScale.y, d.normalsUnpackScale.z, d.normalsUnpackOffset.x,
+                    d.normalsUnpackOffset.y, d.normalsUnpackOffset.z, d.motionVectorScale.x, d.motionVectorScale.y, d.roughnessThreshold})
+        if (!std::isfinite(v)) return fail("dispatch: normal unpack, motion vector scale and roughnessThreshold must be finite");
+    const TraceParams& t = d.trace;
+    const uint32_t cascades = scene_.desc().cascadeCount;
+    if (t.startCascade >= cascades) return fail("dispatch: trace.startCascade " + std::to_string(t.startCascade) +
+                                                " is beyond the scene's " + std::to_string(cascades) + " cascades");
+    if (t.endCascade < t.startCascade) return fail("dispatch: trace.endCascade is below trace.startCascade");
+    for (float v : {t.rayPushOff, t.specularRayPushOff, t.tMin})
+        if (!(v >= 0.0f) || !std::isfinite(v)) return fail("dispatch: trace push-offs and tMin must be finite and >= 0");
+    if (!(t.tMax > t.tMin)) return fail("dispatch: trace.tMax must be greater than trace.tMin");
+    if (!(t.epsilonScale > 0.0f) || !(t.specularEpsilonScale > 0.0f) || !std::isfinite(t.epsilonScale) ||
+        !std::isfinite(t.specularEpsilonScale))
+        return fail("dispatch: trace epsilon scales must be finite and > 0");
+    return true;
+}
+
+}  // namespace bricklight::gi::detail

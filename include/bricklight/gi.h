@@ -1,0 +1,143 @@
+// Bricklight dynamic diffuse and specular GI from a G-buffer, traced against an sdf::SdfScene (the
+// Brixelizer GI technique, with our own fixes): a per-brick radiance cache fed from the previous lit frame,
+// screen probes on 8×8 tiles traced through the distance field, a per-brick world-space SH irradiance
+// cache, a specular trace, temporal accumulation and a bilateral denoiser. Every pass is a record for
+// rhi::IDevice. See docs/gi.md for the passes, resources and conventions.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bricklight/rhi.h"
+#include "bricklight/sdf.h"
+
+namespace bricklight::gi {
+
+// The scale at which GI is computed; the outputs are upsampled to the display size.
+enum class InternalResolution : uint8_t { Native, Percent75, Percent50, Percent25 };
+float internalScale(InternalResolution resolution);
+
+namespace ContextFlags {
+enum : uint32_t {
+    NoSpecular = 1u << 0,    // no specular rays: the specular output is the irradiance cache's lobe estimate
+    NoDenoiser = 1u << 1,    // skip the bilateral blur
+    ReversedDepth = 1u << 2, // the depth buffer has 1 at the near plane and 0 at the far plane (sky)
+};
+}
+
+struct ContextDesc {
+    uint32_t displayWidth = 0;
+    uint32_t displayHeight = 0;
+    InternalResolution internalResolution = InternalResolution::Percent50;
+    uint32_t flags = 0;
+    std::string debugName = "gi";
+    // Receives the context's own messages (bad inputs); stderr when empty.
+    rhi::ErrorCallback errorCallback;
+};
+
+enum class EnvironmentKind : uint8_t { None, Cube, Equirectangular };
+
+// Tracing parameters. Distances are world units.
+struct TraceParams {
+    uint32_t startCascade = 0;
+    uint32_t endCascade = sdf::kMaxCascades - 1;  // clamped to the scene's cascades
+    float rayPushOff = 0.0f;          // diffuse ray origins move this far along the normal (0: 1.5 finest voxels)
+    float specularRayPushOff = 0.0f;  // likewise for specular rays (0: 1 finest voxel)
+    float epsilonScale = 1.0f;        // multiplies the SDF's hit epsilon for diffuse rays
+    float specularEpsilonScale = 1.0f;
+    float tMin = 0.0f;
+    float tMax = 1e30f;
+};
+
+// One frame's inputs. Textures are the application's (Sampled usage); the G-buffer inputs are display
+// sized. Matrices are GLM column-major; projections map to depth [0, 1] (reversed with
+// ContextFlags::ReversedDepth) and NDC y = -1 at the image's top row (the RHI contract's top-left origin).
+struct DispatchDesc {
+    glm::mat4 view{1.0f}, projection{1.0f};
+    glm::mat4 previousView{1.0f}, previousProjection{1.0f};
+    glm::vec3 cameraPosition{0.0f};
+
+    rhi::TextureHandle depth;             // single channel float (D32_FLOAT, R32_FLOAT or R16_FLOAT)
+    rhi::TextureHandle normals;           // world normal in xyz = stored * normalsUnpackScale + normalsUnpackOffset
+    glm::vec3 normalsUnpackScale{2.0f};
+    glm::vec3 normalsUnpackOffset{-1.0f};
+    rhi::TextureHandle roughness;         // any float/unorm texture; one channel is roughness
+    uint32_t roughnessChannel = 0;
+    bool roughnessPerceptual = true;      // false: the channel holds perceptual roughness squared
+    float roughnessThreshold = 0.75f;     // perceptual roughness above which no specular rays are traced
+    rhi::TextureHandle motionVectors;     // UV-space motion (current - previous) in xy, times motionVectorScale
+    glm::vec2 motionVectorScale{1.0f};
+    // The previous frame's lit image (the light that surfaces send into the scene): feeds the radiance
+    // cache. Any size; sampled by UV.
+    rhi::TextureHandle previousLitOutput;
+    EnvironmentKind environmentKind = EnvironmentKind::None;
+    rhi::TextureHandle environmentMap;    // cube, or 2D equirectangular (docs/gi.md gives the mapping)
+    float environmentIntensity = 1.0f;
+
+    TraceParams trace;
+    // Forget screen-space history (camera cut): temporal accumulation and probe reuse restart; the
+    // world-space caches are kept (they remain true).
+    bool resetHistory = false;
+
+    rhi::TextureHandle outputDiffuse;     // RGBA16_FLOAT, display size, Storage usage
+    rhi::TextureHandle outputSpecular;    // RGBA16_FLOAT, display size, Storage usage (may be null with NoSpecular)
+};
+
+enum class DebugMode : uint32_t {
+    RadianceCache,     // primary rays through the SDF, coloured by the radiance cache at the hit
+    IrradianceCache,   // primary rays, the brick SH irradiance for the hit normal
+    ProbesOctahedral,  // the screen probes' 8×8 radiance texels, tiled over the screen
+    ProbesSH,          // each pixel's nearest screen probe SH, evaluated for the pixel's normal
+    Disocclusion,      // white: history kept, black: rejected
+    SampleCount,       // diffuse history length (white = the maximum)
+};
+
+struct DebugViewDesc {
+    DebugMode mode = DebugMode::RadianceCache;
+    rhi::TextureHandle output;  // RGBA16_FLOAT or RGBA8_UNORM with Storage usage, display size
+    float exposure = 1.0f;
+};
+
+struct MemoryUse {
+    struct Resource {
+        std::string name;
+        uint64_t bytes = 0;
+    };
+    std::vector<Resource> resources;
+    uint64_t totalBytes = 0;
+};
+
+class GiContext {
+public:
+    // Null (with a message through the error callback and `error`) on a bad description or a device that
+    // lacks a format the passes need. The context follows `scene`, which must outlive it: its caches are
+    // sized by the scene's brick capacity.
+    static std::unique_ptr<GiContext> create(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc,
+                                             std::string* error = nullptr);
+    virtual ~GiContext() = default;
+
+    // Records one frame of GI. False (changing nothing, recording nothing) on missing or mismatched inputs,
+    // with a message that names the input and the problem.
+    virtual bool dispatch(const DispatchDesc& desc) = 0;
+    // Draws a debug view of the latest dispatch into desc.output.
+    virtual bool debugView(const DebugViewDesc& desc) = 0;
+    // Drops everything: the world-space caches and the screen history.
+    virtual void reset() = 0;
+
+    virtual MemoryUse memoryUse() const = 0;
+    virtual const ContextDesc& desc() const = 0;
+    virtual uint32_t internalWidth() const = 0;
+    virtual uint32_t internalHeight() const = 0;
+    virtual const std::string& lastError() const = 0;
+
+    // For tests and tools (blocking read-backs): the world caches as floats. `radiance` gets 3 floats per
+    // cache texel ((4n)³ texels for an atlas of n³ bricks); `brickSH` gets 27 floats (9 RGB coefficients)
+    // plus the sample weight per brick (28 floats per brick).
+    virtual void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) = 0;
+};
+
+}  // namespace bricklight::gi

@@ -1,0 +1,112 @@
+// Brick lookups in the SDF's cascades (the tables of bricklight/trace.glsl), and the per-brick caches:
+// the radiance cache (4³ RGB9E5 texels per brick in a 3D R32_UINT image, `giRadianceCache`, declared by the
+// including pass when GI_USES_RADIANCE_CACHE is defined) and the brick SH irradiance cache (9 × uvec2 per
+// brick: half RGB + half weight in coefficient 0, `giBrickSH`, when GI_USES_BRICK_SH is defined).
+#ifndef BRICKLIGHT_GI_BRICKS_GLSL
+#define BRICKLIGHT_GI_BRICKS_GLSL
+
+float giVoxelSize(uint cascade) { return blSdfTable.cascades[cascade].voxelSize.x; }
+
+// Brick of the voxel that holds p in `cascade` (and p's position in it, [0,1]³); false where the cascade
+// does not reach, the voxel is empty or not built.
+bool giBrickAt(vec3 p, uint cascade, out uint brick, out vec3 uvw) {
+    BlSdfCascade info = blSdfTable.cascades[cascade];
+    brick = BL_SDF_UNBUILT;
+    uvw = vec3(0.0);
+    if (info.origin.w == 0) return false;
+    vec3 local = p * info.voxelSize.y - vec3(info.origin.xyz);
+    if (any(lessThan(local, vec3(0.0))) || any(greaterThanEqual(local, vec3(64.0)))) return false;
+    ivec3 cell = ivec3(floor(local));
+    uint state = blSdfBrickMaps[cascade * BL_SDF_CASCADE_VOXELS + blSdfPhysicalIndex(info.origin.xyz + cell)];
+    if (state >= BL_SDF_FIRST_STATE) return false;
+    brick = state;
+    uvw = local - vec3(cell);
+    return true;
+}
+
+// Brick of a world voxel (integer coordinates) in `cascade`, or BL_SDF_UNBUILT.
+uint giBrickOfVoxel(ivec3 voxel, uint cascade) {
+    BlSdfCascade info = blSdfTable.cascades[cascade];
+    if (info.origin.w == 0) return BL_SDF_UNBUILT;
+    ivec3 l = voxel - info.origin.xyz;
+    if (any(lessThan(l, ivec3(0))) || any(greaterThanEqual(l, ivec3(64)))) return BL_SDF_UNBUILT;
+    uint state = blSdfBrickMaps[cascade * BL_SDF_CASCADE_VOXELS + blSdfPhysicalIndex(voxel)];
+    return state >= BL_SDF_FIRST_STATE ? BL_SDF_UNBUILT : state;
+}
+
+// World voxel of a brick from its owner entry (cascade << 24 | physical index): the cascade's window
+// holds exactly one world voxel with that physical index.
+ivec3 giOwnerVoxel(uint owner, out uint cascade) {
+    cascade = owner >> 24;
+    uint physical = owner & 0xFFFFFFu;
+    ivec3 p = ivec3(physical % 64u, (physical / 64u) % 64u, physical / 4096u);
+    ivec3 origin = blSdfTable.cascades[cascade].origin.xyz;
+    return origin + ((p - origin) & ivec3(63));
+}
+
+// How far a ray starts off the surface at p: the frame's push-off, or (0) half a voxel of the finest
+// traced cascade that holds p, which clears the hit epsilon (0.09 voxel) and the distance band.
+float giPushOff(vec3 p, float requested) {
+    if (requested > 0.0) return requested;
+    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+        BlSdfCascade info = blSdfTable.cascades[c];
+        vec3 local = p * info.voxelSize.y - vec3(info.origin.xyz);
+        if (info.origin.w != 0 && all(greaterThanEqual(local, vec3(1.0))) && all(lessThan(local, vec3(63.0))))
+            return 0.5 * info.voxelSize.x;
+    }
+    return 0.5 * blSdfTable.cascades[giFrame.cascades.y].voxelSize.x;
+}
+
+ivec3 giCacheTexelBase(uint brick) { return blSdfBrickTexel(brick, giFrame.cascades.z) / 2; }
+
+#ifdef GI_USES_RADIANCE_CACHE
+// Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight).
+vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) {
+    ivec3 base = giCacheTexelBase(brick);
+    vec3 q = clamp(uvw * 4.0 - 0.5, vec3(0.0), vec3(3.0));
+    ivec3 i0 = min(ivec3(floor(q)), ivec3(2));
+    vec3 f = q - vec3(i0);
+    vec3 sum = vec3(0.0);
+    weight = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
+        uint v = imageLoad(giRadianceCache, base + i0 + o).r;
+        if (v == 0u) continue;
+        vec3 w3 = mix(1.0 - f, f, vec3(o));
+        float w = w3.x * w3.y * w3.z + 1e-4;
+        sum += giDecodeRgb9e5(v) * w;
+        weight += w;
+    }
+    return weight > 0.0 ? sum / weight : vec3(0.0);
+}
+
+// Radiance leaving the surface at p (found by a ray in `cascade`): the finest cache that has data there.
+bool giRadianceAt(vec3 p, uint brick, vec3 uvw, uint cascade, out vec3 radiance) {
+    float w;
+    radiance = giSampleRadianceCache(brick, uvw, w);
+    if (w > 0.0) return true;
+    for (uint c = cascade + 1u; c <= giFrame.cascades.y; ++c) {
+        uint b;
+        vec3 u;
+        if (!giBrickAt(p, c, b, u)) continue;
+        radiance = giSampleRadianceCache(b, u, w);
+        if (w > 0.0) return true;
+    }
+    return false;
+}
+#endif
+
+#ifdef GI_USES_BRICK_SH
+GiSH giLoadBrickSH(uint brick, out float weight) {
+    GiSH s;
+    for (int i = 0; i < 9; ++i) {
+        uvec2 v = giBrickSH[brick * 9u + uint(i)];
+        vec2 rg = unpackHalf2x16(v.x), ba = unpackHalf2x16(v.y);
+        s.c[i] = vec3(rg, ba.x);
+        if (i == 0) weight = ba.y;
+    }
+    return s;
+}
+#endif
+
+#endif

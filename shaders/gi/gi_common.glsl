@@ -1,0 +1,171 @@
+// Shared by the GI passes: the frame constants, the internal G-buffer encoding, position reconstruction,
+// the probe direction mapping, random numbers and the environment. Mirrors core/gi/gi_constants.h.
+#ifndef BRICKLIGHT_GI_COMMON_GLSL
+#define BRICKLIGHT_GI_COMMON_GLSL
+
+#define GI_PI 3.14159265358979
+
+BL_CONSTANTS(0) uniform GiCamera {
+    mat4 viewProjection;
+    mat4 inverseViewProjection;
+    mat4 previousViewProjection;
+    mat4 previousInverseViewProjection;
+} giCamera;
+
+BL_CONSTANTS(1) uniform GiFrame {
+    uvec4 size;          // xy internal size, zw display size
+    uvec4 tiles;         // xy probe tiles (8×8 internal pixels each), z frame index, w flags (GI_FLAG_*)
+    vec4 camera;         // xyz camera position, w finest traced voxel size
+    vec4 normalScale;    // xyz normal unpack scale, w roughness threshold (perceptual)
+    vec4 normalOffset;   // xyz normal unpack offset, w environment intensity
+    uvec4 inputs;        // x roughness channel, y roughness is perceptual, z environment kind, w max history
+    vec4 motion;         // xy motion vector scale
+    vec4 trace;          // x diffuse push-off, y specular push-off, z tMin, w tMax
+    uvec4 cascades;      // x start, y end (clamped), z atlas bricks per axis, w brick capacity
+    vec4 epsilon;        // x diffuse epsilon scale, y specular epsilon scale
+} giFrame;
+
+#define GI_FLAG_REVERSED_DEPTH 1u
+#define GI_FLAG_RESET_HISTORY 2u
+#define GI_FLAG_NO_SPECULAR 4u
+#define GI_FLAG_HISTORY_VALID 8u   // a previous frame exists (not the first dispatch)
+
+#define GI_ENV_NONE 0u
+#define GI_ENV_CUBE 1u
+#define GI_ENV_EQUIRECT 2u
+
+bool giHasFlag(uint flag) { return (giFrame.tiles.w & flag) != 0u; }
+uint giFrameIndex() { return giFrame.tiles.z; }
+
+// Depth: the application's convention (1 = far, or 0 with reversed depth); sky where nothing was drawn.
+float giSkyDepth() { return giHasFlag(GI_FLAG_REVERSED_DEPTH) ? 0.0 : 1.0; }
+bool giIsSky(float depth) {
+    return giHasFlag(GI_FLAG_REVERSED_DEPTH) ? !(depth > 0.0) : !(depth < 1.0);
+}
+
+bool giFinite(float x) { return !isnan(x) && !isinf(x); }
+bool giFinite(vec3 v) { return giFinite(v.x) && giFinite(v.y) && giFinite(v.z); }
+
+// World position of an internal pixel (uv in [0,1], origin top-left) at device depth d.
+vec3 giWorldPosition(vec2 uv, float depth, mat4 inverseViewProjection) {
+    vec4 p = inverseViewProjection * vec4(uv * 2.0 - 1.0, depth, 1.0);
+    return p.xyz / p.w;
+}
+vec2 giPixelUv(uvec2 pixel) { return (vec2(pixel) + 0.5) / vec2(giFrame.size.xy); }
+
+// Octahedral unit-vector encoding.
+vec2 giOctEncode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.xy;
+    if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return e;
+}
+vec3 giOctDecode(vec2 e) {
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    float t = max(-n.z, 0.0);
+    n.xy += vec2(n.x >= 0.0 ? -t : t, n.y >= 0.0 ? -t : t);
+    return normalize(n);
+}
+
+// Internal G-buffer texel (R32_UINT): normal as 2×12-bit octahedral, perceptual roughness in 8 bits.
+uint giPackSurface(vec3 n, float roughness) {
+    uvec2 e = uvec2(clamp(giOctEncode(n) * 0.5 + 0.5, 0.0, 1.0) * 4095.0 + 0.5);
+    return e.x | (e.y << 12) | (uint(clamp(roughness, 0.0, 1.0) * 255.0 + 0.5) << 24);
+}
+vec3 giSurfaceNormal(uint s) { return giOctDecode(vec2(uvec2(s, s >> 12) & 4095u) / 4095.0 * 2.0 - 1.0); }
+float giSurfaceRoughness(uint s) { return float(s >> 24) / 255.0; }
+
+// Shared-exponent RGB (9-9-9-5) in a uint; 0 is kept for "never written" (black is stored as 1).
+uint giEncodeRgb9e5(vec3 c) {
+    c = clamp(c, vec3(0.0), vec3(65408.0));
+    float m = max(c.r, max(c.g, c.b));
+    int e = max(-16, int(floor(log2(max(m, 1e-30))))) + 16;  // biased exponent (bias 15) + 1
+    float scale = exp2(float(e - 24));
+    if (floor(m / scale + 0.5) >= 512.0) {
+        e += 1;
+        scale *= 2.0;
+    }
+    uvec3 q = uvec3(min(floor(c / scale + 0.5), vec3(511.0)));
+    uint bits = q.r | (q.g << 9) | (q.b << 18) | (uint(clamp(e, 0, 31)) << 27);
+    return bits == 0u ? 1u : bits;
+}
+vec3 giDecodeRgb9e5(uint v) {
+    float scale = exp2(float(int(v >> 27) - 24));
+    return vec3(uvec3(v, v >> 9, v >> 18) & 511u) * scale;
+}
+
+// Basis around a unit normal (Duff et al. 2017).
+void giBasis(vec3 n, out vec3 t, out vec3 b) {
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// Probe texels: the 8×8 square maps to the hemisphere around the probe normal by the equal-area
+// concentric mapping (Shirley-Chiu disk, z = 1 - r²): every texel covers the same solid angle 2π/64.
+vec3 giSquareToHemisphere(vec2 u) {
+    vec2 a = u * 2.0 - 1.0;
+    float r, phi;
+    if (a.x == 0.0 && a.y == 0.0) return vec3(0.0, 0.0, 1.0);
+    if (abs(a.x) > abs(a.y)) {
+        r = a.x;
+        phi = (GI_PI / 4.0) * (a.y / a.x);
+    } else {
+        r = a.y;
+        phi = GI_PI / 2.0 - (GI_PI / 4.0) * (a.x / a.y);
+    }
+    float s = r * sqrt(max(2.0 - r * r, 0.0));
+    return vec3(s * cos(phi), s * sin(phi), 1.0 - r * r);
+}
+vec2 giHemisphereToSquare(vec3 d) {
+    float r = sqrt(max(1.0 - d.z, 0.0));
+    float phi = atan(d.y, d.x);
+    if (phi < -GI_PI / 4.0) phi += 2.0 * GI_PI;
+    vec2 a;
+    if (phi < GI_PI / 4.0) {
+        a.x = r;
+        a.y = phi * r / (GI_PI / 4.0);
+    } else if (phi < 3.0 * GI_PI / 4.0) {
+        a.y = r;
+        a.x = -(phi - GI_PI / 2.0) * r / (GI_PI / 4.0);
+    } else if (phi < 5.0 * GI_PI / 4.0) {
+        a.x = -r;
+        a.y = (phi - GI_PI) * a.x / (GI_PI / 4.0);
+    } else {
+        a.y = -r;
+        a.x = -(phi - 3.0 * GI_PI / 2.0) * a.y / (GI_PI / 4.0);
+    }
+    return clamp(a * 0.5 + 0.5, 0.0, 1.0);
+}
+vec3 giProbeDirection(vec3 n, vec2 u) {
+    vec3 t, b;
+    giBasis(n, t, b);
+    vec3 l = giSquareToHemisphere(u);
+    return normalize(t * l.x + b * l.y + n * l.z);
+}
+
+// Random numbers: PCG hash.
+uint giPcg(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+float giRandom(inout uint state) {
+    state = giPcg(state);
+    return float(state >> 8) / 16777216.0;
+}
+vec2 giHammersley(uint i, uint n) {
+    uint b = bitfieldReverse(i);
+    return vec2(float(i) / float(n), float(b) * 2.3283064365386963e-10);
+}
+
+// Probe tile info (uvec4): x = pixel x | pixel y << 16, y = device depth bits, z = normal (snorm oct),
+// w = flags: bit 0 valid, bit 1 reprojected from the previous frame.
+#define GI_PROBE_VALID 1u
+#define GI_PROBE_REPROJECTED 2u
+uvec2 giProbePixel(uvec4 info) { return uvec2(info.x & 0xFFFFu, info.x >> 16); }
+vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
+
+#endif

@@ -1,0 +1,44 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+#include "bricklight/trace.glsl"
+#include "gi_common.glsl"
+// Pass 4: the previous frame's lit image into the radiance cache. One pixel per 4×4 tile per frame
+// (rotating through the 16), reprojected into last frame's image where the disocclusion mask says it saw
+// the same surface, then blended into the cache texel at the surface point (moved half a texel towards
+// the side the camera sees, so light stays on its own side of thin walls) in every traced cascade that
+// has a brick there. Finer cascades adapt faster: weight 1/8, halved per cascade.
+layout(local_size_x = 8, local_size_y = 8) in;
+BL_TEXTURE(0) uniform sampler2D depthNow;
+BL_TEXTURE(1) uniform usampler2D surfaceNow;
+BL_TEXTURE(2) uniform sampler2D motionNow;
+BL_TEXTURE(3) uniform sampler2D disocclusion;
+BL_TEXTURE(4) uniform sampler2D previousLit;
+BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
+#include "gi_bricks.glsl"
+
+void main() {
+    uvec2 tile = gl_GlobalInvocationID.xy;
+    uint k = (giFrameIndex() * 7u + giPcg(tile.x * 7919u + tile.y)) & 15u;
+    uvec2 pixel = tile * 4u + uvec2(k & 3u, k >> 2);
+    if (any(greaterThanEqual(pixel, giFrame.size.xy))) return;
+    float depth = texelFetch(depthNow, ivec2(pixel), 0).r;
+    if (giIsSky(depth) || texelFetch(disocclusion, ivec2(pixel), 0).r < 0.5) return;
+    vec2 uv = giPixelUv(pixel);
+    vec3 lit = textureLod(previousLit, uv - texelFetch(motionNow, ivec2(pixel), 0).xy, 0.0).rgb;
+    if (!giFinite(lit) || any(lessThan(lit, vec3(0.0)))) return;  // never let a bad input into the cache
+    vec3 p = giWorldPosition(uv, depth, giCamera.inverseViewProjection);
+    vec3 n = giSurfaceNormal(texelFetch(surfaceNow, ivec2(pixel), 0).r);
+    vec3 toCamera = normalize(giFrame.camera.xyz - p);
+    if (dot(n, toCamera) < 0.0) n = -n;
+    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+        uint brick;
+        vec3 uvw;
+        if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, brick, uvw) && !giBrickAt(p, c, brick, uvw)) continue;
+        ivec3 texel = giCacheTexelBase(brick) + min(ivec3(uvw * 4.0), ivec3(3));
+        uint old = imageLoad(giRadianceCache, texel).r;
+        float alpha = 0.125 / float(1u << min(c - giFrame.cascades.x, 4u));
+        vec3 value = old == 0u ? lit : mix(giDecodeRgb9e5(old), lit, alpha);
+        imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(value)));
+    }
+}

@@ -1,0 +1,62 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+#include "bricklight/trace.glsl"
+#include "gi_common.glsl"
+#include "gi_sh.glsl"
+// Pass 14: resolve each pixel's GI and accumulate it over time. Diffuse: the irradiance SH (screen probes
+// + world cache) for the pixel's normal, as irradiance / π. Specular: the traced value where the specular
+// trace found one, else the SH seen through the roughness lobe along the reflection. Both blend into the
+// reprojected history (alpha = sample count, capped: 64 for diffuse and 8..64 by roughness for
+// specular); a value far from the history (relative change > 1/2) cuts the count to 4 so that changes of
+// light show within a few frames instead of ghosting.
+layout(local_size_x = 8, local_size_y = 8) in;
+BL_TEXTURE(0) uniform sampler2D depthNow;
+BL_TEXTURE(1) uniform usampler2D surfaceNow;
+BL_TEXTURE(2) uniform sampler2D specularTraced;
+BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
+BL_READ_BUFFER(1) ProbeSH { vec4 probeSH[]; };
+BL_READ_BUFFER(2) BrickSH { uvec2 giBrickSH[]; };
+BL_IMAGE(0, rgba16f) uniform image2D diffuseHistory;
+BL_IMAGE(1, rgba16f) uniform image2D specularHistory;
+#define GI_USES_BRICK_SH
+#include "gi_bricks.glsl"
+#include "gi_irradiance.glsl"
+
+vec4 giAccumulate(vec4 history, vec3 value, float maxCount) {
+    if (!giFinite(value)) value = history.a > 0.0 ? history.rgb : vec3(0.0);
+    float count = min(history.a + 1.0, maxCount);
+    float lh = dot(history.rgb, vec3(0.3, 0.6, 0.1)), lv = dot(value, vec3(0.3, 0.6, 0.1));
+    if (history.a > 0.0 && abs(lh - lv) > 0.5 * max(max(lh, lv), 1e-4) && abs(lh - lv) > 0.05 * (lh + lv) + 1e-3)
+        count = min(count, 4.0);
+    return vec4(mix(history.rgb, value, 1.0 / count), count);
+}
+
+void main() {
+    uvec2 pixel = gl_GlobalInvocationID.xy;
+    if (any(greaterThanEqual(pixel, giFrame.size.xy))) return;
+    float depth = texelFetch(depthNow, ivec2(pixel), 0).r;
+    if (giIsSky(depth)) {
+        imageStore(diffuseHistory, ivec2(pixel), vec4(0.0));
+        imageStore(specularHistory, ivec2(pixel), vec4(0.0));
+        return;
+    }
+    uint surface = texelFetch(surfaceNow, ivec2(pixel), 0).r;
+    vec3 p = giWorldPosition(giPixelUv(pixel), depth, giCamera.inverseViewProjection);
+    vec3 n = giSurfaceNormal(surface);
+    vec3 toEye = normalize(giFrame.camera.xyz - p);
+    if (dot(n, toEye) < 0.0) n = -n;
+    float roughness = giSurfaceRoughness(surface);
+    GiSH sh;
+    bool have = giIrradianceSH(pixel, p, n, sh);
+    vec4 diffuse = imageLoad(diffuseHistory, ivec2(pixel));
+    if (have) diffuse = giAccumulate(diffuse, giShDiffuse(sh, n), float(giFrame.inputs.w));
+    imageStore(diffuseHistory, ivec2(pixel), diffuse);
+
+    vec4 traced = texelFetch(specularTraced, ivec2(pixel), 0);
+    vec3 r = reflect(-toEye, n);
+    vec3 value = traced.a > 0.0 ? traced.rgb : giShLobe(sh, r, roughness);
+    vec4 specular = imageLoad(specularHistory, ivec2(pixel));
+    if (traced.a > 0.0 || have) specular = giAccumulate(specular, value, min(mix(8.0, 64.0, sqrt(roughness)), float(giFrame.inputs.w)));
+    imageStore(specularHistory, ivec2(pixel), specular);
+}

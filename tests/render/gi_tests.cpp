@@ -1,0 +1,238 @@
+// GI (gi::GiContext through the renderer's fast path) against the path tracer, across backends, over
+// time, and on bad input. Bounds are stated where they are asserted; docs/gi.md lists the figures.
+#include <cmath>
+
+#include "backend_test.h"
+#include "image_metrics.h"
+#include "path_tracer.h"
+#include "raster_renderer.h"
+#include "render_test_support.h"
+
+using namespace bricklight;
+using namespace bricklight::testing;
+
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+std::unique_ptr<render::RasterRenderer> giRenderer(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size = kSize) {
+    render::RasterOptions o;
+    o.width = o.height = size;
+    o.gi = true;
+    std::string error;
+    auto r = render::RasterRenderer::create(*td.device, scene, o, &error);
+    INFO(error);
+    REQUIRE(r);
+    return r;
+}
+
+void frames(TestDevice& td, render::RasterRenderer& r, uint32_t n) {
+    for (uint32_t f = 0; f < n; ++f) {
+        r.render();
+        td.device->endFrame();
+    }
+}
+
+double mean(const render::Image& img) {
+    double s = 0.0;
+    for (float v : img.rgb) s += v;
+    return s / double(img.rgb.size());
+}
+
+bool allFinite(const std::vector<float>& v) {
+    for (float x : v)
+        if (!std::isfinite(x)) return false;
+    return true;
+}
+
+void cornellAgainstReference(const std::string& backend) {
+    // 48 frames of GI (each frame's lit image feeds the next: multi-bounce) against 512 spp of the path
+    // tracer. Bounds hold today's quality with margin (measured on lavapipe: indirect relMSE ~0.13,
+    // SSIM ~0.43, mean ratio ~0.46 — GI is darker than the reference, see docs/gi.md "Known
+    // limitations"); they catch regressions, they are not the goal.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const scenes::SceneGeometry cornell = scenes::cornellBox();
+    auto gi = giRenderer(td, cornell);
+    frames(td, *gi, 48);
+    auto reference = traced(td, cornell, kSize, 512);
+    const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
+    const render::Image refIndirect = reference->read(render::Aov::IndirectDiffuse);
+    REQUIRE(allFinite(indirect.rgb));
+    const render::ImageMetrics m = render::compareImages(indirect, refIndirect);
+    INFO("indirect-diffuse relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
+    CHECK(m.relMse < 0.25);
+    CHECK(m.ssim > 0.25);
+    CHECK(m.meanA > 0.3 * m.meanB);
+    CHECK(m.meanA < 1.3 * m.meanB);
+    const render::ImageMetrics c = render::compareImages(gi->read(render::Aov::Combined), reference->read(render::Aov::Combined));
+    INFO("combined relMSE " << c.relMse << " SSIM " << c.ssim << " mean " << c.meanA << " vs " << c.meanB);
+    CHECK(c.relMse < 0.3);
+    // GI adds light: the composite is brighter than direct light alone.
+    CHECK(mean(gi->read(render::Aov::Combined)) > 1.1 * mean(gi->read(render::Aov::Direct)));
+    REQUIRE_NO_MESSAGES(td);
+}
+
+void noFlickerWhenConverged(const std::string& backend) {
+    // A static view after convergence: the mean absolute change between two consecutive frames is below
+    // 5 % of the mean GI (temporal accumulation and the caches' slow weights keep it still).
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    auto gi = giRenderer(td, scenes::cornellBox());
+    frames(td, *gi, 40);
+    const render::Image a = gi->read(render::Aov::IndirectDiffuse);
+    frames(td, *gi, 1);
+    const render::Image b = gi->read(render::Aov::IndirectDiffuse);
+    double change = 0.0;
+    for (size_t i = 0; i < a.rgb.size(); ++i) change += std::fabs(double(a.rgb[i]) - b.rgb[i]);
+    change /= double(a.rgb.size());
+    INFO("mean change " << change << " mean " << mean(a));
+    CHECK(change < 0.05 * mean(a));
+    REQUIRE_NO_MESSAGES(td);
+}
+
+void noLeakThroughWall(const std::string& backend) {
+    // two-rooms: the camera in the closed room B looks at the wall it shares with the sunlit room A
+    // (wall 0.25 m thick; the finest voxel here is ~0.14 m). The reference's light in room B is exactly
+    // zero; GI's indirect light there must stay below 5 % of the indirect light in room A (seen from
+    // inside A through the same GI).
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry rooms = scenes::twoRooms(0.25f);
+    auto dark = giRenderer(td, rooms);
+    frames(td, *dark, 40);
+    const double leak = mean(dark->read(render::Aov::IndirectDiffuse));
+    scenes::SceneGeometry lit = rooms;
+    lit.camera.eye = glm::vec3(0.5f, 1.6f, 2.0f);
+    lit.camera.at = glm::vec3(4.0f, 1.0f, 2.0f);
+    auto bright = giRenderer(td, lit);
+    frames(td, *bright, 40);
+    const double light = mean(bright->read(render::Aov::IndirectDiffuse));
+    INFO("room B " << leak << " room A " << light);
+    CHECK(light > 0.0);
+    CHECK(leak < 0.05 * light);
+    REQUIRE_NO_MESSAGES(td);
+}
+
+void badInputChangesNothing(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    std::vector<std::string> messages;
+    auto gi = giRenderer(td, scenes::cornellBox(), 32);
+    frames(td, *gi, 2);
+    gi::GiContext* context = gi->giContext();
+    REQUIRE(context);
+    const render::GBufferView g = gi->gbuffer();
+    rhi::TextureDesc od;
+    od.format = rhi::Format::RGBA16_FLOAT;
+    od.width = od.height = 32;
+    od.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
+    od.debugName = "test diffuse";
+    rhi::TextureHandle out = td.device->createTexture(od);
+    od.debugName = "test specular";
+    rhi::TextureHandle outSpecular = td.device->createTexture(od);
+    od.width = 16;
+    od.debugName = "small output";
+    rhi::TextureHandle small = td.device->createTexture(od);
+    od.width = 32;
+    od.format = rhi::Format::RGBA8_UNORM;
+    od.debugName = "rgba8 output";
+    rhi::TextureHandle wrongFormat = td.device->createTexture(od);
+    gi::DispatchDesc good;
+    good.view = g.view;
+    good.projection = g.projection;
+    good.previousView = g.previousView;
+    good.previousProjection = g.previousProjection;
+    good.cameraPosition = g.eye;
+    good.depth = g.depth;
+    good.normals = g.normal;
+    good.normalsUnpackScale = glm::vec3(1.0f);
+    good.normalsUnpackOffset = glm::vec3(0.0f);
+    good.roughness = g.albedo;
+    good.roughnessChannel = 3;
+    good.motionVectors = g.motion;
+    good.previousLitOutput = g.lit;
+    good.outputDiffuse = out;
+    good.outputSpecular = outSpecular;
+    struct Case {
+        const char* expect;
+        std::function<void(gi::DispatchDesc&)> spoil;
+    };
+    const Case cases[] = {
+        {"input 'depth' is missing", [](gi::DispatchDesc& d) { d.depth = {}; }},
+        {"must be the display size", [&](gi::DispatchDesc& d) { d.depth = small; }},
+        {"output 'outputSpecular' (texture 'small output') is 16x32", [&](gi::DispatchDesc& d) { d.outputSpecular = small; }},
+        {"must be a 2D RGBA16_FLOAT texture", [&](gi::DispatchDesc& d) { d.outputDiffuse = wrongFormat; }},
+        {"roughnessChannel 7", [](gi::DispatchDesc& d) { d.roughnessChannel = 7; }},
+        {"matrix 'projection' is not finite", [](gi::DispatchDesc& d) { d.projection[0][0] = NAN; }},
+        {"trace.startCascade 9", [](gi::DispatchDesc& d) { d.trace.startCascade = 9; }},
+        {"environmentMap is missing", [](gi::DispatchDesc& d) { d.environmentKind = gi::EnvironmentKind::Cube; }},
+        {"an output is also bound as an input", [&](gi::DispatchDesc& d) { d.outputDiffuse = g.lit; }},
+    };
+    std::vector<float> before, after;
+    context->readCaches(&before, nullptr);
+    for (const Case& c : cases) {
+        gi::DispatchDesc d = good;
+        c.spoil(d);
+        CHECK_FALSE(context->dispatch(d));
+        INFO("message: " << context->lastError());
+        CHECK(context->lastError().find(c.expect) != std::string::npos);
+    }
+    context->readCaches(&after, nullptr);
+    CHECK(before == after);  // a rejected dispatch records nothing
+    CHECK(context->dispatch(good));  // and the context still works
+    for (rhi::TextureHandle t : {out, outSpecular, small, wrongFormat}) td.device->destroy(t);
+}
+
+void nanDoesNotPoisonCaches(const std::string& backend) {
+    // NaN in last frame's lit image (every other texel) and in the G-buffer's normals: the caches and the
+    // outputs stay finite, and GI still converges to light where the inputs are good.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    auto gi = giRenderer(td, scenes::cornellBox(), 32);
+    const render::GBufferView g = gi->gbuffer();
+    std::vector<uint16_t> poisoned(32 * 32 * 4, 0x3C00);  // 1.0
+    for (size_t i = 0; i < poisoned.size(); i += 8) poisoned[i] = 0x7E00;  // NaN
+    for (int f = 0; f < 12; ++f) {
+        gi->render();
+        td.device->writeTexture(g.lit, {}, poisoned.data());  // what the next frame's GI reads
+        if (f % 3 == 0) td.device->writeTexture(g.normal, {}, poisoned.data());
+        td.device->endFrame();
+    }
+    std::vector<float> radiance, sh;
+    gi->giContext()->readCaches(&radiance, &sh);
+    CHECK(allFinite(radiance));
+    CHECK(allFinite(sh));
+    const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
+    CHECK(allFinite(indirect.rgb));
+    CHECK(mean(indirect) > 0.0);
+}
+
+}  // namespace
+
+BACKEND_TEST("GI on the Cornell box against the path tracer", "[gi]", cornellAgainstReference)
+BACKEND_TEST("GI does not flicker on a static view", "[gi]", noFlickerWhenConverged)
+BACKEND_TEST("GI does not leak through a wall", "[gi]", noLeakThroughWall)
+BACKEND_TEST("GI rejects bad input and records nothing", "[gi]", badInputChangesNothing)
+BACKEND_TEST("GI keeps NaN out of its caches", "[gi]", nanDoesNotPoisonCaches)
+
+#if defined(BRICKLIGHT_HAS_VULKAN) && defined(BRICKLIGHT_HAS_GL)
+TEST_CASE("GI on Vulkan and GL agree", "[gi][cross]") {
+    // The same 24 frames on both backends. The passes race where threads blend into the same cache texel
+    // or brick (last writer wins), so the two differ by noise, not by bias: relMSE below 0.05 and means
+    // within 5 %.
+    render::Image images[2];
+    int k = 0;
+    for (const char* backend : {"vulkan", "gl"}) {
+        TestDevice td = makeDevice(backend);
+        REQUIRE(td.device);
+        auto gi = giRenderer(td, scenes::cornellBox());
+        frames(td, *gi, 24);
+        images[k++] = gi->read(render::Aov::IndirectDiffuse);
+    }
+    const render::ImageMetrics m = render::compareImages(images[1], images[0]);
+    INFO("relMSE " << m.relMse << " mean " << m.meanA << " vs " << m.meanB);
+    CHECK(m.relMse < 0.05);
+    CHECK(std::fabs(m.meanA - m.meanB) < 0.05 * m.meanB);
+}
+#endif
