@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: build, then render the Cornell box (256 x 256) to out/cornell.png with the fast default
-# path (rasterized G-buffer and direct lighting; GI comes with the GI issue). Extra arguments go to
-# bricklight-render (e.g. --backend gl, --aov albedo, or --reference --spp 256 for the path tracer).
+# path (rasterized G-buffer, direct lighting and SDF GI over 64 frames). Extra arguments go to
+# bricklight-render (e.g. --backend gl, --aov indirect-diffuse, --gi none, or --reference --spp 256 for the
+# path tracer).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/configure.sh"

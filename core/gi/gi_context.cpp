@@ -244,7 +244,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("specularHistory (2)", tex(specularHistory_[0]) + tex(specularHistory_[1]));
     add("blur (2)", tex(blurDiffuse_) + tex(blurSpecular_));
     add("resolved (2)", tex(resolvedDiffuse_) + tex(resolvedSpecular_));
-    add("environment/dummies", tex(blackCube_) * 6 + tex(black2D_) + tex(dummyStorage_));
+    add("environment/dummies", tex(blackCube_) + tex(black2D_) + tex(dummyStorage_));
     return m;
 }
 

@@ -1,6 +1,7 @@
 // One GI frame as records, in the order of docs/gi.md's pass table. Ping-pong resources alternate with the
 // frame index: [cur] is written this frame, [prev] holds last frame's.
 #include <algorithm>
+#include <bit>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "gi_context_impl.h"
@@ -26,6 +27,9 @@ void storageBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer, Acc
     b.storageBuffers.push({slot, buffer, {}, access});
 }
 uint32_t groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
+// Passes over the brick pool fold into a second dimension past this many groups (the shaders index
+// y * 65535 * 64 + x).
+constexpr uint32_t kMaxGroups = 65535;
 
 }  // namespace
 
@@ -123,7 +127,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 0, cacheOwners_, Access::ReadWrite);
         storageBuffer(s.bindings, 1, brickSH_, Access::Write);
         image(s.bindings, 0, radianceCache_, Access::Write);
-        run("clear freed bricks", shaders_.clearFreed, s, groups(capacity, 64), 1);
+        run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
     {  // 4. inject last frame's lit image into the radiance cache
         rhi::DispatchState s;
@@ -138,7 +142,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     }
     {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
         const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];
-        const uint32_t cascade = std::min(end, start + uint32_t(__builtin_ctzll(frameIndex_ + 1)));
+        const uint32_t cascade = std::min(end, start + uint32_t(std::countr_zero(frameIndex_ + 1)));
         rhi::DispatchState s;
         struct {
             uint32_t cascade[4];
@@ -147,7 +151,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 0, owners);
         storageBuffer(s.bindings, 0, brickSH_, Access::ReadWrite);
         addTrace(s.bindings);
-        run("propagate SH", shaders_.propagate, s, groups(capacity, 64), 1);
+        run("propagate SH", shaders_.propagate, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
     {  // 6. spawn screen probes
         rhi::DispatchState s;

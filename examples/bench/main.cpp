@@ -2,10 +2,14 @@
 //
 //   bricklight-bench sdf [--scene NAME|FILE] [--backend vulkan|gl] [--cascades N] [--frames N]
 //                        [--width W] [--height H] [--json FILE]
+//   bricklight-bench gi  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--scale 100|75|50|25]
+//                        [--frames N] [--json FILE]
 //
 // sdf: a full build, frames with one moving ~100k-triangle dynamic instance, frames where the centre moves
-// by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080). Run-time needs:
-// the C++ runtime, the Vulkan loader, libEGL/libGL (assimp only for model files).
+// by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080).
+// gi: per-pass GPU milliseconds of GI frames at W x H and the internal scale, and GI's memory
+// (bench_gi.cpp). Run-time needs: the C++ runtime, the Vulkan loader, libEGL/libGL (assimp only for model
+// files).
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -18,30 +22,23 @@
 
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_vulkan.h"
+#include "bench_common.h"
 #include "bricklight/sdf.h"
 #include "scene_geometry.h"
 
 using namespace bricklight;
+using namespace bricklight::bench;
 
 namespace {
-
-struct Options {
-    std::string technique;
-    std::string scene = "field";
-    std::string backend = "vulkan";
-    std::string json;
-    uint32_t cascades = 8;
-    uint32_t dynamicMaxCascade = 15;
-    uint32_t frames = 16;
-    uint32_t width = 1920, height = 1080;
-};
 
 [[noreturn]] void usage(const std::string& problem) {
     if (!problem.empty()) std::fprintf(stderr, "bricklight-bench: %s\n", problem.c_str());
     std::fprintf(stderr,
                  "usage: bricklight-bench sdf [--scene cornell|field|FILE] [--backend vulkan|gl] [--cascades 1-16]\n"
                  "                            [--frames N] [--width W] [--height H] [--json FILE]\n"
-                 "                            [--dynamic-max-cascade C]  (highest cascade of the moving instance)\n");
+                 "                            [--dynamic-max-cascade C]  (highest cascade of the moving instance)\n"
+                 "       bricklight-bench gi  [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
+                 "                            [--scale 100|75|50|25] [--frames N] [--json FILE]\n");
     std::exit(2);
 }
 
@@ -57,7 +54,8 @@ Options parse(int argc, char** argv) {
     Options o;
     if (argc < 2) usage("");
     o.technique = argv[1];
-    if (o.technique != "sdf") usage("unknown technique '" + o.technique + "' (available: sdf)");
+    if (o.technique != "sdf" && o.technique != "gi") usage("unknown technique '" + o.technique + "' (available: sdf, gi)");
+    o.scene = o.technique == "gi" ? "atrium" : "field";
     for (int i = 2; i < argc; ++i) {
         std::string a = argv[i];
         auto value = [&]() -> const char* {
@@ -72,28 +70,15 @@ Options parse(int argc, char** argv) {
         else if (a == "--dynamic-max-cascade") o.dynamicMaxCascade = number(value(), "--dynamic-max-cascade", 0, 15);
         else if (a == "--width") o.width = number(value(), "--width", 1, 16384);
         else if (a == "--height") o.height = number(value(), "--height", 1, 16384);
+        else if (a == "--scale") {
+            o.scalePercent = number(value(), "--scale", 25, 100);
+            if (o.scalePercent != 100 && o.scalePercent != 75 && o.scalePercent != 50 && o.scalePercent != 25)
+                usage("--scale must be 100, 75, 50 or 25");
+        }
         else usage("unknown option '" + a + "'");
     }
     if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl");
     return o;
-}
-
-// Sums of GPU milliseconds per marker label over the frames of one phase.
-struct PhaseTimes {
-    std::map<std::string, double> total;
-    uint32_t frames = 0;
-    double perFrame(const std::string& label) const {
-        auto it = total.find(label);
-        return it == total.end() || !frames ? 0.0 : it->second / frames;
-    }
-};
-
-PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
-    device.waitIdle();
-    PhaseTimes t;
-    t.frames = frames;
-    for (const rhi::MarkerTiming& m : device.takeTimings()) t.total[m.label] += m.milliseconds;
-    return t;
 }
 
 const char* kPasses[] = {"sdf update/invalidate", "sdf update/gather", "sdf update/count references",
@@ -123,23 +108,27 @@ std::string phaseJson(const PhaseTimes& t) {
     return s + "}}";
 }
 
-int runSdf(const Options& o) {
+}  // namespace
+
+std::unique_ptr<rhi::IDevice> bricklight::bench::makeDevice(const Options& o) {
+    std::string error;
+    std::unique_ptr<rhi::IDevice> device;
+    if (o.backend == "vulkan") device = vulkan::createDevice(vulkan::DeviceOptions{});
+    else device = gl::createHeadlessDevice(gl::HeadlessApi::Auto, nullptr, &error);
+    if (!device)
+        std::fprintf(stderr, "bricklight-bench: no %s device%s%s\n", o.backend.c_str(), error.empty() ? "" : ": ", error.c_str());
+    return device;
+}
+
+int bricklight::bench::runSdf(const Options& o) {
     std::string error;
     scenes::SceneGeometry geometry = scenes::loadScene(o.scene, &error);
     if (geometry.meshes.empty()) {
         std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
         return 1;
     }
-    std::unique_ptr<rhi::IDevice> device;
-    if (o.backend == "vulkan") {
-        device = vulkan::createDevice(vulkan::DeviceOptions{});
-    } else {
-        device = gl::createHeadlessDevice(gl::HeadlessApi::Auto, nullptr, &error);
-    }
-    if (!device) {
-        std::fprintf(stderr, "bricklight-bench: no %s device%s%s\n", o.backend.c_str(), error.empty() ? "" : ": ", error.c_str());
-        return 1;
-    }
+    std::unique_ptr<rhi::IDevice> device = makeDevice(o);
+    if (!device) return 1;
     if (!device->capabilities().timestamps) std::fprintf(stderr, "bricklight-bench: warning: the device has no GPU timestamps\n");
     device->setTimingEnabled(true);
 
@@ -301,9 +290,7 @@ int runSdf(const Options& o) {
     return 0;
 }
 
-}  // namespace
-
 int main(int argc, char** argv) {
     Options o = parse(argc, argv);
-    return runSdf(o);
+    return o.technique == "gi" ? runGi(o) : runSdf(o);
 }

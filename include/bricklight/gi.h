@@ -45,8 +45,10 @@ enum class EnvironmentKind : uint8_t { None, Cube, Equirectangular };
 struct TraceParams {
     uint32_t startCascade = 0;
     uint32_t endCascade = sdf::kMaxCascades - 1;  // clamped to the scene's cascades
-    float rayPushOff = 0.0f;          // diffuse ray origins move this far along the normal (0: 1.5 finest voxels)
-    float specularRayPushOff = 0.0f;  // likewise for specular rays (0: 1 finest voxel)
+    // Ray origins move this far along the normal; 0: half a voxel of the finest traced cascade that holds
+    // the point (clears the hit epsilon and the distance band).
+    float rayPushOff = 0.0f;
+    float specularRayPushOff = 0.0f;
     float epsilonScale = 1.0f;        // multiplies the SDF's hit epsilon for diffuse rays
     float specularEpsilonScale = 1.0f;
     float tMin = 0.0f;
@@ -90,7 +92,7 @@ struct DispatchDesc {
 enum class DebugMode : uint32_t {
     RadianceCache,     // primary rays through the SDF, coloured by the radiance cache at the hit
     IrradianceCache,   // primary rays, the brick SH irradiance for the hit normal
-    ProbesOctahedral,  // the screen probes' 8×8 radiance texels, tiled over the screen
+    ProbesOctahedral,  // the screen probes' 8×8 radiance texels (equal-area hemisphere mapping), tiled over the screen
     ProbesSH,          // each pixel's nearest screen probe SH, evaluated for the pixel's normal
     Disocclusion,      // white: history kept, black: rejected
     SampleCount,       // diffuse history length (white = the maximum)
@@ -98,7 +100,7 @@ enum class DebugMode : uint32_t {
 
 struct DebugViewDesc {
     DebugMode mode = DebugMode::RadianceCache;
-    rhi::TextureHandle output;  // RGBA16_FLOAT or RGBA8_UNORM with Storage usage, display size
+    rhi::TextureHandle output;  // RGBA8_UNORM with Storage usage, display size (tone-mapped x / (1 + x))
     float exposure = 1.0f;
 };
 

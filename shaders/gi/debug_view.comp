@@ -35,8 +35,8 @@ void main() {
     vec3 colour = vec3(0.0);
     uint mode = pass.mode.x;
     if (mode <= 1u) {
-        vec3 farPoint = giWorldPosition(uv, giSkyDepth() == 1.0 ? 1.0 : 0.0, giCamera.inverseViewProjection);
-        vec3 d = normalize(farPoint - giFrame.camera.xyz);
+        // A point halfway in depth: finite also for infinite (reversed-Z) projections.
+        vec3 d = normalize(giWorldPosition(uv, 0.5, giCamera.inverseViewProjection) - giFrame.camera.xyz);
         BlSdfRay ray = blSdfMakeRay(giFrame.camera.xyz, d, giFrame.trace.z, giFrame.trace.w);
         ray.startCascade = giFrame.cascades.x;
         ray.endCascade = giFrame.cascades.y;
@@ -68,5 +68,6 @@ void main() {
         colour = vec3(texelFetch(diffuseHistory, ivec2(internalPixel), 0).a / float(giFrame.inputs.w)) / pass.exposure.x;
     }
     colour *= pass.exposure.x;
-    imageStore(outputImage, ivec2(pixel), vec4(colour / (1.0 + colour), 1.0));
+    // Masks and counts are shown as they are; light is tone-mapped.
+    imageStore(outputImage, ivec2(pixel), vec4(mode >= 4u ? clamp(colour, 0.0, 1.0) : colour / (1.0 + colour), 1.0));
 }

@@ -9,6 +9,7 @@
 // the side the camera sees, so light stays on its own side of thin walls) in every traced cascade that
 // has a brick there. Finer cascades adapt faster: weight 1/8, halved per cascade.
 layout(local_size_x = 8, local_size_y = 8) in;
+#define GI_INJECT_TILE 4u  // one pixel of each GI_INJECT_TILE² tile per frame (core/gi/gi_constants.h: kInjectTile)
 BL_TEXTURE(0) uniform sampler2D depthNow;
 BL_TEXTURE(1) uniform usampler2D surfaceNow;
 BL_TEXTURE(2) uniform sampler2D motionNow;
@@ -19,8 +20,8 @@ BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
 
 void main() {
     uvec2 tile = gl_GlobalInvocationID.xy;
-    uint k = (giFrameIndex() * 7u + giPcg(tile.x * 7919u + tile.y)) & 15u;
-    uvec2 pixel = tile * 4u + uvec2(k & 3u, k >> 2);
+    uint k = (giFrameIndex() * 7u + giPcg(tile.x * 7919u + tile.y)) % (GI_INJECT_TILE * GI_INJECT_TILE);
+    uvec2 pixel = tile * GI_INJECT_TILE + uvec2(k % GI_INJECT_TILE, k / GI_INJECT_TILE);
     if (any(greaterThanEqual(pixel, giFrame.size.xy))) return;
     float depth = texelFetch(depthNow, ivec2(pixel), 0).r;
     if (giIsSky(depth) || texelFetch(disocclusion, ivec2(pixel), 0).r < 0.5) return;

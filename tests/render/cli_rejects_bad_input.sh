@@ -29,6 +29,10 @@ expect_failure "unknown AOV 'shadows'" "${common[@]}" --aov shadows
 expect_failure "--camera expects six numbers" "${common[@]}" --camera 1,2,3
 expect_failure "--backend must be vulkan or gl" "${common[@]}" --backend metal
 expect_failure "unknown option '--frobnicate'" --frobnicate
+expect_failure "--gi must be sdf or none" --gi voxels
+expect_failure "--gi-scale must be 100, 75, 50 or 25" --gi-scale 60
+expect_failure "--gi-debug must be radiance-cache" --gi-debug everything
+expect_failure "--gi-debug needs the fast path with GI" "${common[@]}" --gi-debug probes --out "$out/x.png"
 log=$("$render" "${common[@]}" --scene "$data/non_manifold_degenerate.obj" --out "$out/ok.png" 2>&1); rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: non-manifold/degenerate geometry: exit $rc: $log"; failures=$((failures + 1)); else echo "ok: non-manifold/degenerate geometry renders: $log"; fi
 # Textures from a file and embedded in a binary glTF give the same albedo (Debian's assimp-testmodels).

@@ -1,0 +1,49 @@
+// Shared by the benchmark's techniques: options, devices, and GPU marker timings summed per label.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "bricklight/rhi.h"
+
+namespace bricklight::bench {
+
+struct Options {
+    std::string technique;
+    std::string scene;
+    std::string backend = "vulkan";
+    std::string json;
+    uint32_t cascades = 8;
+    uint32_t dynamicMaxCascade = 15;
+    uint32_t frames = 16;
+    uint32_t width = 1920, height = 1080;
+    uint32_t scalePercent = 50;  // gi: internal resolution
+};
+
+// Sums of GPU milliseconds per marker label over the frames of one phase.
+struct PhaseTimes {
+    std::map<std::string, double> total;
+    uint32_t frames = 0;
+    double perFrame(const std::string& label) const {
+        auto it = total.find(label);
+        return it == total.end() || !frames ? 0.0 : it->second / frames;
+    }
+};
+
+inline PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
+    device.waitIdle();
+    PhaseTimes t;
+    t.frames = frames;
+    for (const rhi::MarkerTiming& m : device.takeTimings()) t.total[m.label] += m.milliseconds;
+    return t;
+}
+
+// The device of --backend (null with a message on stderr).
+std::unique_ptr<rhi::IDevice> makeDevice(const Options& o);
+
+int runSdf(const Options& o);
+int runGi(const Options& o);
+
+}  // namespace bricklight::bench

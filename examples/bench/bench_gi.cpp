@@ -1,0 +1,203 @@
+// bricklight-bench gi: GPU milliseconds per GI pass and GI's memory, on a G-buffer traced through the
+// scene's distance field (shaders/bench/sdf_gbuffer.comp; the G-buffer is timed apart from GI). The camera
+// pans slowly so that reprojection and disocclusion do real work.
+#include <cmath>
+#include <cstdio>
+#include <array>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bench_common.h"
+#include "bricklight/gi.h"
+#include "bricklight/sdf.h"
+#include "scene_geometry.h"
+
+namespace bricklight::bench {
+
+namespace {
+
+const char* const kGiPasses[] = {"downsample",        "disocclusion mask", "clear freed bricks", "inject radiance",
+                                 "propagate SH",      "spawn probes",      "reproject probes",   "fill probes",
+                                 "specular pretrace", "reproject GI",      "specular trace",     "project probes",
+                                 "emit irradiance",   "interpolate",       "blur x",             "blur y",
+                                 "upsample"};
+
+gi::InternalResolution resolutionOf(uint32_t percent) {
+    switch (percent) {
+        case 100: return gi::InternalResolution::Native;
+        case 75: return gi::InternalResolution::Percent75;
+        case 25: return gi::InternalResolution::Percent25;
+        default: return gi::InternalResolution::Percent50;
+    }
+}
+
+struct Camera {
+    glm::mat4 view, projection;
+    glm::vec3 eye;
+};
+
+Camera cameraAt(const scenes::Camera& c, float yawDegrees, float aspect, float size) {
+    Camera k;
+    const glm::vec3 forward = c.at - c.eye;
+    const glm::vec3 turned = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yawDegrees), glm::vec3(0, 1, 0)) * glm::vec4(forward, 0.0f));
+    k.eye = c.eye;
+    k.view = glm::lookAtRH(c.eye, c.eye + turned, c.up);
+    k.projection = glm::perspectiveRH_ZO(glm::radians(c.verticalFovDegrees), aspect, 0.001f * size, 8.0f * size);
+    k.projection[1][1] = -k.projection[1][1];  // NDC y = -1 at the top row
+    return k;
+}
+
+}  // namespace
+
+int runGi(const Options& o) {
+    std::string error;
+    scenes::SceneGeometry geometry = scenes::loadScene(o.scene, &error);
+    if (geometry.meshes.empty()) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return 1;
+    }
+    std::unique_ptr<rhi::IDevice> device = makeDevice(o);
+    if (!device) return 1;
+    if (!device->capabilities().timestamps) std::fprintf(stderr, "bricklight-bench: warning: the device has no GPU timestamps\n");
+
+    const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
+    const float size = std::max(extent.x, std::max(extent.y, extent.z));
+    sdf::SceneDesc desc;
+    desc.cascadeCount = o.cascades;
+    desc.finestVoxelSize = size / 512.0f;  // as the sdf benchmark: cascade 3 spans the scene
+    desc.budgets.maxReferencesPerUpdate =
+        uint32_t(std::min<uint64_t>(32u << 20, device->capabilities().limits.maxStorageBufferRange / 12));
+    auto scene = sdf::SdfScene::create(*device, desc, &error);
+    if (!scene) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return 1;
+    }
+    std::vector<sdf::MeshHandle> meshes;
+    for (const auto& m : geometry.meshes)
+        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
+                                            uint32_t(m.indices.size()), m.name}));
+    for (const auto& i : geometry.instances) scene->addInstance({meshes[i.mesh], i.transform});
+    const glm::vec3 centre = geometry.camera.eye;
+    for (int i = 0; i < 4; ++i) scene->update(centre), device->endFrame();  // build everything before timing
+
+    gi::ContextDesc cd;
+    cd.displayWidth = o.width;
+    cd.displayHeight = o.height;
+    cd.internalResolution = resolutionOf(o.scalePercent);
+    auto context = gi::GiContext::create(*device, *scene, cd, &error);
+    if (!context) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return 1;
+    }
+    using namespace rhi::TextureUsage;
+    auto target = [&](rhi::Format f, const char* name) {
+        rhi::TextureDesc d;
+        d.format = f;
+        d.width = o.width;
+        d.height = o.height;
+        d.usage = Sampled | Storage;
+        d.debugName = name;
+        return device->createTexture(d);
+    };
+    rhi::TextureHandle depth = target(rhi::Format::R32_FLOAT, "bench depth"), normals = target(rhi::Format::RGBA16_FLOAT, "bench normals"),
+                       motion = target(rhi::Format::RG16_FLOAT, "bench motion"), lit = target(rhi::Format::RGBA16_FLOAT, "bench lit"),
+                       diffuse = target(rhi::Format::RGBA16_FLOAT, "bench diffuse GI"),
+                       specular = target(rhi::Format::RGBA16_FLOAT, "bench specular GI");
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("bench/sdf_gbuffer.comp");
+    rhi::ShaderHandle gbufferShader = device->createShader(sd);
+    if (!depth || !normals || !motion || !lit || !diffuse || !specular || !gbufferShader) {
+        std::fprintf(stderr, "bricklight-bench: the device could not create the benchmark's G-buffer\n");
+        return 1;
+    }
+    std::printf("scene %s: %llu triangles; %s on %s; %ux%u, GI at %u %% (%ux%u); %u cascades, finest voxel %.4g\n",
+                geometry.name.c_str(), (unsigned long long)geometry.triangleCount(), o.backend.c_str(),
+                device->capabilities().deviceName.c_str(), o.width, o.height, o.scalePercent, context->internalWidth(),
+                context->internalHeight(), o.cascades, desc.finestVoxelSize);
+
+    const float aspect = float(o.width) / float(o.height);
+    Camera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
+    auto frame = [&](uint32_t f) {
+        const Camera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);
+        struct {
+            glm::mat4 viewProjection, inverseViewProjection, previousViewProjection;
+            glm::vec4 eye;
+            uint32_t size[4];
+        } p{now.projection * now.view, glm::inverse(now.projection * now.view), previous.projection * previous.view,
+            glm::vec4(now.eye, 0.4f), {o.width, o.height, 0, 0}};
+        scene->update(centre);
+        // This frame's G-buffer, then GI on it (the lit image stands in for last frame's: same cost).
+        gi::DispatchDesc d;
+        d.view = now.view;
+        d.projection = now.projection;
+        d.previousView = previous.view;
+        d.previousProjection = previous.projection;
+        d.cameraPosition = now.eye;
+        d.depth = depth;
+        d.normals = normals;
+        d.normalsUnpackScale = glm::vec3(1.0f);
+        d.normalsUnpackOffset = glm::vec3(0.0f);
+        d.roughness = normals;
+        d.roughnessChannel = 3;
+        d.motionVectors = motion;
+        d.previousLitOutput = lit;
+        d.outputDiffuse = diffuse;
+        d.outputSpecular = specular;
+        rhi::DispatchState s;
+        s.shader = gbufferShader;
+        s.label = "bench gbuffer";
+        s.bindings.constants.push(rhi::constants(0, p));
+        for (uint8_t i = 0; i < 4; ++i) {
+            rhi::StorageImageBinding b;
+            b.slot = i;
+            b.view = rhi::textureMip(std::array<rhi::TextureHandle, 4>{depth, normals, motion, lit}[i], 0);
+            b.access = rhi::Access::Write;
+            s.bindings.storageImages.push(b);
+        }
+        scene->traceBindings(s.bindings, {});
+        device->beginMarker("bench gbuffer");
+        device->dispatch(s, (o.width + 7) / 8, (o.height + 7) / 8, 1);
+        device->endMarker();
+        if (!context->dispatch(d)) std::exit(1);
+        device->endFrame();
+        previous = now;
+    };
+    device->setTimingEnabled(false);
+    for (uint32_t f = 0; f < 16; ++f) frame(f);  // warm-up: pipelines, caches, history
+    device->waitIdle();
+    device->setTimingEnabled(true);
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) frame(16 + f);
+    PhaseTimes t = collect(*device, o.frames);
+
+    double total = t.perFrame("gi");
+    std::printf("%-24s %9.3f ms/frame (G-buffer %.3f ms, not included)\n", "GI total", total, t.perFrame("bench gbuffer"));
+    for (const char* p : kGiPasses) std::printf("  %-22s %9.3f ms\n", p, t.perFrame(std::string("gi/") + p));
+    const gi::MemoryUse memory = context->memoryUse();
+    std::printf("GI memory: %.1f MiB (%.1f MB; without the SDF, and without the two display-size outputs the app owns)\n",
+                double(memory.totalBytes) / (1 << 20), double(memory.totalBytes) / 1e6);
+    for (const auto& r : memory.resources) std::printf("  %-24s %10.2f MiB\n", r.name.c_str(), double(r.bytes) / (1 << 20));
+    if (!o.json.empty()) {
+        std::ofstream out(o.json);
+        out << "{\"technique\": \"gi\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend << "\", \"device\": \""
+            << device->capabilities().deviceName << "\", \"width\": " << o.width << ", \"height\": " << o.height
+            << ", \"scale_percent\": " << o.scalePercent << ", \"total_ms\": " << total << ", \"passes_ms\": {";
+        bool first = true;
+        for (const char* p : kGiPasses) {
+            out << (first ? "" : ", ") << "\"" << p << "\": " << t.perFrame(std::string("gi/") + p);
+            first = false;
+        }
+        out << "}, \"gpu_bytes\": " << memory.totalBytes << "}\n";
+        if (!out) {
+            std::fprintf(stderr, "bricklight-bench: cannot write %s\n", o.json.c_str());
+            return 1;
+        }
+        std::printf("wrote %s\n", o.json.c_str());
+    }
+    for (rhi::TextureHandle h : {depth, normals, motion, lit, diffuse, specular}) device->destroy(h);
+    device->destroy(gbufferShader);
+    return 0;
+}
+
+}  // namespace bricklight::bench
