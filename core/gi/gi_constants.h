@@ -37,7 +37,7 @@ struct GpuFrame {  // BL_CONSTANTS(1)
 static_assert(sizeof(GpuFrame) == 160);
 
 constexpr uint32_t kProbeTile = 8;          // internal pixels per probe tile side (8×8 texels per probe)
-constexpr uint32_t kInjectTile = 4;         // one injected pixel per tile per frame (GI_INJECT_TILE)
+constexpr uint32_t kInjectTile = 2;         // one injected pixel per tile per frame (GI_INJECT_TILE)
 constexpr uint32_t kPretraceTile = 4;       // one specular pre-trace ray per 4×4 tile
 constexpr uint32_t kCacheTexelsPerBrick = 4;  // radiance cache texels per brick side
 constexpr uint32_t kShCoefficients = 9;

@@ -7,7 +7,9 @@
 // equal-area hemisphere mapping around the probe normal): a hit reads the radiance cache at the hit (the
 // finest cascade with data there), a miss the environment. New probes take the result; reprojected probes
 // retrace half their texels (a checkerboard that alternates per frame) and blend 1/4 in. A hit with no
-// cached radiance anywhere leaves the texel as it was.
+// cached radiance anywhere keeps the texel's old value, or is marked "hit, unknown" (alpha, see
+// gi_common.glsl) for project_probes to fill with the mean of the probe's known hits — not left out, which
+// would weigh the misses (the environment) too much.
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_IMAGE(0, rgba16f) uniform image2D probes;
@@ -39,12 +41,17 @@ void main() {
     ray.epsilonScale = giFrame.epsilon.x;
     BlSdfHit hit = blSdfTrace(ray);
     vec3 radiance;
+    float kind = GI_TEXEL_HIT;
     if (!hit.hit) {
         radiance = giEnvironment(d);
+        kind = GI_TEXEL_MISS;
     } else if (!giRadianceAt(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) {
+        // A surface no view has lit yet: keep what the texel had, else mark it for the projection pass
+        // to fill from the probe's other hits.
+        if (!(reprojected && old.a > 0.0)) imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
         return;
     }
-    vec4 value = vec4(radiance, 1.0);
-    if (reprojected && old.a > 0.0) value.rgb = mix(old.rgb, radiance, 0.25);
+    vec4 value = vec4(radiance, kind);
+    if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) value.rgb = mix(old.rgb, radiance, 0.25);
     imageStore(probes, texel, value);
 }

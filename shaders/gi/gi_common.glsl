@@ -165,6 +165,11 @@ vec2 giHammersley(uint i, uint n) {
 // w = flags: bit 0 valid, bit 1 reprojected from the previous frame.
 #define GI_PROBE_VALID 1u
 #define GI_PROBE_REPROJECTED 2u
+// Probe texel alpha: what the texel's value is.
+#define GI_TEXEL_EMPTY 0.0        // nothing (not traced, or not carried over by reprojection)
+#define GI_TEXEL_UNKNOWN_HIT 0.5  // the ray hit a surface whose radiance no cache holds yet
+#define GI_TEXEL_MISS 0.75        // the environment
+#define GI_TEXEL_HIT 1.0          // the radiance cache at the hit
 uvec2 giProbePixel(uvec4 info) { return uvec2(info.x & 0xFFFFu, info.x >> 16); }
 vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
 

@@ -7,9 +7,9 @@
 // (rotating through the 16), reprojected into last frame's image where the disocclusion mask says it saw
 // the same surface, then blended into the cache texel at the surface point (moved half a texel towards
 // the side the camera sees, so light stays on its own side of thin walls) in every traced cascade that
-// has a brick there. Finer cascades adapt faster: weight 1/8, halved per cascade.
+// has a brick there. The blend weight follows how often the texel is reached (below).
 layout(local_size_x = 8, local_size_y = 8) in;
-#define GI_INJECT_TILE 4u  // one pixel of each GI_INJECT_TILE² tile per frame (core/gi/gi_constants.h: kInjectTile)
+#define GI_INJECT_TILE 2u  // one pixel of each GI_INJECT_TILE² tile per frame (core/gi/gi_constants.h: kInjectTile)
 BL_TEXTURE(0) uniform sampler2D depthNow;
 BL_TEXTURE(1) uniform usampler2D surfaceNow;
 BL_TEXTURE(2) uniform sampler2D motionNow;
@@ -32,13 +32,22 @@ void main() {
     vec3 n = giSurfaceNormal(texelFetch(surfaceNow, ivec2(pixel), 0).r);
     vec3 toCamera = normalize(giFrame.camera.xyz - p);
     if (dot(n, toCamera) < 0.0) n = -n;
+    // The pixel's footprint on the surface (one pixel across, widened by the slant).
+    vec3 side = giWorldPosition(uv + vec2(1.0 / float(giFrame.size.x), 0.0), depth, giCamera.inverseViewProjection);
+    float footprint = max(length(side - p) / max(dot(n, toCamera), 0.25), 1e-6);
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         uint brick;
         vec3 uvw;
         if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, brick, uvw) && !giBrickAt(p, c, brick, uvw)) continue;
         ivec3 texel = giCacheTexelBase(brick) + min(ivec3(uvw * 4.0), ivec3(3));
         uint old = imageLoad(giRadianceCache, texel).r;
-        float alpha = 0.125 / float(1u << min(c - giFrame.cascades.x, 4u));
+        // About this many injections reach the texel per frame (its area over the pixel footprint's, one
+        // pixel in GI_INJECT_TILE² injecting): the weight of each is set so that the texel moves ~1/4 of
+        // the way to the current light per frame, whatever the resolution and cascade. A texel smaller than
+        // a pixel is reached only every few frames and then takes most of the new value (fresh, not stale).
+        float texelSize = 0.25 * giVoxelSize(c);
+        float perFrame = texelSize * texelSize / (footprint * footprint * float(GI_INJECT_TILE * GI_INJECT_TILE));
+        float alpha = clamp(0.25 / perFrame, 1.0 / 256.0, 0.9);
         vec3 value = old == 0u ? lit : mix(giDecodeRgb9e5(old), lit, alpha);
         imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(value)));
     }

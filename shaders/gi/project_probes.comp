@@ -5,7 +5,8 @@
 #include "gi_sh.glsl"
 // Pass 12: each probe's 64 radiance texels into L2 SH. One group per probe; every thread projects its
 // texel (the texel's centre direction, solid angle 2π/64), then a parallel reduction in shared memory sums
-// the 64 projections. Texels without data are left out and the rest scaled up to cover the hemisphere.
+// the 64 projections. Hits of unknown radiance take the mean of the probe's known hits (a first reduction);
+// empty texels are left out and the rest scaled up to cover the hemisphere.
 // Output per probe: 9 vec4 (rgb coefficient; w of the first = the fraction of texels with data).
 layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
@@ -21,7 +22,24 @@ void main() {
     uvec4 info = probeInfo[index];
     uvec2 local = uvec2(t % 8u, t / 8u);
     vec4 radiance = texelFetch(probes, ivec2(tile * 8u + local), 0);
-    bool use = (info.w & GI_PROBE_VALID) != 0u && radiance.a > 0.0 && giFinite(radiance.rgb);
+    bool probeValid = (info.w & GI_PROBE_VALID) != 0u && giFinite(radiance.rgb);
+    // First reduction: the mean of the known hits, which stands in for the hits of unknown radiance.
+    bool knownHit = probeValid && radiance.a > GI_TEXEL_MISS + 0.1;
+    partial[t][0] = knownHit ? radiance.r : 0.0;
+    partial[t][1] = knownHit ? radiance.g : 0.0;
+    partial[t][2] = knownHit ? radiance.b : 0.0;
+    partial[t][3] = knownHit ? 1.0 : 0.0;
+    barrier();
+    for (uint stride = 32u; stride > 0u; stride >>= 1) {
+        if (t < stride)
+            for (int k = 0; k < 4; ++k) partial[t][k] += partial[t + stride][k];
+        barrier();
+    }
+    vec4 hits = vec4(partial[0][0], partial[0][1], partial[0][2], partial[0][3]);
+    barrier();
+    bool unknownHit = probeValid && abs(radiance.a - GI_TEXEL_UNKNOWN_HIT) < 0.1;
+    if (unknownHit && hits.w > 0.0) radiance = vec4(hits.rgb / hits.w, GI_TEXEL_HIT);
+    bool use = probeValid && radiance.a > GI_TEXEL_UNKNOWN_HIT + 0.1;
     float y[9];
     giShBasis(giProbeDirection(giProbeNormal(info), (vec2(local) + 0.5) / 8.0), y);
     for (int i = 0; i < 9; ++i) {

@@ -47,9 +47,10 @@ bool allFinite(const std::vector<float>& v) {
 
 void cornellAgainstReference(const std::string& backend) {
     // 48 frames of GI (each frame's lit image feeds the next: multi-bounce) against 512 spp of the path
-    // tracer. Bounds hold today's quality with margin (measured on lavapipe: indirect relMSE ~0.13,
-    // SSIM ~0.43, mean ratio ~0.46 — GI is darker than the reference, see docs/gi.md "Known
-    // limitations"); they catch regressions, they are not the goal.
+    // tracer, 64². Measured (lavapipe / llvmpipe): indirect relMSE 0.065 / 0.063, SSIM 0.57, mean 0.023
+    // vs 0.048 — GI is about half as bright as the reference (docs/gi.md, "Known limitations");
+    // combined relMSE 0.028, SSIM 0.85. The bounds hold today's quality with margin to catch
+    // regressions; they are not the goal.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry cornell = scenes::cornellBox();
@@ -61,13 +62,14 @@ void cornellAgainstReference(const std::string& backend) {
     REQUIRE(allFinite(indirect.rgb));
     const render::ImageMetrics m = render::compareImages(indirect, refIndirect);
     INFO("indirect-diffuse relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
-    CHECK(m.relMse < 0.25);
-    CHECK(m.ssim > 0.25);
-    CHECK(m.meanA > 0.3 * m.meanB);
+    CHECK(m.relMse < 0.12);
+    CHECK(m.ssim > 0.45);
+    CHECK(m.meanA > 0.35 * m.meanB);
     CHECK(m.meanA < 1.3 * m.meanB);
     const render::ImageMetrics c = render::compareImages(gi->read(render::Aov::Combined), reference->read(render::Aov::Combined));
     INFO("combined relMSE " << c.relMse << " SSIM " << c.ssim << " mean " << c.meanA << " vs " << c.meanB);
-    CHECK(c.relMse < 0.3);
+    CHECK(c.relMse < 0.06);
+    CHECK(c.ssim > 0.75);
     // GI adds light: the composite is brighter than direct light alone.
     CHECK(mean(gi->read(render::Aov::Combined)) > 1.1 * mean(gi->read(render::Aov::Direct)));
     REQUIRE_NO_MESSAGES(td);
@@ -75,7 +77,8 @@ void cornellAgainstReference(const std::string& backend) {
 
 void noFlickerWhenConverged(const std::string& backend) {
     // A static view after convergence: the mean absolute change between two consecutive frames is below
-    // 5 % of the mean GI (temporal accumulation and the caches' slow weights keep it still).
+    // 2 % of the mean GI (temporal accumulation and the caches' slow weights keep it still). Measured:
+    // 0.5 %.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     auto gi = giRenderer(td, scenes::cornellBox());
@@ -87,15 +90,15 @@ void noFlickerWhenConverged(const std::string& backend) {
     for (size_t i = 0; i < a.rgb.size(); ++i) change += std::fabs(double(a.rgb[i]) - b.rgb[i]);
     change /= double(a.rgb.size());
     INFO("mean change " << change << " mean " << mean(a));
-    CHECK(change < 0.05 * mean(a));
+    CHECK(change < 0.02 * mean(a));
     REQUIRE_NO_MESSAGES(td);
 }
 
 void noLeakThroughWall(const std::string& backend) {
     // two-rooms: the camera in the closed room B looks at the wall it shares with the sunlit room A
     // (wall 0.25 m thick; the finest voxel here is ~0.14 m). The reference's light in room B is exactly
-    // zero; GI's indirect light there must stay below 5 % of the indirect light in room A (seen from
-    // inside A through the same GI).
+    // zero; GI's indirect light there must stay below 1 % of the indirect light in room A (seen from
+    // inside A through the same GI). Measured: 1.2e-8 against 0.042.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry rooms = scenes::twoRooms(0.25f);
@@ -110,7 +113,7 @@ void noLeakThroughWall(const std::string& backend) {
     const double light = mean(bright->read(render::Aov::IndirectDiffuse));
     INFO("room B " << leak << " room A " << light);
     CHECK(light > 0.0);
-    CHECK(leak < 0.05 * light);
+    CHECK(leak < 0.01 * light);
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -184,15 +187,10 @@ void badInputChangesNothing(const std::string& backend) {
     for (rhi::TextureHandle t : {out, outSpecular, small, wrongFormat}) td.device->destroy(t);
 }
 
-void furnace(const std::string& backend) {
-    // A furnace: inside the closed room B of two-rooms, every surface sends radiance 1 (the lit image is
-    // overwritten with 1 each frame), so every pixel's incoming light is 1 from all directions and the
-    // diffuse output (irradiance / pi) must be 1. Measured: mean 0.94, 14 % of values off by more than
-    // 15 % (L2 SH of a hemisphere evaluated for normals other than the probe's, at corners and edges).
-    // Bounds: mean within 10 %, at most 20 % of values off by more than 15 %.
-    TestDevice td = makeDevice(backend);
-    REQUIRE(td.device);
-    auto gi = giRenderer(td, scenes::twoRooms(0.25f), 32);
+// GI's diffuse output on `scene` after 40 frames in which every surface sends radiance 1 (the lit image is
+// overwritten with 1 after each frame).
+render::Image furnaceGi(TestDevice& td, const scenes::SceneGeometry& scene) {
+    auto gi = giRenderer(td, scene, 32);
     const render::GBufferView g = gi->gbuffer();
     const std::vector<uint16_t> one(32 * 32 * 4, 0x3C00);
     for (int f = 0; f < 40; ++f) {
@@ -200,13 +198,45 @@ void furnace(const std::string& backend) {
         td.device->writeTexture(g.lit, {}, one.data());
         td.device->endFrame();
     }
-    const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
+    return gi->read(render::Aov::IndirectDiffuse);
+}
+
+void openFurnace(const std::string& backend) {
+    // The Cornell box (open at the front) with every surface sending radiance 1: GI's diffuse output is the
+    // cosine-weighted fraction of directions that hit the box. The path tracer gives the same fraction as
+    // its indirect light when every albedo is 1 and the sky is 1 (all light escapes eventually, so every
+    // surface's radiance is 1). Measured: GI 0.54, path tracer 0.675 (ratio 0.80: GI's probes see more
+    // misses than the path tracer — an open problem, docs/gi.md). Bound: ratio in [0.7, 1.1].
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const double giMean = mean(furnaceGi(td, scenes::cornellBox()));
+    scenes::SceneGeometry white = scenes::cornellBox();
+    for (auto& m : white.meshes) {
+        m.albedo = glm::vec3(1.0f);
+        m.emission = glm::vec3(0.0f);
+    }
+    white.environment.skyRadiance = glm::vec3(1.0f);
+    const double reference = mean(traced(td, white, 32, 256)->read(render::Aov::IndirectDiffuse));
+    INFO("GI " << giMean << " path tracer " << reference);
+    CHECK(giMean > 0.7 * reference);
+    CHECK(giMean < 1.1 * reference);
+}
+
+void furnace(const std::string& backend) {
+    // A furnace: inside the closed room B of two-rooms, every surface sends radiance 1 (the lit image is
+    // overwritten with 1 each frame), so every pixel's incoming light is 1 from all directions and the
+    // diffuse output (irradiance / pi) must be 1. Measured: mean 0.97, 6 % of values off by more than
+    // 15 % (L2 SH of a hemisphere evaluated for normals other than the probe's, at corners and edges).
+    // Bounds: mean within 6 %, at most 12 % of values off by more than 15 %.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const render::Image indirect = furnaceGi(td, scenes::twoRooms(0.25f));
     const double m = mean(indirect);
     size_t off = 0;
     for (float v : indirect.rgb) off += std::fabs(v - 1.0f) > 0.15f;
     INFO("mean " << m << ", " << off << " of " << indirect.rgb.size() << " values off by > 15 %");
-    CHECK(std::fabs(m - 1.0) < 0.1);
-    CHECK(off < indirect.rgb.size() / 5);
+    CHECK(std::fabs(m - 1.0) < 0.06);
+    CHECK(off < indirect.rgb.size() * 12 / 100);
 }
 
 void depthReconstruction(const std::string& backend) {
@@ -269,13 +299,14 @@ BACKEND_TEST("GI does not leak through a wall", "[gi]", noLeakThroughWall)
 BACKEND_TEST("GI rejects bad input and records nothing", "[gi]", badInputChangesNothing)
 BACKEND_TEST("GI keeps NaN out of its caches", "[gi]", nanDoesNotPoisonCaches)
 BACKEND_TEST("GI in a furnace returns the furnace's radiance", "[gi]", furnace)
+BACKEND_TEST("GI in an open furnace sees the box as the path tracer does", "[gi]", openFurnace)
 BACKEND_TEST("GI's positions from depth match the rasterized ones", "[gi]", depthReconstruction)
 
 #if defined(BRICKLIGHT_HAS_VULKAN) && defined(BRICKLIGHT_HAS_GL)
 TEST_CASE("GI on Vulkan and GL agree", "[gi][cross]") {
     // The same 24 frames on both backends. The passes race where threads blend into the same cache texel
-    // or brick (last writer wins), so the two differ by noise, not by bias: relMSE below 0.05 and means
-    // within 5 %.
+    // or brick (last writer wins), so the two differ by noise, not by bias: relMSE below 0.01 and means
+    // within 5 %. Measured: relMSE 9e-5, means within 1.5 %.
     render::Image images[2];
     int k = 0;
     for (const char* backend : {"vulkan", "gl"}) {
@@ -287,7 +318,7 @@ TEST_CASE("GI on Vulkan and GL agree", "[gi][cross]") {
     }
     const render::ImageMetrics m = render::compareImages(images[1], images[0]);
     INFO("relMSE " << m.relMse << " mean " << m.meanA << " vs " << m.meanB);
-    CHECK(m.relMse < 0.05);
+    CHECK(m.relMse < 0.01);
     CHECK(std::fabs(m.meanA - m.meanB) < 0.05 * m.meanB);
 }
 #endif
