@@ -115,8 +115,6 @@ bool GiContextImpl::init(std::string* error) {
                         (height_ + kPretraceTile - 1) / kPretraceTile);
     specularTraced_ = texture("specularTraced", F::RGBA16_FLOAT, width_, height_);
     if (!(desc_.flags & ContextFlags::NoDenoiser)) {
-        blurDiffuse_ = texture("blurDiffuse", F::RGBA16_FLOAT, width_, height_);
-        blurSpecular_ = texture("blurSpecular", F::RGBA16_FLOAT, width_, height_);
         resolvedDiffuse_ = texture("resolvedDiffuse", F::RGBA16_FLOAT, width_, height_);
         resolvedSpecular_ = texture("resolvedSpecular", F::RGBA16_FLOAT, width_, height_);
     }
@@ -177,7 +175,7 @@ bool GiContextImpl::init(std::string* error) {
               probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
-    if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && blurDiffuse_ && blurSpecular_ && resolvedDiffuse_ && resolvedSpecular_;
+    if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
     if (!ok) return bad("the device could not create the GI resources (see its messages)");
     reset();
     return true;
@@ -190,7 +188,7 @@ GiContextImpl::~GiContextImpl() {
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
-                                 blurDiffuse_, blurSpecular_, resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
+                                 resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
     for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_})
@@ -205,7 +203,7 @@ void GiContextImpl::reset() {
     device_.clearBuffer(brickSH_, {}, 0);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
-                                 blurDiffuse_, blurSpecular_, resolvedDiffuse_, resolvedSpecular_, dummyStorage_})
+                                 resolvedDiffuse_, resolvedSpecular_, dummyStorage_})
         if (t) device_.clearTexture(t, 0, 1, zero);
     device_.clearBuffer(probeInfo_[0], {}, 0);
     device_.clearBuffer(probeInfo_[1], {}, 0);
@@ -242,7 +240,6 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("specularTraced", tex(specularTraced_));
     add("diffuseHistory (2)", tex(diffuseHistory_[0]) + tex(diffuseHistory_[1]));
     add("specularHistory (2)", tex(specularHistory_[0]) + tex(specularHistory_[1]));
-    add("blur (2)", tex(blurDiffuse_) + tex(blurSpecular_));
     add("resolved (2)", tex(resolvedDiffuse_) + tex(resolvedSpecular_));
     add("environment/dummies", tex(blackCube_) + tex(black2D_) + tex(dummyStorage_));
     return m;

@@ -52,7 +52,7 @@ private:
     } shaders_;
 
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
-    rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], blurDiffuse_, blurSpecular_, resolvedDiffuse_, resolvedSpecular_;
+    rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], resolvedDiffuse_, resolvedSpecular_;
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
     rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_;
     rhi::SamplerHandle point_, linear_, environment_;

@@ -215,6 +215,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 0, probeInfo_[cur]);
         texture(s.bindings, 0, probes_[cur], point_);
         storageBuffer(s.bindings, 0, probeSH_, Access::Write);
+        image(s.bindings, 0, radianceCache_, Access::Read);
+        addTrace(s.bindings);
         run("project probes", shaders_.project, s, tilesX_, tilesY_);
     }
     {  // 13. emit the probes into the brick SH irradiance cache
@@ -239,7 +241,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         run("interpolate", shaders_.interpolate, s, groups(width_, 8), groups(height_, 8));
     }
     rhi::TextureHandle finalDiffuse = diffuseHistory_[cur], finalSpecular = specularHistory_[cur];
-    if (denoise) {  // 15, 16. bilateral blur, x then y
+    if (denoise) {  // 15, 16. bilateral blur, x then y (x into last frame's history, free since pass 10)
         struct {
             int32_t direction[4];
         } x{{1, 0, 0, 0}}, y{{0, 1, 0, 0}};
@@ -249,13 +251,13 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 1, specularHistory_[cur], point_);
         texture(s.bindings, 2, depth_[cur], point_);
         texture(s.bindings, 3, surface_[cur], point_);
-        image(s.bindings, 0, blurDiffuse_, Access::Write);
-        image(s.bindings, 1, blurSpecular_, Access::Write);
+        image(s.bindings, 0, diffuseHistory_[prev], Access::Write);
+        image(s.bindings, 1, specularHistory_[prev], Access::Write);
         run("blur x", shaders_.blur, s, groups(width_, 8), groups(height_, 8));
         rhi::DispatchState t;
         t.bindings.constants.push(rhi::constants(2, y));
-        texture(t.bindings, 0, blurDiffuse_, point_);
-        texture(t.bindings, 1, blurSpecular_, point_);
+        texture(t.bindings, 0, diffuseHistory_[prev], point_);
+        texture(t.bindings, 1, specularHistory_[prev], point_);
         texture(t.bindings, 2, depth_[cur], point_);
         texture(t.bindings, 3, surface_[cur], point_);
         image(t.bindings, 0, resolvedDiffuse_, Access::Write);

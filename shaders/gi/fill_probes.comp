@@ -6,11 +6,12 @@
 // Pass 8: trace the screen probes. One group per probe, one ray per texel (jittered within the texel,
 // equal-area hemisphere mapping around the probe normal): a hit reads the radiance cache at the hit (the
 // finest cascade with data there), a miss the environment. New probes take the result; reprojected probes
-// retrace half their texels (a checkerboard that alternates per frame) and blend 1/4 in. A hit with no
+// retrace a quarter of their texels (one of each 2×2 block, rotating per frame) and blend them in. A hit with no
 // cached radiance anywhere keeps the texel's old value, or is marked "hit, unknown" (alpha, see
 // gi_common.glsl) for project_probes to fill with the mean of the probe's known hits — not left out, which
 // would weigh the misses (the environment) too much.
 layout(local_size_x = 8, local_size_y = 8) in;
+#define GI_PROBE_BLEND 0.35  // weight of a retraced texel's new sample in a reprojected probe
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_IMAGE(0, rgba16f) uniform image2D probes;
 BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
@@ -28,7 +29,9 @@ void main() {
     }
     bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
     vec4 old = imageLoad(probes, texel);
-    if (reprojected && old.a > 0.0 && ((gl_LocalInvocationID.x + gl_LocalInvocationID.y + giFrameIndex()) & 1u) != 0u) return;
+    // Reprojected probes retrace one texel of each 2×2 block per frame (all four within four frames).
+    uint phase = (gl_LocalInvocationID.x & 1u) + 2u * (gl_LocalInvocationID.y & 1u);
+    if (reprojected && old.a > 0.0 && phase != (giFrameIndex() & 3u)) return;
     uint rng = giPcg(giPcg(tile.y * giFrame.tiles.x + tile.x) ^ (giFrameIndex() * 64u + gl_LocalInvocationIndex));
     vec2 u = (vec2(gl_LocalInvocationID.xy) + vec2(giRandom(rng), giRandom(rng))) / 8.0;
     vec3 n = giProbeNormal(info);
@@ -52,6 +55,6 @@ void main() {
         return;
     }
     vec4 value = vec4(radiance, kind);
-    if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) value.rgb = mix(old.rgb, radiance, 0.25);
+    if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) value.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);
     imageStore(probes, texel, value);
 }

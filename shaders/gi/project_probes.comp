@@ -1,6 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
+#include "bricklight/trace.glsl"
 #include "gi_common.glsl"
 #include "gi_sh.glsl"
 // Pass 12: each probe's 64 radiance texels into L2 SH. One group per probe; every thread projects its
@@ -12,6 +13,22 @@ layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_TEXTURE(0) uniform sampler2D probes;
 BL_STORAGE_BUFFER(0) ProbeSH { vec4 probeSH[]; };
+BL_IMAGE(0, r32ui) uniform readonly uimage3D giRadianceCache;
+#define GI_USES_RADIANCE_CACHE
+#include "gi_bricks.glsl"
+
+// The radiance leaving the probe's own surface (the radiance cache there, finest cascade with data).
+bool giSurfaceRadiance(vec3 p, vec3 n, out vec3 radiance) {
+    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+        uint brick;
+        vec3 uvw;
+        if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, brick, uvw) && !giBrickAt(p, c, brick, uvw)) continue;
+        float w;
+        radiance = giSampleRadianceCache(brick, uvw, w);
+        if (w > 0.0) return true;
+    }
+    return false;
+}
 
 shared float partial[64][28];
 
@@ -41,7 +58,8 @@ void main() {
     if (unknownHit && hits.w > 0.0) radiance = vec4(hits.rgb / hits.w, GI_TEXEL_HIT);
     bool use = probeValid && radiance.a > GI_TEXEL_UNKNOWN_HIT + 0.1;
     float y[9];
-    giShBasis(giProbeDirection(giProbeNormal(info), (vec2(local) + 0.5) / 8.0), y);
+    vec3 n = giProbeNormal(info);
+    giShBasis(giProbeDirection(n, (vec2(local) + 0.5) / 8.0), y);
     for (int i = 0; i < 9; ++i) {
         vec3 c = use ? radiance.rgb * (y[i] * 2.0 * GI_PI / 64.0) : vec3(0.0);
         partial[t][3 * i] = c.r;
@@ -56,9 +74,28 @@ void main() {
         barrier();
     }
     if (t < 9u) {
+        // The lower hemisphere is what a point just off the surface sees below it: the surface itself.
+        // Filling it with the surface's own radiance (not zero) makes the SH a whole-sphere estimate, so a
+        // pixel or a world-cache brick with another normal reads it correctly; for the probe's own normal
+        // it changes nothing (the L2 clamped-cosine kernel integrates to 0 over the lower hemisphere).
+        // Its projection is the SH of a constant over the lower hemisphere: c·(√π, 0, -√(3π)/2, 0, ...)
+        // rotated to n, i.e. c·Y-weights evaluated analytically below.
+        vec3 self = hits.w > 0.0 ? hits.rgb / hits.w : vec3(0.0);
+        vec3 own;
+        if ((info.w & GI_PROBE_VALID) != 0u &&
+            giSurfaceRadiance(giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection), n, own))
+            self = own;
         float covered = partial[0][27];
         float scale = covered > 0.0 ? 64.0 / covered : 0.0;
         vec3 c = vec3(partial[0][3 * t], partial[0][3 * t + 1], partial[0][3 * t + 2]) * scale;
+        if (covered > 0.0) {
+            // ∫ over the lower hemisphere of Y_lm: zonal coefficients (l0: 2π·0.282095, l1: -π·0.488603,
+            // l2: 0) along n.
+            float yn[9];
+            giShBasis(n, yn);
+            float zonal = t == 0u ? 2.0 * GI_PI * 0.282095 : (t < 4u ? -GI_PI * 0.488603 * yn[t] / 0.488603 : 0.0);
+            c += self * zonal;
+        }
         probeSH[index * 9u + t] = vec4(c, t == 0u ? covered / 64.0 : 0.0);
     }
 }

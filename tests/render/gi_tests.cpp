@@ -98,7 +98,7 @@ void noLeakThroughWall(const std::string& backend) {
     // two-rooms: the camera in the closed room B looks at the wall it shares with the sunlit room A
     // (wall 0.25 m thick; the finest voxel here is ~0.14 m). The reference's light in room B is exactly
     // zero; GI's indirect light there must stay below 1 % of the indirect light in room A (seen from
-    // inside A through the same GI). Measured: 1.2e-8 against 0.042.
+    // inside A through the same GI). Measured: 2e-8 against 0.045.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry rooms = scenes::twoRooms(0.25f);
@@ -205,8 +205,8 @@ void openFurnace(const std::string& backend) {
     // The Cornell box (open at the front) with every surface sending radiance 1: GI's diffuse output is the
     // cosine-weighted fraction of directions that hit the box. The path tracer gives the same fraction as
     // its indirect light when every albedo is 1 and the sky is 1 (all light escapes eventually, so every
-    // surface's radiance is 1). Measured: GI 0.54, path tracer 0.675 (ratio 0.80: GI's probes see more
-    // misses than the path tracer — an open problem, docs/gi.md). Bound: ratio in [0.7, 1.1].
+    // surface's radiance is 1). Measured: GI 0.58, path tracer 0.675 (ratio 0.86: GI sees more of the
+    // opening than the path tracer — an open problem, docs/gi.md). Bound: ratio in [0.78, 1.1].
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const double giMean = mean(furnaceGi(td, scenes::cornellBox()));
@@ -218,16 +218,15 @@ void openFurnace(const std::string& backend) {
     white.environment.skyRadiance = glm::vec3(1.0f);
     const double reference = mean(traced(td, white, 32, 256)->read(render::Aov::IndirectDiffuse));
     INFO("GI " << giMean << " path tracer " << reference);
-    CHECK(giMean > 0.7 * reference);
+    CHECK(giMean > 0.78 * reference);
     CHECK(giMean < 1.1 * reference);
 }
 
 void furnace(const std::string& backend) {
     // A furnace: inside the closed room B of two-rooms, every surface sends radiance 1 (the lit image is
     // overwritten with 1 each frame), so every pixel's incoming light is 1 from all directions and the
-    // diffuse output (irradiance / pi) must be 1. Measured: mean 0.97, 6 % of values off by more than
-    // 15 % (L2 SH of a hemisphere evaluated for normals other than the probe's, at corners and edges).
-    // Bounds: mean within 6 %, at most 12 % of values off by more than 15 %.
+    // diffuse output (irradiance / pi) must be 1. Measured: mean 1.015, no value off by more than 15 %.
+    // Bounds: mean within 5 %, at most 2 % of values off by more than 15 %.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const render::Image indirect = furnaceGi(td, scenes::twoRooms(0.25f));
@@ -235,8 +234,8 @@ void furnace(const std::string& backend) {
     size_t off = 0;
     for (float v : indirect.rgb) off += std::fabs(v - 1.0f) > 0.15f;
     INFO("mean " << m << ", " << off << " of " << indirect.rgb.size() << " values off by > 15 %");
-    CHECK(std::fabs(m - 1.0) < 0.06);
-    CHECK(off < indirect.rgb.size() * 12 / 100);
+    CHECK(std::fabs(m - 1.0) < 0.05);
+    CHECK(off < indirect.rgb.size() * 2 / 100);
 }
 
 void depthReconstruction(const std::string& backend) {
@@ -306,7 +305,7 @@ BACKEND_TEST("GI's positions from depth match the rasterized ones", "[gi]", dept
 TEST_CASE("GI on Vulkan and GL agree", "[gi][cross]") {
     // The same 24 frames on both backends. The passes race where threads blend into the same cache texel
     // or brick (last writer wins), so the two differ by noise, not by bias: relMSE below 0.01 and means
-    // within 5 %. Measured: relMSE 9e-5, means within 1.5 %.
+    // within 5 %. Measured: relMSE 5e-5, means within 1.2 %.
     render::Image images[2];
     int k = 0;
     for (const char* backend : {"vulkan", "gl"}) {
