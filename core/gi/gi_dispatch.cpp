@@ -177,7 +177,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
         texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
-        run("fill probes", shaders_.fill, s, tilesX_, tilesY_);
+        const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
+        run("fill probes", shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
     }
     if (specular) {  // 9. specular pre-trace (one ray per 4×4 tile)
         rhi::DispatchState s;

@@ -3,14 +3,14 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
-// Pass 8: trace the screen probes. One group per probe, one ray per texel (jittered within the texel,
+// Pass 8: trace the screen probes. 16 threads per probe (4 probes per group), one ray per traced texel (jittered within the texel,
 // equal-area hemisphere mapping around the probe normal): a hit reads the radiance cache at the hit (the
 // finest cascade with data there), a miss the environment. New probes take the result; reprojected probes
 // retrace a quarter of their texels (one of each 2×2 block, rotating per frame) and blend them in. A hit with no
 // cached radiance anywhere keeps the texel's old value, or is marked "hit, unknown" (alpha, see
 // gi_common.glsl) for project_probes to fill with the mean of the probe's known hits — not left out, which
 // would weigh the misses (the environment) too much.
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 64) in;
 #define GI_PROBE_BLEND 0.35  // weight of a retraced texel's new sample in a reprojected probe
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_IMAGE(0, rgba16f) uniform image2D probes;
@@ -19,21 +19,11 @@ BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
 #define GI_USES_RADIANCE_CACHE
 #include "gi_bricks.glsl"
 
-void main() {
-    uvec2 tile = gl_WorkGroupID.xy;
-    uvec4 info = probeInfo[tile.y * giFrame.tiles.x + tile.x];
-    ivec2 texel = ivec2(tile * 8u + gl_LocalInvocationID.xy);
-    if ((info.w & GI_PROBE_VALID) == 0u) {
-        imageStore(probes, texel, vec4(0.0));
-        return;
-    }
-    bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
-    vec4 old = imageLoad(probes, texel);
-    // Reprojected probes retrace one texel of each 2×2 block per frame (all four within four frames).
-    uint phase = (gl_LocalInvocationID.x & 1u) + 2u * (gl_LocalInvocationID.y & 1u);
-    if (reprojected && old.a > 0.0 && phase != (giFrameIndex() & 3u)) return;
-    uint rng = giPcg(giPcg(tile.y * giFrame.tiles.x + tile.x) ^ (giFrameIndex() * 64u + gl_LocalInvocationIndex));
-    vec2 u = (vec2(gl_LocalInvocationID.xy) + vec2(giRandom(rng), giRandom(rng))) / 8.0;
+// One texel: trace its ray (jittered within the texel) and store or blend the result.
+void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool reprojected, vec4 old) {
+    ivec2 texel = ivec2(tile * 8u + local);
+    uint rng = giPcg(giPcg(probeIndex) ^ (giFrameIndex() * 64u + local.y * 8u + local.x));
+    vec2 u = (vec2(local) + vec2(giRandom(rng), giRandom(rng))) / 8.0;
     vec3 n = giProbeNormal(info);
     vec3 d = giProbeDirection(n, u);
     uvec2 pixel = giProbePixel(info);
@@ -57,4 +47,28 @@ void main() {
     vec4 value = vec4(radiance, kind);
     if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) value.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);
     imageStore(probes, texel, value);
+}
+
+// 16 threads per probe, one per 2×2 block of texels, so that the traced rays fill whole SIMD groups:
+// a reprojected probe retraces one texel of each block per frame (all four within four frames), a new
+// probe all four.
+void main() {
+    uint probeIndex = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u + gl_LocalInvocationIndex / 16u;
+    if (probeIndex >= giFrame.tiles.x * giFrame.tiles.y) return;
+    uvec2 tile = uvec2(probeIndex % giFrame.tiles.x, probeIndex / giFrame.tiles.x);
+    uvec4 info = probeInfo[probeIndex];
+    uint block = gl_LocalInvocationIndex % 16u;
+    uvec2 base = uvec2(block % 4u, block / 4u) * 2u;
+    bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
+    for (uint k = 0u; k < 4u; ++k) {
+        uvec2 local = base + uvec2(k & 1u, k >> 1);
+        ivec2 texel = ivec2(tile * 8u + local);
+        if ((info.w & GI_PROBE_VALID) == 0u) {
+            imageStore(probes, texel, vec4(0.0));
+            continue;
+        }
+        vec4 old = imageLoad(probes, texel);
+        if (reprojected && old.a > 0.0 && k != (giFrameIndex() & 3u)) continue;
+        giFillTexel(tile, probeIndex, info, local, reprojected, old);
+    }
 }

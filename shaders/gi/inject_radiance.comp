@@ -35,7 +35,12 @@ void main() {
     // The pixel's footprint on the surface (one pixel across, widened by the slant).
     vec3 side = giWorldPosition(uv + vec2(1.0 / float(giFrame.size.x), 0.0), depth, giCamera.inverseViewProjection);
     float footprint = max(length(side - p) / max(dot(n, toCamera), 0.25), 1e-6);
+    uint hash = giPcg(tile.x * 7919u + tile.y * 104729u + giFrameIndex());
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+        // Coarser cascades' texels are reached by many pixels: only every 2^k-th pixel (k = cascade above
+        // the start, at most 4) injects there, which the blend weight below accounts for.
+        uint level = min(c - giFrame.cascades.x, 4u);
+        if ((hash & ((1u << level) - 1u)) != 0u) continue;
         uint brick;
         vec3 uvw;
         if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, brick, uvw) && !giBrickAt(p, c, brick, uvw)) continue;
@@ -46,7 +51,7 @@ void main() {
         // the way to the current light per frame, whatever the resolution and cascade. A texel smaller than
         // a pixel is reached only every few frames and then takes most of the new value (fresh, not stale).
         float texelSize = 0.25 * giVoxelSize(c);
-        float perFrame = texelSize * texelSize / (footprint * footprint * float(GI_INJECT_TILE * GI_INJECT_TILE));
+        float perFrame = texelSize * texelSize / (footprint * footprint * float(GI_INJECT_TILE * GI_INJECT_TILE << level));
         float alpha = clamp(0.25 / perFrame, 1.0 / 256.0, 0.9);
         vec3 value = old == 0u ? lit : mix(giDecodeRgb9e5(old), lit, alpha);
         imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(value)));
