@@ -242,28 +242,30 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         run("interpolate", shaders_.interpolate, s, groups(width_, 8), groups(height_, 8));
     }
     rhi::TextureHandle finalDiffuse = diffuseHistory_[cur], finalSpecular = specularHistory_[cur];
-    if (denoise) {  // 15, 16. bilateral blur, x then y (x into last frame's history, free since pass 10)
-        struct {
+    if (denoise) {  // 15, 16. bilateral blur, x (into last frame's history, free since pass 10) then y
+        struct Step {
+            const char* label;
             int32_t direction[4];
-        } x{{1, 0, 0, 0}}, y{{0, 1, 0, 0}};
-        rhi::DispatchState s;
-        s.bindings.constants.push(rhi::constants(2, x));
-        texture(s.bindings, 0, diffuseHistory_[cur], point_);
-        texture(s.bindings, 1, specularHistory_[cur], point_);
-        texture(s.bindings, 2, depth_[cur], point_);
-        texture(s.bindings, 3, surface_[cur], point_);
-        image(s.bindings, 0, diffuseHistory_[prev], Access::Write);
-        image(s.bindings, 1, specularHistory_[prev], Access::Write);
-        run("blur x", shaders_.blur, s, groups(width_, 8), groups(height_, 8));
-        rhi::DispatchState t;
-        t.bindings.constants.push(rhi::constants(2, y));
-        texture(t.bindings, 0, diffuseHistory_[prev], point_);
-        texture(t.bindings, 1, specularHistory_[prev], point_);
-        texture(t.bindings, 2, depth_[cur], point_);
-        texture(t.bindings, 3, surface_[cur], point_);
-        image(t.bindings, 0, resolvedDiffuse_, Access::Write);
-        image(t.bindings, 1, resolvedSpecular_, Access::Write);
-        run("blur y", shaders_.blur, t, groups(width_, 8), groups(height_, 8));
+            rhi::TextureHandle in[2], out[2];
+        };
+        const Step steps[2] = {
+            {"blur x", {1, 0, 0, 0}, {diffuseHistory_[cur], specularHistory_[cur]}, {diffuseHistory_[prev], specularHistory_[prev]}},
+            {"blur y", {0, 1, 0, 0}, {diffuseHistory_[prev], specularHistory_[prev]}, {resolvedDiffuse_, resolvedSpecular_}},
+        };
+        for (const Step& step : steps) {
+            struct {
+                int32_t direction[4];
+            } pass{{step.direction[0], step.direction[1], 0, 0}};
+            rhi::DispatchState s;
+            s.bindings.constants.push(rhi::constants(2, pass));
+            texture(s.bindings, 0, step.in[0], point_);
+            texture(s.bindings, 1, step.in[1], point_);
+            texture(s.bindings, 2, depth_[cur], point_);
+            texture(s.bindings, 3, surface_[cur], point_);
+            image(s.bindings, 0, step.out[0], Access::Write);
+            image(s.bindings, 1, step.out[1], Access::Write);
+            run(step.label, shaders_.blur, s, groups(width_, 8), groups(height_, 8));
+        }
         finalDiffuse = resolvedDiffuse_;
         finalSpecular = resolvedSpecular_;
     }

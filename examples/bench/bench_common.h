@@ -7,6 +7,8 @@
 #include <string>
 
 #include "bricklight/rhi.h"
+#include "bricklight/sdf.h"
+#include "scene_geometry.h"
 
 namespace bricklight::bench {
 
@@ -42,6 +44,10 @@ inline PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
 
 // The device of --backend (null with a message on stderr).
 std::unique_ptr<rhi::IDevice> makeDevice(const Options& o);
+
+// The scene's distance field with o.cascades cascades, cascade 0 spanning 1/8 of the scene (cascade 3 all
+// of it), every mesh and instance added (not built yet). Null with a message on stderr.
+std::unique_ptr<sdf::SdfScene> makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const Options& o);
 
 int runSdf(const Options& o);
 int runGi(const Options& o);

@@ -63,21 +63,9 @@ int runGi(const Options& o) {
 
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
     const float size = std::max(extent.x, std::max(extent.y, extent.z));
-    sdf::SceneDesc desc;
-    desc.cascadeCount = o.cascades;
-    desc.finestVoxelSize = size / 512.0f;  // as the sdf benchmark: cascade 3 spans the scene
-    desc.budgets.maxReferencesPerUpdate =
-        uint32_t(std::min<uint64_t>(32u << 20, device->capabilities().limits.maxStorageBufferRange / 12));
-    auto scene = sdf::SdfScene::create(*device, desc, &error);
-    if (!scene) {
-        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
-        return 1;
-    }
-    std::vector<sdf::MeshHandle> meshes;
-    for (const auto& m : geometry.meshes)
-        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
-                                            uint32_t(m.indices.size()), m.name}));
-    for (const auto& i : geometry.instances) scene->addInstance({meshes[i.mesh], i.transform});
+    auto scene = makeBenchScene(*device, geometry, o);
+    if (!scene) return 1;
+    const sdf::SceneDesc& desc = scene->desc();
     const glm::vec3 centre = geometry.camera.eye;
     for (int i = 0; i < 4; ++i) scene->update(centre), device->endFrame();  // build everything before timing
 

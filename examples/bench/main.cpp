@@ -120,6 +120,31 @@ std::unique_ptr<rhi::IDevice> bricklight::bench::makeDevice(const Options& o) {
     return device;
 }
 
+std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry,
+                                                                 const Options& o) {
+    const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
+    sdf::SceneDesc desc;
+    desc.cascadeCount = o.cascades;
+    // Cascade 0 spans 1/8 of the scene; cascade 3 all of it; the rest reach beyond.
+    desc.finestVoxelSize = std::max(extent.x, std::max(extent.y, extent.z)) / 512.0f;
+    // The full build of the 1M-triangle field needs ~9M triangle-voxel references (the default budget is
+    // 8M, beyond which work is deferred to later updates).
+    desc.budgets.maxReferencesPerUpdate =
+        uint32_t(std::min<uint64_t>(32u << 20, device.capabilities().limits.maxStorageBufferRange / 12));
+    std::string error;
+    auto scene = sdf::SdfScene::create(device, desc, &error);
+    if (!scene) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return nullptr;
+    }
+    std::vector<sdf::MeshHandle> meshes;
+    for (const auto& m : geometry.meshes)
+        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
+                                            uint32_t(m.indices.size()), m.name}));
+    for (const auto& i : geometry.instances) scene->addInstance({meshes[i.mesh], i.transform});
+    return scene;
+}
+
 int bricklight::bench::runSdf(const Options& o) {
     std::string error;
     scenes::SceneGeometry geometry = scenes::loadScene(o.scene, &error);
@@ -134,24 +159,9 @@ int bricklight::bench::runSdf(const Options& o) {
 
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
     const float size = std::max(extent.x, std::max(extent.y, extent.z));
-    sdf::SceneDesc desc;
-    desc.cascadeCount = o.cascades;
-    // Cascade 0 spans 1/8 of the scene; cascade 3 all of it; the rest reach beyond.
-    desc.finestVoxelSize = size / 512.0f;
-    // The full build of the 1M-triangle field needs ~9M triangle-voxel references (the default budget is
-    // 8M, beyond which work is deferred to later updates).
-    desc.budgets.maxReferencesPerUpdate =
-        uint32_t(std::min<uint64_t>(32u << 20, device->capabilities().limits.maxStorageBufferRange / 12));
-    auto scene = sdf::SdfScene::create(*device, desc, &error);
-    if (!scene) {
-        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
-        return 1;
-    }
-    std::vector<sdf::MeshHandle> meshes;
-    for (const auto& m : geometry.meshes)
-        meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
-                                            uint32_t(m.indices.size()), m.name}));
-    for (const auto& i : geometry.instances) scene->addInstance({meshes[i.mesh], i.transform});
+    auto scene = makeBenchScene(*device, geometry, o);
+    if (!scene) return 1;
+    const sdf::SceneDesc& desc = scene->desc();
     const glm::vec3 center = (geometry.boundsMin + geometry.boundsMax) * 0.5f + glm::vec3(0.0f, 0.05f * size, 0.0f);
     std::printf("scene %s: %llu triangles in %zu instances; %s on %s; %u cascades, finest voxel %.4g\n", geometry.name.c_str(),
                 (unsigned long long)geometry.triangleCount(), geometry.instances.size(), o.backend.c_str(),

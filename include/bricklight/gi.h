@@ -104,14 +104,7 @@ struct DebugViewDesc {
     float exposure = 1.0f;
 };
 
-struct MemoryUse {
-    struct Resource {
-        std::string name;
-        uint64_t bytes = 0;
-    };
-    std::vector<Resource> resources;
-    uint64_t totalBytes = 0;
-};
+using MemoryUse = sdf::MemoryUse;  // named resources and their bytes
 
 class GiContext {
 public:
