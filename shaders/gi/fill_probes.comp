@@ -7,9 +7,9 @@
 // equal-area hemisphere mapping around the probe normal): a hit reads the radiance cache at the hit (the
 // finest cascade with data there), a miss the environment. New probes take the result; reprojected probes
 // retrace a quarter of their texels (one of each 2×2 block, rotating per frame) and blend them in. A hit with no
-// cached radiance anywhere keeps the texel's old value, or is marked "hit, unknown" (alpha, see
-// gi_common.glsl) for project_probes to fill with the mean of the probe's known hits — not left out, which
-// would weigh the misses (the environment) too much.
+// cached radiance anywhere is marked "hit, unknown" (alpha, see gi_common.glsl) for project_probes to fill
+// with the mean of the probe's known hits — not left out, which would weigh the misses (the environment)
+// too much.
 layout(local_size_x = 64) in;
 #define GI_PROBE_BLEND 0.35  // weight of a retraced texel's new sample in a reprojected probe
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
@@ -39,9 +39,10 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
         radiance = giEnvironment(d);
         kind = GI_TEXEL_MISS;
     } else if (!giRadianceAt(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) {
-        // A surface no view has lit yet: keep what the texel had, else mark it for the projection pass
-        // to fill from the probe's other hits.
-        if (!(reprojected && old.a > 0.0)) imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
+        // A surface no view has lit yet: marked for the projection pass to fill from the probe's known
+        // hits. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
+        // come through another probe's directions, often a miss.)
+        imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
         return;
     }
     vec4 value = vec4(radiance, kind);
