@@ -41,6 +41,6 @@ constexpr uint32_t kInjectTile = 2;         // one injected pixel per tile per f
 constexpr uint32_t kPretraceTile = 4;       // one specular pre-trace ray per 4×4 tile
 constexpr uint32_t kCacheTexelsPerBrick = 4;  // radiance cache texels per brick side
 constexpr uint32_t kShCoefficients = 9;
-constexpr uint32_t kMaxDiffuseHistory = 64;
+constexpr uint32_t kMaxDiffuseHistory = 16;
 
 }  // namespace bricklight::gi::detail
