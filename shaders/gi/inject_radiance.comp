@@ -3,8 +3,8 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
-// Pass 4: the previous frame's lit image into the radiance cache. One pixel per 4×4 tile per frame
-// (rotating through the 16), reprojected into last frame's image where the disocclusion mask says it saw
+// Pass 4: the previous frame's lit image into the radiance cache. One pixel per GI_INJECT_TILE² tile per frame
+// (rotating through the tile), reprojected into last frame's image where the disocclusion mask says it saw
 // the same surface, then blended into the cache texel at the surface point (moved half a texel towards
 // the side the camera sees, so light stays on its own side of thin walls) in every traced cascade that
 // has a brick there. The blend weight follows how often the texel is reached (below).

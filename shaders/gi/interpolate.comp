@@ -7,7 +7,7 @@
 // Pass 14: resolve each pixel's GI and accumulate it over time. Diffuse: the irradiance SH (screen probes
 // + world cache) for the pixel's normal, as irradiance / π. Specular: the traced value where the specular
 // trace found one, else the SH seen through the roughness lobe along the reflection. Both blend into the
-// reprojected history (alpha = sample count, capped: 64 for diffuse and 8..64 by roughness for
+// reprojected history (alpha = sample count, capped at kMaxDiffuseHistory (16), specular also at 8..64 by roughness for
 // specular); a value far from the history (relative change > 1/2) cuts the count to 4 so that changes of
 // light show within a few frames instead of ghosting.
 layout(local_size_x = 8, local_size_y = 8) in;
