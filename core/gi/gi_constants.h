@@ -18,7 +18,6 @@ static_assert(sizeof(GpuCamera) == 256);
 enum GpuFlags : uint32_t {
     FlagReversedDepth = 1u,
     FlagResetHistory = 2u,
-    FlagNoSpecular = 4u,
     FlagHistoryValid = 8u,
 };
 

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bricklight/half.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi {
@@ -23,14 +24,6 @@ std::unique_ptr<GiContext> GiContext::create(rhi::IDevice& device, const sdf::Sd
 }
 
 namespace detail {
-
-namespace {
-float halfToFloat(uint16_t h) {
-    const uint32_t e = (h >> 10) & 0x1Fu, m = h & 0x3FFu;
-    float f = e == 0 ? std::ldexp(float(m), -24) : e == 31 ? (m ? NAN : INFINITY) : std::ldexp(float(m | 0x400u), int(e) - 25);
-    return (h & 0x8000u) ? -f : f;
-}
-}  // namespace
 
 bool GiContextImpl::fail(const std::string& message) {
     lastError_ = desc_.debugName + ": " + message;

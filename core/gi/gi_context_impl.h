@@ -13,6 +13,22 @@
 
 namespace bricklight::gi::detail {
 
+// Binding helpers for the passes' records: whole textures, mip 0 of storage images, whole buffers.
+inline void texture(rhi::Bindings& b, uint8_t slot, rhi::TextureHandle t, rhi::SamplerHandle s) {
+    b.textures.push({slot, rhi::wholeTexture(t), s});
+}
+inline void image(rhi::Bindings& b, uint8_t slot, rhi::TextureHandle t, rhi::Access access) {
+    rhi::StorageImageBinding i;
+    i.slot = slot;
+    i.view = rhi::textureMip(t, 0);
+    i.access = access;
+    b.storageImages.push(i);
+}
+inline void readBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer) { b.readBuffers.push({slot, buffer, {}}); }
+inline void storageBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer, rhi::Access access) {
+    b.storageBuffers.push({slot, buffer, {}, access});
+}
+
 class GiContextImpl final : public GiContext {
 public:
     GiContextImpl(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc)

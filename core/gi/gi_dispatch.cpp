@@ -12,20 +12,6 @@ namespace {
 
 using rhi::Access;
 
-void texture(rhi::Bindings& b, uint8_t slot, rhi::TextureHandle t, rhi::SamplerHandle s) {
-    b.textures.push({slot, rhi::wholeTexture(t), s});
-}
-void image(rhi::Bindings& b, uint8_t slot, rhi::TextureHandle t, Access access) {
-    rhi::StorageImageBinding i;
-    i.slot = slot;
-    i.view = rhi::textureMip(t, 0);
-    i.access = access;
-    b.storageImages.push(i);
-}
-void readBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer) { b.readBuffers.push({slot, buffer, {}}); }
-void storageBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buffer, Access access) {
-    b.storageBuffers.push({slot, buffer, {}, access});
-}
 uint32_t groups(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
 // Passes over the brick pool fold into a second dimension past this many groups (the shaders index
 // y * 65535 * 64 + x).
@@ -59,7 +45,6 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     uint32_t flags = 0;
     if (desc_.flags & ContextFlags::ReversedDepth) flags |= FlagReversedDepth;
     if (d.resetHistory) flags |= FlagResetHistory;
-    if (desc_.flags & ContextFlags::NoSpecular) flags |= FlagNoSpecular;
     if (historyValid_) flags |= FlagHistoryValid;
     frame_ = GpuFrame{};
     frame_.size[0] = width_;
@@ -119,10 +104,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     }
     {  // 3. clear the cache entries of freed bricks
         rhi::DispatchState s;
-        struct {
-            uint32_t mode[4];
-        } pass{{0, 0, 0, 0}};
-        s.bindings.constants.push(rhi::constants(2, pass));
         readBuffer(s.bindings, 0, owners);
         storageBuffer(s.bindings, 0, cacheOwners_, Access::ReadWrite);
         storageBuffer(s.bindings, 1, brickSH_, Access::Write);

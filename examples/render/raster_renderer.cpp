@@ -3,15 +3,9 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-namespace bricklight::render {
+#include "bricklight/half.h"
 
-namespace {
-float halfToFloat(uint16_t h) {  // IEEE binary16 -> float (the G-buffer's RGBA16F/RG16F targets)
-    const uint32_t e = (h >> 10) & 0x1Fu, m = h & 0x3FFu;
-    float f = e == 0 ? std::ldexp(float(m), -24) : e == 31 ? (m ? NAN : INFINITY) : std::ldexp(float(m | 0x400u), int(e) - 25);
-    return (h & 0x8000u) ? -f : f;
-}
-}
+namespace bricklight::render {
 
 glm::mat4 viewMatrix(const scenes::Camera& camera) { return glm::lookAtRH(camera.eye, camera.at, camera.up); }
 

@@ -5,9 +5,8 @@
 // Pass 3: forget the cache entries of bricks the SDF freed. Every brick remembers the owner (voxel) its
 // cache was written for; where the SDF's owner differs, the brick was freed and reused elsewhere (or
 // never written): its 4³ radiance texels and its SH are cleared. A full pass over the brick pool, so it
-// also catches bricks freed by several SDF updates between two GI frames. Pass constant x = 1 clears all.
+// also catches bricks freed by several SDF updates between two GI frames.
 layout(local_size_x = 64) in;
-BL_CONSTANTS(2) uniform Pass { uvec4 mode; } pass;
 BL_READ_BUFFER(0) BrickOwners { uint brickOwners[]; };
 BL_STORAGE_BUFFER(0) CacheOwners { uint cacheOwners[]; };
 BL_STORAGE_BUFFER(1) BrickSH { uvec2 brickSH[]; };
@@ -17,7 +16,7 @@ void main() {
     uint brick = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;
     if (brick >= giFrame.cascades.w) return;
     uint owner = brickOwners[brick];
-    if (owner == cacheOwners[brick] && pass.mode.x == 0u) return;
+    if (owner == cacheOwners[brick]) return;
     cacheOwners[brick] = owner;
     for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
     uint perAxis = giFrame.cascades.z;

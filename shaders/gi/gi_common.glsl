@@ -27,7 +27,6 @@ BL_CONSTANTS(1) uniform GiFrame {
 
 #define GI_FLAG_REVERSED_DEPTH 1u
 #define GI_FLAG_RESET_HISTORY 2u
-#define GI_FLAG_NO_SPECULAR 4u
 #define GI_FLAG_HISTORY_VALID 8u   // a previous frame exists (not the first dispatch)
 
 #define GI_ENV_NONE 0u

@@ -4,14 +4,6 @@
 
 namespace bricklight::conformance {
 
-float halfToFloat(uint16_t h) {
-    uint32_t sign = (h >> 15) & 1, exp = (h >> 10) & 31, mant = h & 1023;
-    float v;
-    if (exp == 0) v = std::ldexp(float(mant), -24);
-    else if (exp == 31) v = mant ? NAN : INFINITY;
-    else v = std::ldexp(float(mant | 1024), int(exp) - 25);
-    return sign ? -v : v;
-}
 
 uint16_t floatToHalf(float f) {
     // Exact for the values the cases use (representable halves); rounds to nearest otherwise.

@@ -5,10 +5,11 @@
 #include <vector>
 
 #include "bricklight/conformance.h"
+#include "bricklight/half.h"
 
 namespace bricklight::conformance {
 
-float halfToFloat(uint16_t h);
+using bricklight::halfToFloat;
 uint16_t floatToHalf(float f);
 // Decodes an R11G11B10_FLOAT texel to three floats.
 void decodeR11G11B10(uint32_t packed, float out[3]);
