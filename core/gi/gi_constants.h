@@ -32,8 +32,23 @@ struct GpuFrame {  // BL_CONSTANTS(1)
     glm::vec4 trace;        // push-off, specular push-off, tMin, tMax
     uint32_t cascades[4];   // start, end, atlas bricks per axis, brick capacity
     glm::vec4 epsilon;      // diffuse, specular epsilon scale
+    uint32_t relight[4];    // light count, relight flags (RelightFlags), unused, unused
 };
-static_assert(sizeof(GpuFrame) == 160);
+static_assert(sizeof(GpuFrame) == 176);
+
+enum RelightFlags : uint32_t {
+    RelightAlbedo = 1u,    // DispatchDesc::diffuseAlbedo given: bricks learn their albedo, unseen texels are re-lit
+    RelightEmission = 2u,  // DispatchDesc::emission given
+    RelightEmissionInRays = 4u,  // the lit image leaves emission out: relight rays add it at their hits
+};
+
+// One light in the lights buffer (std430, 3 × vec4).
+struct GpuLight {
+    glm::vec4 position;   // xyz, w type (gi::LightType)
+    glm::vec4 direction;  // xyz unit (towards a directional light; a spot's axis), w cos(spot inner angle)
+    glm::vec4 color;      // rgb, w cos(spot outer angle)
+};
+static_assert(sizeof(GpuLight) == 48);
 
 constexpr uint32_t kProbeTile = 8;          // internal pixels per probe tile side (8×8 texels per probe)
 constexpr uint32_t kInjectTile = 2;         // one injected pixel per tile per frame (GI_INJECT_TILE)
@@ -41,5 +56,7 @@ constexpr uint32_t kPretraceTile = 4;       // one specular pre-trace ray per 4�
 constexpr uint32_t kCacheTexelsPerBrick = 4;  // radiance cache texels per brick side
 constexpr uint32_t kShCoefficients = 9;
 constexpr uint32_t kMaxDiffuseHistory = 16;
+constexpr uint32_t kBrickMaterialWords = 3;  // per brick: albedo (RGBA8), emission (RGB9E5), frame last seen + 1
+constexpr uint32_t kRelightBudget = 4096;    // bricks re-lit per frame at most (GI_RELIGHT_BUDGET)
 
 }  // namespace bricklight::gi::detail

@@ -75,6 +75,7 @@ bool GiContextImpl::init(std::string* error) {
     shaders_.reprojectProbes = shader("gi/reproject_probes.comp");
     shaders_.fill = shader("gi/fill_probes.comp");
     shaders_.pretrace = shader("gi/specular_pretrace.comp");
+    shaders_.relight = shader("gi/relight_cache.comp");
     shaders_.reprojectGi = shader("gi/reproject_gi.comp");
     shaders_.specularTrace = shader("gi/specular_trace.comp");
     shaders_.project = shader("gi/project_probes.comp");
@@ -134,9 +135,10 @@ bool GiContextImpl::init(std::string* error) {
         d.debugName = desc_.debugName + " radianceCache";
         radianceCache_ = device_.createTexture(d);
     }
-    auto buffer = [&](const std::string& name, uint64_t size, const void* data = nullptr) {
+    auto buffer = [&](const std::string& name, uint64_t size, const void* data = nullptr, uint32_t extraUsage = 0) {
         rhi::BufferDesc d;
         d.size = size;
+        d.usage |= extraUsage;
         d.debugName = desc_.debugName + " " + name;
         return device_.createBuffer(d, data);
     };
@@ -147,6 +149,9 @@ bool GiContextImpl::init(std::string* error) {
     brickSH_ = buffer("brickSH", uint64_t(capacity) * kShCoefficients * 8);
     const std::vector<uint32_t> noOwner(capacity, 0xFFFFFFFFu);
     cacheOwners_ = buffer("cacheOwners", uint64_t(capacity) * 4, noOwner.data());
+    brickMaterial_ = buffer("brickMaterial", uint64_t(capacity) * kBrickMaterialWords * 4);
+    relightList_ = buffer("relightList", 16 + uint64_t(kRelightBudget) * 4, nullptr, rhi::BufferUsage::IndirectArgs);
+    lights_ = buffer("lights", uint64_t(kMaxLights) * sizeof(GpuLight));
 
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
@@ -162,10 +167,10 @@ bool GiContextImpl::init(std::string* error) {
 
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
-                                s.pretrace, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
         if (!h) return bad("the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
@@ -177,14 +182,14 @@ bool GiContextImpl::init(std::string* error) {
 GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
-                                s.pretrace, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -194,6 +199,7 @@ void GiContextImpl::reset() {
     rhi::ClearValue zero{};
     device_.clearTexture(radianceCache_, 0, 1, zero);
     device_.clearBuffer(brickSH_, {}, 0);
+    device_.clearBuffer(brickMaterial_, {}, 0);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
                                  resolvedDiffuse_, resolvedSpecular_, dummyStorage_})
@@ -222,6 +228,8 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("radianceCache", tex(radianceCache_));
     add("brickSH", buf(brickSH_));
     add("cacheOwners", buf(cacheOwners_));
+    add("brickMaterial", buf(brickMaterial_));
+    add("relightList, lights", buf(relightList_) + buf(lights_));
     add("depth (2)", tex(depth_[0]) + tex(depth_[1]));
     add("surface (2)", tex(surface_[0]) + tex(surface_[1]));
     add("motion", tex(motion_));

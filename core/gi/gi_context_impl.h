@@ -50,8 +50,10 @@ private:
     bool fail(const std::string& message);
     // gi_inputs.cpp
     bool checkInputs(const DispatchDesc& d);
+    bool checkLights(const DispatchDesc& d);
     // gi_dispatch.cpp
     void fillConstants(const DispatchDesc& d);
+    void uploadLights(const DispatchDesc& d);
     void addTrace(rhi::Bindings& b) const;
     void run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z = 1);
 
@@ -64,13 +66,13 @@ private:
 
     struct Shaders {
         rhi::ShaderHandle downsample, disocclusion, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
-            reprojectGi, specularTrace, project, emit, interpolate, blur, upsample, debug;
+            relight, reprojectGi, specularTrace, project, emit, interpolate, blur, upsample, debug;
     } shaders_;
 
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], resolvedDiffuse_, resolvedSpecular_;
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
-    rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_;
+    rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_;
     rhi::SamplerHandle point_, linear_, environment_;
 
     GpuCamera camera_{};

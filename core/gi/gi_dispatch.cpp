@@ -2,6 +2,7 @@
 // frame index: [cur] is written this frame, [prev] holds last frame's.
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "gi_context_impl.h"
@@ -69,11 +70,29 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.cascades[2] = scene_.desc().atlasBricksPerAxis;
     frame_.cascades[3] = scene_.brickCapacity();
     frame_.epsilon = glm::vec4(d.trace.epsilonScale, d.trace.specularEpsilonScale, 0.0f, 0.0f);
+    frame_.relight[0] = d.lightCount;
+    frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
+                        (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
+}
+
+void GiContextImpl::uploadLights(const DispatchDesc& d) {
+    if (d.lightCount == 0) return;
+    std::vector<GpuLight> lights(d.lightCount);
+    for (uint32_t i = 0; i < d.lightCount; ++i) {
+        const Light& l = d.lights[i];
+        const glm::vec3 direction = l.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(l.direction);
+        const bool spot = l.type == LightType::Spot;
+        lights[i].position = glm::vec4(l.position, float(uint32_t(l.type)));
+        lights[i].direction = glm::vec4(direction, spot ? std::cos(l.spotInnerAngle) : -2.0f);
+        lights[i].color = glm::vec4(l.color, spot ? std::cos(l.spotOuterAngle) : -2.0f);
+    }
+    device_.writeBuffer(lights_, 0, lights.data(), lights.size() * sizeof(GpuLight));
 }
 
 bool GiContextImpl::dispatch(const DispatchDesc& d) {
     if (!checkInputs(d)) return false;
     fillConstants(d);
+    uploadLights(d);
     const int cur = int(frameIndex_ & 1u), prev = cur ^ 1;
     const bool specular = !(desc_.flags & ContextFlags::NoSpecular);
     const bool denoise = !(desc_.flags & ContextFlags::NoDenoiser);
@@ -102,11 +121,18 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, disocclusion_, Access::Write);
         run("disocclusion mask", shaders_.disocclusion, s, groups(width_, 8), groups(height_, 8));
     }
-    {  // 3. clear the cache entries of freed bricks
+    const bool relight = bool(d.diffuseAlbedo);
+    if (relight) {  // the relight list's dispatch arguments and count start at (0, 1, 1), 0
+        const uint32_t start[4] = {0, 1, 1, 0};
+        device_.writeBuffer(relightList_, 0, start, sizeof(start));
+    }
+    {  // 3. clear the cache entries of freed bricks; pick the bricks to re-light
         rhi::DispatchState s;
         readBuffer(s.bindings, 0, owners);
         storageBuffer(s.bindings, 0, cacheOwners_, Access::ReadWrite);
         storageBuffer(s.bindings, 1, brickSH_, Access::Write);
+        storageBuffer(s.bindings, 2, brickMaterial_, Access::ReadWrite);
+        storageBuffer(s.bindings, 3, relightList_, Access::ReadWrite);
         image(s.bindings, 0, radianceCache_, Access::Write);
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
@@ -117,9 +143,30 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 2, motion_, point_);
         texture(s.bindings, 3, disocclusion_, point_);
         texture(s.bindings, 4, d.previousLitOutput, linear_);
+        texture(s.bindings, 5, relight ? d.diffuseAlbedo : black2D_, linear_);
+        texture(s.bindings, 6, d.emission ? d.emission : black2D_, linear_);
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
+        storageBuffer(s.bindings, 0, brickMaterial_, Access::ReadWrite);
         addTrace(s.bindings);
         run("inject radiance", shaders_.inject, s, groups(groups(width_, kInjectTile), 8), groups(groups(height_, kInjectTile), 8));
+    }
+    if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
+        rhi::DispatchState s;
+        s.shader = shaders_.relight;
+        s.label = "relight cache";
+        s.bindings.constants.push(rhi::constants(0, camera_));
+        s.bindings.constants.push(rhi::constants(1, frame_));
+        readBuffer(s.bindings, 0, relightList_);
+        readBuffer(s.bindings, 1, owners);
+        readBuffer(s.bindings, 2, brickMaterial_);
+        readBuffer(s.bindings, 3, lights_);
+        image(s.bindings, 0, radianceCache_, Access::ReadWrite);
+        addTrace(s.bindings);
+        texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
+        texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
+        device_.beginMarker(s.label);
+        device_.dispatchIndirect(s, relightList_, 0);
+        device_.endMarker();
     }
     {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
         const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];

@@ -61,6 +61,10 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     if (!input("depth", d.depth, 1, true) || !input("normals", d.normals, 3, true) || !input("roughness", d.roughness, 1, true) ||
         !input("motionVectors", d.motionVectors, 2, true) || !input("previousLitOutput", d.previousLitOutput, 3, false))
         return false;
+    if (d.diffuseAlbedo && !input("diffuseAlbedo", d.diffuseAlbedo, 3, true)) return false;
+    if (d.emission && !d.diffuseAlbedo) return fail("dispatch: input 'emission' is given without 'diffuseAlbedo': relighting needs the albedo");
+    if (d.emission && !input("emission", d.emission, 3, true)) return false;
+    if (!checkLights(d)) return false;
     const rhi::FormatInfo& roughness = rhi::formatInfo(device_.describe(d.roughness)->format);
     if (d.roughnessChannel >= roughness.channels)
         return fail("dispatch: roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture (" +
@@ -69,8 +73,8 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     if (!(desc_.flags & ContextFlags::NoSpecular) || d.outputSpecular)
         if (!output("outputSpecular", d.outputSpecular)) return false;
     if (d.outputSpecular && d.outputSpecular == d.outputDiffuse) return fail("dispatch: outputDiffuse and outputSpecular are the same texture");
-    for (rhi::TextureHandle in : {d.depth, d.normals, d.roughness, d.motionVectors, d.previousLitOutput})
-        if (in == d.outputDiffuse || (d.outputSpecular && in == d.outputSpecular))
+    for (rhi::TextureHandle in : {d.depth, d.normals, d.roughness, d.motionVectors, d.previousLitOutput, d.diffuseAlbedo, d.emission})
+        if (in && (in == d.outputDiffuse || (d.outputSpecular && in == d.outputSpecular)))
             return fail("dispatch: an output is also bound as an input");
     if (d.environmentKind != EnvironmentKind::None) {
         if (!d.environmentMap) return fail("dispatch: environmentKind is set but environmentMap is missing");
@@ -108,6 +112,28 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     if (!(t.epsilonScale > 0.0f) || !(t.specularEpsilonScale > 0.0f) || !std::isfinite(t.epsilonScale) ||
         !std::isfinite(t.specularEpsilonScale))
         return fail("dispatch: trace epsilon scales must be finite and > 0");
+    return true;
+}
+
+bool GiContextImpl::checkLights(const DispatchDesc& d) {
+    if (d.lightCount == 0) return true;
+    if (!d.lights) return fail("dispatch: lightCount is " + std::to_string(d.lightCount) + " but lights is null");
+    if (d.lightCount > kMaxLights)
+        return fail("dispatch: lightCount " + std::to_string(d.lightCount) + " is above kMaxLights (" + std::to_string(kMaxLights) + ")");
+    if (!d.diffuseAlbedo) return fail("dispatch: lights are given without 'diffuseAlbedo': relighting needs the albedo");
+    auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    for (uint32_t i = 0; i < d.lightCount; ++i) {
+        const Light& l = d.lights[i];
+        const std::string name = "dispatch: lights[" + std::to_string(i) + "]";
+        if (uint32_t(l.type) > uint32_t(LightType::Spot)) return fail(name + " has an unknown type");
+        if (!finite3(l.position) || !finite3(l.direction) || !finite3(l.color) || !std::isfinite(l.spotInnerAngle) ||
+            !std::isfinite(l.spotOuterAngle))
+            return fail(name + " has a value that is not finite");
+        if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f) return fail(name + " has a negative color");
+        if (l.type != LightType::Point && glm::length(l.direction) < 1e-6f) return fail(name + " has a zero direction");
+        if (l.type == LightType::Spot && !(l.spotInnerAngle >= 0.0f && l.spotInnerAngle <= l.spotOuterAngle && l.spotOuterAngle <= 3.1416f))
+            return fail(name + " needs 0 <= spotInnerAngle <= spotOuterAngle <= pi");
+    }
     return true;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <array>
 #include <fstream>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -18,7 +19,7 @@ namespace bricklight::bench {
 namespace {
 
 const char* const kGiPasses[] = {"downsample",        "disocclusion mask", "clear freed bricks", "inject radiance",
-                                 "propagate SH",      "spawn probes",      "reproject probes",   "fill probes",
+                                 "relight cache",     "propagate SH",      "spawn probes",      "reproject probes",   "fill probes",
                                  "specular pretrace", "reproject GI",      "specular trace",     "project probes",
                                  "emit irradiance",   "interpolate",       "blur x",             "blur y",
                                  "upsample"};
@@ -92,10 +93,26 @@ int runGi(const Options& o) {
                        motion = target(rhi::Format::RG16_FLOAT, "bench motion"), lit = target(rhi::Format::RGBA16_FLOAT, "bench lit"),
                        diffuse = target(rhi::Format::RGBA16_FLOAT, "bench diffuse GI"),
                        specular = target(rhi::Format::RGBA16_FLOAT, "bench specular GI");
+    // The surfaces' albedo (the G-buffer shader's grey) and its sun, for GI's off-screen relighting.
+    rhi::TextureHandle albedo;
+    {
+        rhi::TextureDesc d;
+        d.format = rhi::Format::RGBA16_FLOAT;
+        d.width = o.width;
+        d.height = o.height;
+        d.usage = Sampled;
+        d.debugName = "bench albedo";
+        const std::vector<uint16_t> grey(size_t(o.width) * o.height * 4, 0x38CD);  // 0.6
+        albedo = device->createTexture(d, grey.data());
+    }
+    gi::Light sun;
+    sun.type = gi::LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-0.4f, 1.0f, 0.3f));
+    sun.color = glm::vec3(3.0f * 3.14159265f);  // the G-buffer shader's 0.6 · 3 cos θ = albedo / π · E
     rhi::ShaderDesc sd;
     sd.blob = rhi::findShader("bench/sdf_gbuffer.comp");
     rhi::ShaderHandle gbufferShader = device->createShader(sd);
-    if (!depth || !normals || !motion || !lit || !diffuse || !specular || !gbufferShader) {
+    if (!depth || !normals || !motion || !lit || !albedo || !diffuse || !specular || !gbufferShader) {
         std::fprintf(stderr, "bricklight-bench: the device could not create the benchmark's G-buffer\n");
         return 1;
     }
@@ -130,6 +147,9 @@ int runGi(const Options& o) {
         d.roughnessChannel = 3;
         d.motionVectors = motion;
         d.previousLitOutput = lit;
+        d.diffuseAlbedo = albedo;
+        d.lights = &sun;
+        d.lightCount = 1;
         d.outputDiffuse = diffuse;
         d.outputSpecular = specular;
         rhi::DispatchState s;
@@ -183,7 +203,7 @@ int runGi(const Options& o) {
         }
         std::printf("wrote %s\n", o.json.c_str());
     }
-    for (rhi::TextureHandle h : {depth, normals, motion, lit, diffuse, specular}) device->destroy(h);
+    for (rhi::TextureHandle h : {depth, normals, motion, lit, albedo, diffuse, specular}) device->destroy(h);
     device->destroy(gbufferShader);
     return 0;
 }

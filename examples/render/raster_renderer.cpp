@@ -18,6 +18,35 @@ glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sce
     return projection;
 }
 
+// The scene's sun and point/spot lights, for GI's relighting of what the camera does not see. (The sky is
+// not among them: the renderer's direct lighting already holds it, so GI is given no environment.)
+static std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene) {
+    std::vector<gi::Light> lights;
+    const scenes::Environment& env = scene.environment;
+    if (env.sunIrradiance.x > 0.0f || env.sunIrradiance.y > 0.0f || env.sunIrradiance.z > 0.0f) {
+        gi::Light sun;
+        sun.type = gi::LightType::Directional;
+        sun.direction = env.sunDirection;
+        sun.color = env.sunIrradiance;
+        lights.push_back(sun);
+    }
+    for (const scenes::PointLight& p : scene.pointLights) {
+        if (lights.size() == gi::kMaxLights) break;
+        gi::Light l;
+        const bool spot = p.outerConeRadians <= 3.14159265f;
+        l.type = spot ? gi::LightType::Spot : gi::LightType::Point;
+        l.position = p.position;
+        l.direction = p.direction;
+        l.color = p.intensity;
+        if (spot) {
+            l.spotOuterAngle = p.outerConeRadians;
+            l.spotInnerAngle = std::min(p.innerConeRadians, p.outerConeRadians);
+        }
+        lights.push_back(l);
+    }
+    return lights;
+}
+
 glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize) {
     return projectionMatrix(camera, aspect, sceneSize) * viewMatrix(camera);
 }
@@ -79,6 +108,7 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
     if (options.gi && !r->createGi(scene, error)) return nullptr;
+    r->giLights_ = giLightsOf(scene);
     if (!r->setCamera(scene.camera, error)) return nullptr;
     r->previousViewProjection_ = r->viewProjection_;
     r->previousView_ = r->view_;
@@ -253,6 +283,15 @@ void RasterRenderer::render() {
         g.roughnessChannel = 3;
         g.motionVectors = motion_;
         g.previousLitOutput = lit_;
+        if (options_.giRelight) {
+            g.diffuseAlbedo = albedo_;  // base colour: metals' (small) diffuse part is overestimated off screen
+            // The lit image fed back leaves emission out (direct lighting samples the emitters): re-lit
+            // texels leave it out too, and their rays add it where they hit an emitter.
+            g.emission = emission_;
+            g.previousLitIncludesEmission = false;
+            g.lights = giLights_.data();
+            g.lightCount = uint32_t(giLights_.size());
+        }
         g.outputDiffuse = giDiffuse_;
         g.outputSpecular = giSpecular_;
         g.resetHistory = cut_;
@@ -292,6 +331,7 @@ bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* e
         return false;
     }
     scene_ = std::move(next);
+    giLights_ = giLightsOf(scene);
     syncSdf(scene);
     return true;
 }

@@ -21,6 +21,7 @@ struct RasterOptions {
     uint32_t seed = 1;
     bool gi = false;  // true: GI from the distance field (bricklight-render turns it on)
     gi::InternalResolution giResolution = gi::InternalResolution::Native;
+    bool giRelight = true;  // give GI the albedo, emission and lights, so it re-lights what the camera does not see
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
 };
 
@@ -74,6 +75,7 @@ private:
     std::vector<glm::mat4> sdfTransforms_;
     glm::vec3 sdfCenter_{0.0f};
     std::unique_ptr<gi::GiContext> gi_;
+    std::vector<gi::Light> giLights_;
     bool cut_ = false;
     scenes::Camera camera_;
     glm::mat4 view_{1.0f}, projection_{1.0f}, previousView_{1.0f}, previousProjection_{1.0f};

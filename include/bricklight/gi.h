@@ -55,6 +55,19 @@ struct TraceParams {
     float tMax = 1e30f;
 };
 
+// A light of the application's direct lighting, for relighting the radiance cache where the camera does
+// not see (DispatchDesc::lights). Units are the lit image's.
+enum class LightType : uint8_t { Directional, Point, Spot };
+struct Light {
+    LightType type = LightType::Point;
+    glm::vec3 position{0.0f};                // point, spot
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: towards the light; spot: the cone's axis (away from the light)
+    glm::vec3 color{0.0f};                   // directional: irradiance on a surface facing it; point, spot: intensity (W/sr)
+    float spotInnerAngle = 0.0f;             // spot: half-angles (radians) of full light and of no light
+    float spotOuterAngle = 0.0f;
+};
+constexpr uint32_t kMaxLights = 64;
+
 // One frame's inputs. Textures are the application's (Sampled usage); the G-buffer inputs are display
 // sized. Matrices are GLM column-major; projections map to depth [0, 1] (reversed with
 // ContextFlags::ReversedDepth) and NDC y = -1 at the image's top row (the RHI contract's top-left origin).
@@ -79,6 +92,21 @@ struct DispatchDesc {
     EnvironmentKind environmentKind = EnvironmentKind::None;
     rhi::TextureHandle environmentMap;    // cube, or 2D equirectangular (docs/gi.md gives the mapping)
     float environmentIntensity = 1.0f;
+
+    // Off-screen relighting (docs/gi.md, "Relighting"): with the surfaces' diffuse albedo (linear RGB,
+    // display size) the cache learns each brick's albedo (and, with `emission`, its emitted radiance) where
+    // the camera sees it; texels of bricks the camera has not seen for a few frames are then re-lit from
+    // `lights` (shadowed through the distance field), the emission and rays into the cache, so that light
+    // which changes out of view still reaches the cache. Without diffuseAlbedo the cache learns only from
+    // the screen.
+    rhi::TextureHandle diffuseAlbedo;
+    rhi::TextureHandle emission;          // optional: emitted radiance (linear RGB, display size)
+    // Whether previousLitOutput includes the emission. True: re-lit texels emit it themselves. False (a
+    // renderer whose direct lighting samples the emitters, so the lit image fed back leaves them out):
+    // re-lit texels leave it out too, and their rays add the emission of the bricks they hit.
+    bool previousLitIncludesEmission = true;
+    const Light* lights = nullptr;        // lightCount entries, at most kMaxLights
+    uint32_t lightCount = 0;
 
     TraceParams trace;
     // Forget screen-space history (camera cut): temporal accumulation and probe reuse restart; the

@@ -2,24 +2,43 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "gi_common.glsl"
-// Pass 3: forget the cache entries of bricks the SDF freed. Every brick remembers the owner (voxel) its
-// cache was written for; where the SDF's owner differs, the brick was freed and reused elsewhere (or
-// never written): its 4³ radiance texels and its SH are cleared. A full pass over the brick pool, so it
-// also catches bricks freed by several SDF updates between two GI frames.
+// Pass 3: forget the cache entries of bricks the SDF freed, and pick this frame's bricks to re-light.
+// Every brick remembers the owner (voxel) its cache was written for; where the SDF's owner differs, the
+// brick was freed and reused elsewhere (or never written): its 4³ radiance texels, its SH and its
+// material are cleared. A full pass over the brick pool, so it also catches bricks freed by several SDF
+// updates between two GI frames.
+// With relighting on, a brick whose albedo is known and that the camera has not seen for GI_RELIGHT_AFTER
+// frames is appended, every GI_RELIGHT_PERIOD-th frame, to the relight list: words 0..2 are the
+// indirect dispatch's arguments (x = bricks listed, one group each; the host resets them to 0, 1, 1),
+// word 3 counts the candidates, the bricks follow.
 layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) BrickOwners { uint brickOwners[]; };
 BL_STORAGE_BUFFER(0) CacheOwners { uint cacheOwners[]; };
 BL_STORAGE_BUFFER(1) BrickSH { uvec2 brickSH[]; };
+BL_STORAGE_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
+BL_STORAGE_BUFFER(3) RelightList { uint relightList[]; };
 BL_IMAGE(0, r32ui) uniform writeonly uimage3D radianceCache;
 
 void main() {
     uint brick = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;
     if (brick >= giFrame.cascades.w) return;
     uint owner = brickOwners[brick];
-    if (owner == cacheOwners[brick]) return;
-    cacheOwners[brick] = owner;
-    for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
-    uint perAxis = giFrame.cascades.z;
-    ivec3 base = ivec3(brick % perAxis, (brick / perAxis) % perAxis, brick / (perAxis * perAxis)) * 4;
-    for (int k = 0; k < 64; ++k) imageStore(radianceCache, base + ivec3(k & 3, (k >> 2) & 3, k >> 4), uvec4(0u));
+    uint m = brick * GI_MATERIAL_WORDS;
+    if (owner != cacheOwners[brick]) {
+        cacheOwners[brick] = owner;
+        for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
+        for (uint i = 0u; i < GI_MATERIAL_WORDS; ++i) brickMaterial[m + i] = 0u;
+        uint perAxis = giFrame.cascades.z;
+        ivec3 base = ivec3(brick % perAxis, (brick / perAxis) % perAxis, brick / (perAxis * perAxis)) * 4;
+        for (int k = 0; k < 64; ++k) imageStore(radianceCache, base + ivec3(k & 3, (k >> 2) & 3, k >> 4), uvec4(0u));
+        return;
+    }
+    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == 0xFFFFFFFFu) return;
+    uint seen = brickMaterial[m + 2u];
+    if (seen == 0u || (brickMaterial[m] >> 24) == 0u) return;  // never seen, or no albedo learnt
+    if (giFrameIndex() + 1u - seen < GI_RELIGHT_AFTER || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    uint slot = atomicAdd(relightList[3], 1u);
+    if (slot >= GI_RELIGHT_BUDGET) return;
+    relightList[4u + slot] = brick;
+    atomicMax(relightList[0], slot + 1u);
 }

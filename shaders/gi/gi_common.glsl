@@ -23,7 +23,21 @@ BL_CONSTANTS(1) uniform GiFrame {
     vec4 trace;          // x diffuse push-off, y specular push-off, z tMin, w tMax
     uvec4 cascades;      // x start, y end (clamped), z atlas bricks per axis, w brick capacity
     vec4 epsilon;        // x diffuse epsilon scale, y specular epsilon scale
+    uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
 } giFrame;
+
+#define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)
+#define GI_RELIGHT_EMISSION 2u  // ...and their emission
+#define GI_RELIGHT_EMISSION_IN_RAYS 4u  // the lit image leaves emission out: relight rays add it at their hits
+// Per-brick material (GI_MATERIAL_WORDS uints per brick): albedo RGBA8 (a = 1 once learnt), emission
+// RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never).
+#define GI_MATERIAL_WORDS 3u
+// Relighting (relight_cache.comp): a brick the camera has not seen for GI_RELIGHT_AFTER frames is re-lit
+// every GI_RELIGHT_PERIOD-th frame; at most GI_RELIGHT_BUDGET bricks per frame (core/gi/gi_constants.h:
+// kRelightBudget).
+#define GI_RELIGHT_AFTER 4u
+#define GI_RELIGHT_PERIOD 1u
+#define GI_RELIGHT_BUDGET 4096u
 
 #define GI_FLAG_REVERSED_DEPTH 1u
 #define GI_FLAG_RESET_HISTORY 2u

@@ -8,6 +8,7 @@
 // the same surface, then blended into the cache texel at the surface point (moved half a texel towards
 // the side the camera sees, so light stays on its own side of thin walls) in every traced cascade that
 // has a brick there. The blend weight follows how often the texel is reached (below).
+// With relighting on, the brick also learns the pixel's albedo (and emission), and when it was last seen.
 layout(local_size_x = 8, local_size_y = 8) in;
 #define GI_INJECT_TILE 2u  // one pixel of each GI_INJECT_TILE² tile per frame (core/gi/gi_constants.h: kInjectTile)
 BL_TEXTURE(0) uniform sampler2D depthNow;
@@ -15,7 +16,10 @@ BL_TEXTURE(1) uniform usampler2D surfaceNow;
 BL_TEXTURE(2) uniform sampler2D motionNow;
 BL_TEXTURE(3) uniform sampler2D disocclusion;
 BL_TEXTURE(4) uniform sampler2D previousLit;
+BL_TEXTURE(5) uniform sampler2D diffuseAlbedo;  // a black 1×1 without relighting
+BL_TEXTURE(6) uniform sampler2D emission;       // a black 1×1 without emission
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
+BL_STORAGE_BUFFER(0) BrickMaterial { uint brickMaterial[]; };
 #include "gi_bricks.glsl"
 
 void main() {
@@ -36,6 +40,10 @@ void main() {
     vec3 side = giWorldPosition(uv + vec2(1.0 / float(giFrame.size.x), 0.0), depth, giCamera.inverseViewProjection);
     float footprint = max(length(side - p) / max(dot(n, toCamera), 0.25), 1e-6);
     uint hash = giPcg(tile.x * 7919u + tile.y * 104729u + giFrameIndex());
+    bool learn = (giFrame.relight.y & GI_RELIGHT_ALBEDO) != 0u;
+    vec3 albedo = clamp(textureLod(diffuseAlbedo, uv, 0.0).rgb, vec3(0.0), vec3(1.0));
+    vec3 emitted = textureLod(emission, uv, 0.0).rgb;
+    if (!giFinite(albedo) || !giFinite(emitted) || any(lessThan(emitted, vec3(0.0)))) learn = false;
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         // Coarser cascades' texels are reached by many pixels: only every 2^k-th pixel (k = cascade above
         // the start, at most 4) injects there, which the blend weight below accounts for.
@@ -55,5 +63,17 @@ void main() {
         float alpha = clamp(0.25 / perFrame, 1.0 / 256.0, 0.9);
         vec3 value = old == 0u ? lit : mix(giDecodeRgb9e5(old), lit, alpha);
         imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(value)));
+        if (learn) {
+            // The brick's material: a running mean over the pixels that reach it (racing writers lose an
+            // update now and then, which a mean can afford).
+            uint m = brick * GI_MATERIAL_WORDS;
+            vec4 known = unpackUnorm4x8(brickMaterial[m]);
+            brickMaterial[m] = packUnorm4x8(vec4(known.a > 0.5 ? mix(known.rgb, albedo, 0.125) : albedo, 1.0));
+            if ((giFrame.relight.y & GI_RELIGHT_EMISSION) != 0u) {
+                uint e = brickMaterial[m + 1u];
+                brickMaterial[m + 1u] = giEncodeRgb9e5(e != 0u ? mix(giDecodeRgb9e5(e), emitted, 0.125) : emitted);
+            }
+            brickMaterial[m + 2u] = giFrameIndex() + 1u;
+        }
     }
 }

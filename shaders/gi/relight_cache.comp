@@ -1,0 +1,145 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+#include "bricklight/trace.glsl"
+#include "gi_common.glsl"
+// Pass 4b: re-light the radiance cache where the camera does not see. The screen injects only what it
+// sees, so light that changes out of view (a lamp switched off behind the camera) would stay in the cache
+// for ever. For each brick of this frame's relight list (clear_freed_bricks.comp picks bricks unseen for a
+// few frames), one thread per written texel: the surface near the texel (the distance field's gradient
+// and distance), then
+//   radiance = emission + albedo · (E_lights / π + mean of GI_RELIGHT_RAYS cosine-weighted rays' radiance)
+// with the lights shadowed through the field and the rays reading the cache (the environment on a miss):
+// one more bounce each time, as the screen's feedback gives on screen. Albedo and emission are the brick's
+// (learnt by inject_radiance.comp where the camera saw it): one value per brick, so texels of a brick
+// that spans two materials get their mean.
+layout(local_size_x = 64) in;  // one group per listed brick, one thread per texel
+#define GI_RELIGHT_RAYS 2u
+// How far a re-lit texel moves towards the new value (a brick is re-lit every GI_RELIGHT_PERIOD frames).
+#define GI_RELIGHT_BLEND 0.5
+BL_READ_BUFFER(0) RelightList { uint relightList[]; };
+BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
+BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
+BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 3 per light (core/gi/gi_constants.h: GpuLight)
+BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
+#include "gi_environment.glsl"
+#define GI_USES_RADIANCE_CACHE
+#include "gi_bricks.glsl"
+
+// Outward unit normal and distance (world) of the surface near brick-local uvw. The field is unsigned, so
+// its gradient points away from the surface on the texel's own side — the side the camera saw, since
+// injection moves half a texel towards it. A texel centre right on the surface has no useful gradient:
+// the neighbouring point (an eighth of a voxel away) farthest from the surface stands in for it.
+bool giSurfaceNear(uint brick, vec3 uvw, float band, out vec3 n, out float distance) {
+    const float h = 1.0 / 7.0;
+    vec3 at = uvw;
+    float best = blSdfSampleBrick(brick, uvw);
+    if (best < 0.5 * h) {
+        for (int i = 0; i < 6; ++i) {
+            vec3 o = uvw;
+            o[i >> 1] += (i & 1) == 0 ? 0.125 : -0.125;
+            float s = blSdfSampleBrick(brick, o);
+            if (s > best) {
+                best = s;
+                at = o;
+            }
+        }
+    }
+    vec3 g = vec3(blSdfSampleBrick(brick, at + vec3(h, 0, 0)) - blSdfSampleBrick(brick, at - vec3(h, 0, 0)),
+                  blSdfSampleBrick(brick, at + vec3(0, h, 0)) - blSdfSampleBrick(brick, at - vec3(0, h, 0)),
+                  blSdfSampleBrick(brick, at + vec3(0, 0, h)) - blSdfSampleBrick(brick, at - vec3(0, 0, h)));
+    float len = length(g);
+    if (!(len > 1e-4) || best >= 0.999) return false;  // no surface within the band
+    n = g / len;
+    distance = blSdfSampleBrick(brick, uvw) * band;
+    return true;
+}
+
+bool giShadowed(vec3 p, vec3 l, float distance) {
+    BlSdfRay ray = blSdfMakeRay(p, l, giFrame.trace.z, min(distance, giFrame.trace.w));
+    ray.startCascade = giFrame.cascades.x;
+    ray.endCascade = giFrame.cascades.y;
+    ray.epsilonScale = giFrame.epsilon.x;
+    return blSdfTrace(ray).hit;
+}
+
+// Irradiance from the frame's lights at p (normal n), shadowed through the field.
+vec3 giLightIrradiance(vec3 p, vec3 n) {
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < giFrame.relight.x; ++i) {
+        vec4 a = giLights[3u * i], b = giLights[3u * i + 1u], c = giLights[3u * i + 2u];
+        vec3 l = b.xyz, irradiance = c.rgb;
+        float distance = 1e30;
+        if (a.w > 0.5) {  // point or spot
+            vec3 toLight = a.xyz - p;
+            float d2 = max(dot(toLight, toLight), 1e-8);
+            distance = sqrt(d2);
+            l = toLight / distance;
+            irradiance /= d2;
+            if (a.w > 1.5) {  // spot: c.w = cos(outer) < b.w = cos(inner)
+                float axis = dot(-l, b.xyz);
+                irradiance *= b.w > c.w ? smoothstep(c.w, b.w, axis) : step(c.w, axis);
+            }
+        }
+        float cosine = dot(n, l);
+        if (cosine <= 0.0 || all(equal(irradiance, vec3(0.0)))) continue;
+        if (!giShadowed(p, l, distance)) sum += irradiance * cosine;
+    }
+    return sum;
+}
+
+void main() {
+    uint slot = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
+    if (slot >= min(relightList[3], GI_RELIGHT_BUDGET)) return;
+    uint brick = relightList[4u + slot];
+    uint owner = brickOwners[brick];
+    if (owner == 0xFFFFFFFFu) return;
+    uint t = gl_LocalInvocationIndex;
+    ivec3 local = ivec3(t & 3u, (t >> 2) & 3u, t >> 4);
+    ivec3 texel = giCacheTexelBase(brick) + local;
+    uint old = imageLoad(giRadianceCache, texel).r;
+    if (old == 0u) return;  // nothing was ever seen here
+    uint cascade;
+    ivec3 voxel = giOwnerVoxel(owner, cascade);
+    BlSdfCascade info = blSdfTable.cascades[cascade];
+    vec3 uvw = (vec3(local) + 0.5) / 4.0;
+    vec3 n;
+    float distance;
+    if (!giSurfaceNear(brick, uvw, info.voxelSize.w, n, distance)) return;
+    vec3 q = (vec3(voxel) + uvw) * info.voxelSize.x;
+    vec3 s = q - n * distance;
+    vec3 p = s + n * giPushOff(s, giFrame.trace.x);
+
+    uint m = brick * GI_MATERIAL_WORDS;
+    vec3 albedo = unpackUnorm4x8(brickMaterial[m]).rgb;
+    // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
+    bool emissionInRays = (giFrame.relight.y & GI_RELIGHT_EMISSION_IN_RAYS) != 0u;
+    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? giDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
+    vec3 bounce = vec3(0.0);
+    float known = 0.0;
+    uint rng = giPcg(brick * 64u + t + giPcg(giFrameIndex()));
+    vec3 tangent, bitangent;
+    giBasis(n, tangent, bitangent);
+    for (uint r = 0u; r < GI_RELIGHT_RAYS; ++r) {
+        // Cosine-weighted: the mean radiance is the irradiance over π.
+        float u1 = giRandom(rng), phi = 2.0 * GI_PI * giRandom(rng);
+        float sr = sqrt(u1);
+        vec3 d = normalize(tangent * (sr * cos(phi)) + bitangent * (sr * sin(phi)) + n * sqrt(max(1.0 - u1, 0.0)));
+        BlSdfRay ray = blSdfMakeRay(p, d, giFrame.trace.z, giFrame.trace.w);
+        ray.startCascade = giFrame.cascades.x;
+        ray.endCascade = giFrame.cascades.y;
+        ray.epsilonScale = giFrame.epsilon.x;
+        BlSdfHit hit = blSdfTrace(ray);
+        vec3 radiance;
+        if (!hit.hit) radiance = giEnvironment(d);
+        else if (!giRadianceAt(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) continue;  // unknown: no vote
+        else if (emissionInRays && brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u] != 0u)
+            radiance += giDecodeRgb9e5(brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u]);
+        bounce += radiance;
+        known += 1.0;
+    }
+    if (known > 0.0) bounce /= known;
+    vec3 target = emitted + albedo * (giLightIrradiance(p, n) / GI_PI + bounce);
+    if (!giFinite(target)) return;
+    imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(mix(giDecodeRgb9e5(old), target, GI_RELIGHT_BLEND))));
+}
