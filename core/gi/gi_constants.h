@@ -54,6 +54,8 @@ constexpr uint32_t kProbeTile = 8;          // internal pixels per probe tile si
 constexpr uint32_t kInjectTile = 2;         // one injected pixel per tile per frame (GI_INJECT_TILE)
 constexpr uint32_t kPretraceTile = 4;       // one specular pre-trace ray per 4×4 tile
 constexpr uint32_t kCacheTexelsPerBrick = 4;  // radiance cache texels per brick side
+constexpr uint32_t kCacheSlotsPerLayer = 64 * 64;  // slots per 4-texel layer of the cache image (giCacheSlotBase)
+constexpr uint32_t kDefaultCacheSlots = 65536;     // ContextDesc::radianceCacheBricks = 0
 constexpr uint32_t kShCoefficients = 9;
 constexpr uint32_t kMaxDiffuseHistory = 16;
 constexpr uint32_t kBrickMaterialWords = 3;  // per brick: albedo (RGBA8), emission (RGB9E5), frame last seen + 1

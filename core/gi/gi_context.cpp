@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -55,11 +56,14 @@ bool GiContextImpl::init(std::string* error) {
     height_ = std::max(1u, uint32_t(std::lround(desc_.displayHeight * scale)));
     tilesX_ = (width_ + kProbeTile - 1) / kProbeTile;
     tilesY_ = (height_ + kProbeTile - 1) / kProbeTile;
-    const uint32_t bricksPerAxis = scene_.desc().atlasBricksPerAxis;
-    cacheSize_ = bricksPerAxis * kCacheTexelsPerBrick;
-    if (cacheSize_ > caps.limits.maxTextureSize3D)
-        return bad("the radiance cache (" + std::to_string(cacheSize_) + "³) exceeds the device's 3D texture limit");
     const uint32_t capacity = scene_.brickCapacity();
+    if (desc_.radianceCacheBricks > capacity)
+        return bad("radianceCacheBricks " + std::to_string(desc_.radianceCacheBricks) + " is more than the scene's " +
+                   std::to_string(capacity) + " bricks");
+    cacheSlots_ = desc_.radianceCacheBricks ? desc_.radianceCacheBricks : std::min(capacity, kDefaultCacheSlots);
+    cacheDepth_ = (cacheSlots_ + kCacheSlotsPerLayer - 1) / kCacheSlotsPerLayer * kCacheTexelsPerBrick;
+    if (cacheDepth_ > caps.limits.maxTextureSize3D || 256 > caps.limits.maxTextureSize3D)
+        return bad("the radiance cache (256x256x" + std::to_string(cacheDepth_) + ") exceeds the device's 3D texture limit");
 
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
@@ -130,7 +134,8 @@ bool GiContextImpl::init(std::string* error) {
         rhi::TextureDesc d;
         d.dimension = rhi::TextureDimension::Texture3D;
         d.format = F::R32_UINT;
-        d.width = d.height = d.depthOrLayers = cacheSize_;
+        d.width = d.height = 64 * kCacheTexelsPerBrick;
+        d.depthOrLayers = cacheDepth_;
         d.usage = Storage;
         d.debugName = desc_.debugName + " radianceCache";
         radianceCache_ = device_.createTexture(d);
@@ -152,6 +157,8 @@ bool GiContextImpl::init(std::string* error) {
     brickMaterial_ = buffer("brickMaterial", uint64_t(capacity) * kBrickMaterialWords * 4);
     relightList_ = buffer("relightList", 16 + uint64_t(kRelightBudget) * 4, nullptr, rhi::BufferUsage::IndirectArgs);
     lights_ = buffer("lights", uint64_t(kMaxLights) * sizeof(GpuLight));
+    slotOfBrick_ = buffer("cacheSlotOfBrick", uint64_t(capacity) * 4);
+    freeSlots_ = buffer("cacheFreeSlots", 4 + uint64_t(cacheSlots_) * 4);
 
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
@@ -170,7 +177,7 @@ bool GiContextImpl::init(std::string* error) {
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
         if (!h) return bad("the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
@@ -189,7 +196,7 @@ GiContextImpl::~GiContextImpl() {
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -200,6 +207,12 @@ void GiContextImpl::reset() {
     device_.clearTexture(radianceCache_, 0, 1, zero);
     device_.clearBuffer(brickSH_, {}, 0);
     device_.clearBuffer(brickMaterial_, {}, 0);
+    // Every brick without a slot; the free stack holds all slots, the lowest on top.
+    device_.clearBuffer(slotOfBrick_, {}, 0xFFFFFFFFu);
+    std::vector<uint32_t> stack(size_t(cacheSlots_) + 1);
+    stack[0] = cacheSlots_;
+    for (uint32_t i = 0; i < cacheSlots_; ++i) stack[1 + i] = cacheSlots_ - 1 - i;
+    device_.writeBuffer(freeSlots_, 0, stack.data(), stack.size() * 4);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
                                  resolvedDiffuse_, resolvedSpecular_, dummyStorage_})
@@ -228,6 +241,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("radianceCache", tex(radianceCache_));
     add("brickSH", buf(brickSH_));
     add("cacheOwners", buf(cacheOwners_));
+    add("cacheSlots", buf(slotOfBrick_) + buf(freeSlots_));
     add("brickMaterial", buf(brickMaterial_));
     add("relightList, lights", buf(relightList_) + buf(lights_));
     add("depth (2)", tex(depth_[0]) + tex(depth_[1]));
@@ -248,7 +262,7 @@ MemoryUse GiContextImpl::memoryUse() const {
 
 void GiContextImpl::readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) {
     if (radiance) {
-        std::vector<uint32_t> packed(size_t(cacheSize_) * cacheSize_ * cacheSize_);
+        std::vector<uint32_t> packed(size_t(64 * kCacheTexelsPerBrick) * 64 * kCacheTexelsPerBrick * cacheDepth_);
         device_.readTexture(radianceCache_, {}, packed.data());
         radiance->resize(packed.size() * 3);
         for (size_t i = 0; i < packed.size(); ++i) {
@@ -268,6 +282,12 @@ void GiContextImpl::readCaches(std::vector<float>* radiance, std::vector<float>*
             (*brickSH)[b * 28 + 27] = halfToFloat(halves[b * kShCoefficients * 4 + 3]);
         }
     }
+}
+
+uint32_t GiContextImpl::radianceCacheBricksInUse() {
+    int32_t free = 0;
+    device_.readBuffer(freeSlots_, 0, 4, &free);
+    return cacheSlots_ - uint32_t(std::clamp(free, 0, int32_t(cacheSlots_)));
 }
 
 }  // namespace detail

@@ -45,6 +45,7 @@ public:
     uint32_t internalHeight() const override { return height_; }
     const std::string& lastError() const override { return lastError_; }
     void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
+    uint32_t radianceCacheBricksInUse() override;
 
 private:
     bool fail(const std::string& message);
@@ -62,7 +63,8 @@ private:
     ContextDesc desc_;
     std::string lastError_;
     uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
-    uint32_t cacheSize_ = 0;  // radiance cache texels per side
+    uint32_t cacheSlots_ = 0;  // radiance cache slots (bricks it can hold)
+    uint32_t cacheDepth_ = 0;  // radiance cache image depth (texels); the image is 256 × 256 × cacheDepth_
 
     struct Shaders {
         rhi::ShaderHandle downsample, disocclusion, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
@@ -72,7 +74,7 @@ private:
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], resolvedDiffuse_, resolvedSpecular_;
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
-    rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_;
+    rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_;
     rhi::SamplerHandle point_, linear_, environment_;
 
     GpuCamera camera_{};

@@ -30,6 +30,7 @@ bool GiContextImpl::debugView(const DebugViewDesc& desc) {
     readBuffer(s.bindings, 2, brickSH_);
     image(s.bindings, 0, desc.output, rhi::Access::Write);
     image(s.bindings, 1, radianceCache_, rhi::Access::Read);
+    readBuffer(s.bindings, 3, slotOfBrick_);
     addTrace(s.bindings);
     run("gi debug view", shaders_.debug, s, (desc_.displayWidth + 7) / 8, (desc_.displayHeight + 7) / 8);
     return true;

@@ -133,6 +133,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 1, brickSH_, Access::Write);
         storageBuffer(s.bindings, 2, brickMaterial_, Access::ReadWrite);
         storageBuffer(s.bindings, 3, relightList_, Access::ReadWrite);
+        storageBuffer(s.bindings, 4, slotOfBrick_, Access::ReadWrite);
+        storageBuffer(s.bindings, 5, freeSlots_, Access::ReadWrite);
         image(s.bindings, 0, radianceCache_, Access::Write);
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
@@ -147,6 +149,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 6, d.emission ? d.emission : black2D_, linear_);
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         storageBuffer(s.bindings, 0, brickMaterial_, Access::ReadWrite);
+        storageBuffer(s.bindings, 1, slotOfBrick_, Access::ReadWrite);
+        storageBuffer(s.bindings, 2, freeSlots_, Access::ReadWrite);
         addTrace(s.bindings);
         run("inject radiance", shaders_.inject, s, groups(groups(width_, kInjectTile), 8), groups(groups(height_, kInjectTile), 8));
     }
@@ -160,6 +164,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 1, owners);
         readBuffer(s.bindings, 2, brickMaterial_);
         readBuffer(s.bindings, 3, lights_);
+        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         addTrace(s.bindings);
         texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
@@ -202,6 +207,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 0, probeInfo_[cur]);
         image(s.bindings, 0, probes_[cur], Access::ReadWrite);
         image(s.bindings, 1, radianceCache_, Access::Read);
+        readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
         texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
         texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
@@ -234,6 +240,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 0, owners);
         image(s.bindings, 0, specularTraced_, Access::Write);
         image(s.bindings, 1, radianceCache_, Access::Read);
+        readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
         texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
         texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
@@ -245,6 +252,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 0, probes_[cur], point_);
         storageBuffer(s.bindings, 0, probeSH_, Access::Write);
         image(s.bindings, 0, radianceCache_, Access::Read);
+        readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
         run("project probes", shaders_.project, s, tilesX_, tilesY_);
     }

@@ -3,6 +3,7 @@
 // pans slowly so that reprojection and disocclusion do real work.
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <array>
 #include <fstream>
 #include <vector>
@@ -186,6 +187,10 @@ int runGi(const Options& o) {
     std::printf("GI memory: %.1f MiB (%.1f MB; without the SDF, and without the two display-size outputs the app owns)\n",
                 double(memory.totalBytes) / (1 << 20), double(memory.totalBytes) / 1e6);
     for (const auto& r : memory.resources) std::printf("  %-24s %10.2f MiB\n", r.name.c_str(), double(r.bytes) / (1 << 20));
+    const uint32_t slotsInUse = context->radianceCacheBricksInUse();
+    std::printf("radiance cache: %u of %u brick slots in use; SDF: %u bricks in use\n", slotsInUse,
+                context->desc().radianceCacheBricks ? context->desc().radianceCacheBricks : std::min(scene->brickCapacity(), 65536u),
+                scene->latestStats().bricksUsed);
     if (!o.json.empty()) {
         std::ofstream out(o.json);
         out << "{\"technique\": \"gi\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend << "\", \"device\": \""
@@ -196,7 +201,7 @@ int runGi(const Options& o) {
             out << (first ? "" : ", ") << "\"" << p << "\": " << t.perFrame(std::string("gi/") + p);
             first = false;
         }
-        out << "}, \"gpu_bytes\": " << memory.totalBytes << "}\n";
+        out << "}, \"gpu_bytes\": " << memory.totalBytes << ", \"cache_slots_in_use\": " << slotsInUse << "}\n";
         if (!out) {
             std::fprintf(stderr, "bricklight-bench: cannot write %s\n", o.json.c_str());
             return 1;

@@ -34,6 +34,10 @@ struct ContextDesc {
     uint32_t displayHeight = 0;
     InternalResolution internalResolution = InternalResolution::Percent50;
     uint32_t flags = 0;
+    // Bricks that can hold radiance at once (4³ texels, 256 B each): a brick gets a slot when light is
+    // first injected into it and gives it back when the SDF frees it; when all are taken, further bricks
+    // stay uncached until some are freed. 0: min(the scene's brick capacity, 65536) = 16 MiB.
+    uint32_t radianceCacheBricks = 0;
     std::string debugName = "gi";
     // Receives the context's own messages (bad inputs); stderr when empty.
     rhi::ErrorCallback errorCallback;
@@ -158,9 +162,11 @@ public:
     virtual const std::string& lastError() const = 0;
 
     // For tests and tools (blocking read-backs): the world caches as floats. `radiance` gets 3 floats per
-    // cache texel ((4n)³ texels for an atlas of n³ bricks); `brickSH` gets 27 floats (9 RGB coefficients)
+    // cache texel (64 per slot, in the cache image's layout); `brickSH` gets 27 floats (9 RGB coefficients)
     // plus the sample weight per brick (28 floats per brick).
     virtual void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) = 0;
+    // Radiance cache slots in use (a blocking read-back; for tools and tuning radianceCacheBricks).
+    virtual uint32_t radianceCacheBricksInUse() = 0;
 };
 
 }  // namespace bricklight::gi

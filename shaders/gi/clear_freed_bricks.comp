@@ -4,8 +4,8 @@
 #include "gi_common.glsl"
 // Pass 3: forget the cache entries of bricks the SDF freed, and pick this frame's bricks to re-light.
 // Every brick remembers the owner (voxel) its cache was written for; where the SDF's owner differs, the
-// brick was freed and reused elsewhere (or never written): its 4³ radiance texels, its SH and its
-// material are cleared. A full pass over the brick pool, so it also catches bricks freed by several SDF
+// brick was freed and reused elsewhere (or never written): its radiance cache slot is cleared and pushed
+// back on the free stack, its SH and its material are cleared. A full pass over the brick pool, so it also catches bricks freed by several SDF
 // updates between two GI frames.
 // With relighting on, a brick whose albedo is known and that the camera has not seen for GI_RELIGHT_AFTER
 // frames is appended, every GI_RELIGHT_PERIOD-th frame, to the relight list: words 0..2 are the
@@ -17,6 +17,8 @@ BL_STORAGE_BUFFER(0) CacheOwners { uint cacheOwners[]; };
 BL_STORAGE_BUFFER(1) BrickSH { uvec2 brickSH[]; };
 BL_STORAGE_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
 BL_STORAGE_BUFFER(3) RelightList { uint relightList[]; };
+BL_STORAGE_BUFFER(4) CacheSlots { uint giCacheSlots[]; };
+BL_STORAGE_BUFFER(5) FreeSlots { int freeSlotCount; uint freeSlots[]; };
 BL_IMAGE(0, r32ui) uniform writeonly uimage3D radianceCache;
 
 void main() {
@@ -28,9 +30,13 @@ void main() {
         cacheOwners[brick] = owner;
         for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
         for (uint i = 0u; i < GI_MATERIAL_WORDS; ++i) brickMaterial[m + i] = 0u;
-        uint perAxis = giFrame.cascades.z;
-        ivec3 base = ivec3(brick % perAxis, (brick / perAxis) % perAxis, brick / (perAxis * perAxis)) * 4;
-        for (int k = 0; k < 64; ++k) imageStore(radianceCache, base + ivec3(k & 3, (k >> 2) & 3, k >> 4), uvec4(0u));
+        uint slot = giCacheSlots[brick];
+        giCacheSlots[brick] = GI_SLOT_NONE;
+        if (slot < GI_SLOT_PENDING) {
+            ivec3 base = giCacheSlotBase(slot);
+            for (int k = 0; k < 64; ++k) imageStore(radianceCache, base + ivec3(k & 3, (k >> 2) & 3, k >> 4), uvec4(0u));
+            freeSlots[atomicAdd(freeSlotCount, 1)] = slot;
+        }
         return;
     }
     if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == 0xFFFFFFFFu) return;

@@ -1,7 +1,8 @@
 // Brick lookups in the SDF's cascades (the tables of bricklight/trace.glsl), and the per-brick caches:
-// the radiance cache (4³ RGB9E5 texels per brick in a 3D R32_UINT image, `giRadianceCache`, declared by the
-// including pass when GI_USES_RADIANCE_CACHE is defined) and the brick SH irradiance cache (9 × uvec2 per
-// brick: half RGB + half weight in coefficient 0, `giBrickSH`, when GI_USES_BRICK_SH is defined).
+// the radiance cache (4³ RGB9E5 texels per cache slot in a 3D R32_UINT image, `giRadianceCache`, declared by
+// the including pass when GI_USES_RADIANCE_CACHE is defined; a brick has a slot once light was injected
+// into it, `giCacheSlots`) and the brick SH irradiance cache (9 × uvec2 per brick: half RGB + half weight
+// in coefficient 0, `giBrickSH`, when GI_USES_BRICK_SH is defined).
 #ifndef BRICKLIGHT_GI_BRICKS_GLSL
 #define BRICKLIGHT_GI_BRICKS_GLSL
 
@@ -57,17 +58,22 @@ float giPushOff(vec3 p, float requested) {
     return 0.5 * blSdfTable.cascades[giFrame.cascades.y].voxelSize.x;
 }
 
-ivec3 giCacheTexelBase(uint brick) { return blSdfBrickTexel(brick, giFrame.cascades.z) / 2; }
-
 #ifdef GI_USES_RADIANCE_CACHE
+// Read-only by default; passes that allocate or free slots declare it themselves (GI_CACHE_SLOTS_DECLARED).
+#ifndef GI_CACHE_SLOTS_DECLARED
+BL_READ_BUFFER(3) CacheSlots { uint giCacheSlots[]; };
+#endif
+
 // Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight).
 vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) {
-    ivec3 base = giCacheTexelBase(brick);
+    weight = 0.0;
+    uint slot = giCacheSlots[brick];
+    if (slot >= GI_SLOT_PENDING) return vec3(0.0);
+    ivec3 base = giCacheSlotBase(slot);
     vec3 q = clamp(uvw * 4.0 - 0.5, vec3(0.0), vec3(3.0));
     ivec3 i0 = min(ivec3(floor(q)), ivec3(2));
     vec3 f = q - vec3(i0);
     vec3 sum = vec3(0.0);
-    weight = 0.0;
     for (int k = 0; k < 8; ++k) {
         ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
         uint v = imageLoad(giRadianceCache, base + i0 + o).r;

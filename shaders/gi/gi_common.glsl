@@ -39,6 +39,13 @@ BL_CONSTANTS(1) uniform GiFrame {
 #define GI_RELIGHT_PERIOD 1u
 #define GI_RELIGHT_BUDGET 4096u
 
+// Cache slots (core/gi/gi_constants.h): per brick, the slot of the radiance cache that holds its 4³
+// texels, or GI_SLOT_NONE; GI_SLOT_PENDING while inject_radiance.comp allocates one. The slots are laid out
+// 64 × 64 × n in the cache image, 4³ texels each.
+#define GI_SLOT_NONE 0xFFFFFFFFu
+#define GI_SLOT_PENDING 0xFFFFFFFEu
+ivec3 giCacheSlotBase(uint slot) { return ivec3(slot % 64u, (slot / 64u) % 64u, slot / 4096u) * 4; }
+
 #define GI_FLAG_REVERSED_DEPTH 1u
 #define GI_FLAG_RESET_HISTORY 2u
 #define GI_FLAG_HISTORY_VALID 8u   // a previous frame exists (not the first dispatch)

@@ -20,7 +20,28 @@ BL_TEXTURE(5) uniform sampler2D diffuseAlbedo;  // a black 1×1 without relighti
 BL_TEXTURE(6) uniform sampler2D emission;       // a black 1×1 without emission
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
 BL_STORAGE_BUFFER(0) BrickMaterial { uint brickMaterial[]; };
+coherent BL_STORAGE_BUFFER(1) CacheSlots { uint giCacheSlots[]; };
+BL_STORAGE_BUFFER(2) FreeSlots { int freeSlotCount; uint freeSlots[]; };  // a stack; clear_freed_bricks.comp pushes
 #include "gi_bricks.glsl"
+
+// The brick's cache slot, popped from the free stack at its first injection. False where there is none:
+// the pool is full (the brick stays uncached and retries next frame), or another thread is allocating it
+// in this dispatch (this sample is dropped).
+bool giCacheSlot(uint brick, out uint slot) {
+    slot = giCacheSlots[brick];
+    if (slot == GI_SLOT_PENDING) return false;
+    if (slot != GI_SLOT_NONE) return true;
+    if (atomicCompSwap(giCacheSlots[brick], GI_SLOT_NONE, GI_SLOT_PENDING) != GI_SLOT_NONE) return false;
+    int top = atomicAdd(freeSlotCount, -1);
+    if (top <= 0) {  // empty: undo (nothing pushes during this pass, so the count never looks positive wrongly)
+        atomicAdd(freeSlotCount, 1);
+        atomicExchange(giCacheSlots[brick], GI_SLOT_NONE);
+        return false;
+    }
+    slot = freeSlots[top - 1];
+    atomicExchange(giCacheSlots[brick], slot);
+    return true;
+}
 
 void main() {
     uvec2 tile = gl_GlobalInvocationID.xy;
@@ -52,7 +73,9 @@ void main() {
         uint brick;
         vec3 uvw;
         if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, brick, uvw) && !giBrickAt(p, c, brick, uvw)) continue;
-        ivec3 texel = giCacheTexelBase(brick) + min(ivec3(uvw * 4.0), ivec3(3));
+        uint slot;
+        if (!giCacheSlot(brick, slot)) continue;
+        ivec3 texel = giCacheSlotBase(slot) + min(ivec3(uvw * 4.0), ivec3(3));
         uint old = imageLoad(giRadianceCache, texel).r;
         // About this many injections reach the texel per frame (its area over the pixel footprint's, one
         // pixel in GI_INJECT_TILE² injecting): the weight of each is set so that the texel moves ~1/4 of

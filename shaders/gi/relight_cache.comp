@@ -22,6 +22,8 @@ BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
 BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
 BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 3 per light (core/gi/gi_constants.h: GpuLight)
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
+BL_STORAGE_BUFFER(0) CacheSlots { uint giCacheSlots[]; };  // read only here (the read-buffer slots are taken)
+#define GI_CACHE_SLOTS_DECLARED
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
 #include "gi_bricks.glsl"
@@ -96,7 +98,9 @@ void main() {
     if (owner == 0xFFFFFFFFu) return;
     uint t = gl_LocalInvocationIndex;
     ivec3 local = ivec3(t & 3u, (t >> 2) & 3u, t >> 4);
-    ivec3 texel = giCacheTexelBase(brick) + local;
+    uint cacheSlot = giCacheSlots[brick];
+    if (cacheSlot >= GI_SLOT_PENDING) return;
+    ivec3 texel = giCacheSlotBase(cacheSlot) + local;
     uint old = imageLoad(giRadianceCache, texel).r;
     if (old == 0u) return;  // nothing was ever seen here
     uint cascade;
