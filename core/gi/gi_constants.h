@@ -59,6 +59,6 @@ constexpr uint32_t kDefaultCacheSlots = 65536;     // ContextDesc::radianceCache
 constexpr uint32_t kShCoefficients = 9;
 constexpr uint32_t kMaxDiffuseHistory = 16;
 constexpr uint32_t kBrickMaterialWords = 3;  // per brick: albedo (RGBA8), emission (RGB9E5), frame last seen + 1
-constexpr uint32_t kRelightBudget = 4096;    // bricks re-lit per frame at most (GI_RELIGHT_BUDGET)
+constexpr uint32_t kRelightBudget = 2048;    // bricks re-lit per frame at most (GI_RELIGHT_BUDGET)
 
 }  // namespace bricklight::gi::detail

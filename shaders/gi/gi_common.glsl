@@ -36,8 +36,8 @@ BL_CONSTANTS(1) uniform GiFrame {
 // every GI_RELIGHT_PERIOD-th frame; at most GI_RELIGHT_BUDGET bricks per frame (core/gi/gi_constants.h:
 // kRelightBudget).
 #define GI_RELIGHT_AFTER 4u
-#define GI_RELIGHT_PERIOD 1u
-#define GI_RELIGHT_BUDGET 4096u
+#define GI_RELIGHT_PERIOD 2u
+#define GI_RELIGHT_BUDGET 2048u
 
 // Cache slots (core/gi/gi_constants.h): per brick, the slot of the radiance cache that holds its 4³
 // texels, or GI_SLOT_NONE; GI_SLOT_PENDING while inject_radiance.comp allocates one. The slots are laid out

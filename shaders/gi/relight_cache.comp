@@ -16,7 +16,7 @@
 layout(local_size_x = 64) in;  // one group per listed brick, one thread per texel
 #define GI_RELIGHT_RAYS 2u
 // How far a re-lit texel moves towards the new value (a brick is re-lit every GI_RELIGHT_PERIOD frames).
-#define GI_RELIGHT_BLEND 0.5
+#define GI_RELIGHT_BLEND 0.75
 BL_READ_BUFFER(0) RelightList { uint relightList[]; };
 BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
 BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
