@@ -155,6 +155,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     gd.displayWidth = options_.width;
     gd.displayHeight = options_.height;
     gd.internalResolution = options_.giResolution;
+    gd.radianceCacheBricks = options_.giCacheBricks;
     gd.debugName = "render gi";
     gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
     if (!gi_) return fail(why);

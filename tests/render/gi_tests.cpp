@@ -243,6 +243,40 @@ void badInputChangesNothing(const std::string& backend) {
     for (rhi::TextureHandle t : {out, outSpecular, small, wrongFormat}) td.device->destroy(t);
 }
 
+void fullCacheDegradesGracefully(const std::string& backend) {
+    // A radiance cache of 32 brick slots for the Cornell box (which puts light in a few hundred): the
+    // slots fill up, the bricks left without one stay uncached (their hits count as unknown), and GI stays
+    // finite and keeps some light. A context asking for more slots than the scene has bricks is refused
+    // with a message.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    render::RasterOptions o;
+    o.width = o.height = 32;
+    o.gi = true;
+    o.giCacheBricks = 32;
+    std::string error;
+    auto r = render::RasterRenderer::create(*td.device, scenes::cornellBox(), o, &error);
+    INFO(error);
+    REQUIRE(r);
+    frames(td, *r, 16);
+    CHECK(r->giContext()->radianceCacheBricksInUse() == 32);
+    const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
+    CHECK(allFinite(indirect.rgb));
+    CHECK(mean(indirect) > 0.0);
+    auto full = giRenderer(td, scenes::cornellBox(), 32);
+    frames(td, *full, 16);
+    const uint32_t used = full->giContext()->radianceCacheBricksInUse();
+    INFO("slots in use with the default cache: " << used);
+    CHECK(used > 32);
+    REQUIRE_NO_MESSAGES(td);
+    gi::ContextDesc cd;
+    cd.displayWidth = cd.displayHeight = 32;
+    cd.radianceCacheBricks = full->sdfScene()->brickCapacity() + 1;
+    cd.errorCallback = [](rhi::Severity, const std::string&) {};
+    CHECK_FALSE(gi::GiContext::create(*td.device, *full->sdfScene(), cd, &error));
+    CHECK(error.find("radianceCacheBricks") != std::string::npos);
+}
+
 // GI's diffuse output on `scene` after 40 frames in which every surface sends radiance 1 (the lit image is
 // overwritten with 1 after each frame).
 // GI fed a lit image of radiance 1 everywhere. Relighting is off: it would re-light what the camera does
@@ -424,6 +458,7 @@ void followsOffscreenLight(const std::string& backend) {
 }  // namespace
 
 BACKEND_TEST("GI follows light that changes off screen", "[gi]", followsOffscreenLight)
+BACKEND_TEST("GI with a full radiance cache stays finite and lit", "[gi]", fullCacheDegradesGracefully)
 BACKEND_TEST("GI on the Cornell box against the path tracer", "[gi]", cornellAgainstReference)
 BACKEND_TEST("GI does not flicker on a static view", "[gi]", noFlickerWhenConverged)
 BACKEND_TEST("GI does not leak through a wall", "[gi]", noLeakThroughWall)
