@@ -17,11 +17,12 @@ constexpr uint32_t kSize = 64;
 constexpr uint32_t kCornellSize = 128;  // the Cornell comparison at the size
 
 std::unique_ptr<render::RasterRenderer> giRenderer(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size = kSize,
-                                                   bool relight = true) {
+                                                   bool relight = true, uint32_t cacheBricks = 0) {
     render::RasterOptions o;
     o.width = o.height = size;
     o.gi = true;
     o.giRelight = relight;
+    o.giCacheBricks = cacheBricks;
     std::string error;
     auto r = render::RasterRenderer::create(*td.device, scene, o, &error);
     INFO(error);
@@ -250,14 +251,7 @@ void fullCacheDegradesGracefully(const std::string& backend) {
     // with a message.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    render::RasterOptions o;
-    o.width = o.height = 32;
-    o.gi = true;
-    o.giCacheBricks = 32;
-    std::string error;
-    auto r = render::RasterRenderer::create(*td.device, scenes::cornellBox(), o, &error);
-    INFO(error);
-    REQUIRE(r);
+    auto r = giRenderer(td, scenes::cornellBox(), 32, true, 32);
     frames(td, *r, 16);
     CHECK(r->giContext()->radianceCacheBricksInUse() == 32);
     const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
@@ -273,6 +267,7 @@ void fullCacheDegradesGracefully(const std::string& backend) {
     cd.displayWidth = cd.displayHeight = 32;
     cd.radianceCacheBricks = full->sdfScene()->brickCapacity() + 1;
     cd.errorCallback = [](rhi::Severity, const std::string&) {};
+    std::string error;
     CHECK_FALSE(gi::GiContext::create(*td.device, *full->sdfScene(), cd, &error));
     CHECK(error.find("radianceCacheBricks") != std::string::npos);
 }
@@ -400,14 +395,8 @@ OffscreenLightRun offscreenLightRun(TestDevice& td, bool relight) {
     spot.intensity = glm::vec3(40.0f);
     room.pointLights = {spot};
     room.computeBounds();
-    render::RasterOptions o;
-    o.width = o.height = 48;
-    o.gi = true;
-    o.giRelight = relight;
+    auto r = giRenderer(td, room, 48, relight);
     std::string error;
-    auto r = render::RasterRenderer::create(*td.device, room, o, &error);
-    INFO(error);
-    REQUIRE(r);
     scenes::Camera towardsLight{glm::vec3(0.0f, 1.6f, -1.0f), glm::vec3(0.0f, 1.0f, 3.0f), glm::vec3(0, 1, 0), 75.0f};
     scenes::Camera awayFromLight{glm::vec3(0.0f, 1.6f, 1.0f), glm::vec3(0.0f, 1.2f, -3.0f), glm::vec3(0, 1, 0), 75.0f};
     REQUIRE(r->setCamera(towardsLight, &error));
