@@ -1,6 +1,7 @@
 // Transfers: writes, copies, clears and read-backs. Each first issues the barrier its access needs
 // against pending shader writes (BUFFER_UPDATE for buffers, TEXTURE_UPDATE for textures), so that e.g. a
 // readBuffer after a dispatch that wrote the buffer sees the writes.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -57,7 +58,12 @@ bool Device::writeBuffer(BufferHandle h, uint64_t offset, const void* data, uint
     GLbitfield bits = 0;
     barriers_.require(&bits, b->lastShaderWrite, GL_BUFFER_UPDATE_BARRIER_BIT);
     barriers_.issue(gl, bits);
-    gl.NamedBufferSubData(b->name, GLintptr(offset), GLsizeiptr(size), data);
+    // In pieces of at most 64 KiB: on NVIDIA's driver (580), a larger glNamedBufferSubData was not seen by the
+    // compute dispatches that followed (the GI's 256 KiB free-slot stack read as empty); smaller ones are.
+    constexpr uint64_t kPiece = 64 * 1024;
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    for (uint64_t done = 0; done < size; done += kPiece)
+        gl.NamedBufferSubData(b->name, GLintptr(offset + done), GLsizeiptr(std::min(kPiece, size - done)), bytes + done);
     return true;
 }
 

@@ -42,7 +42,10 @@ void main() {
     if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == 0xFFFFFFFFu) return;
     uint seen = brickMaterial[m + 2u];
     if (seen == 0u || (brickMaterial[m] >> 24) == 0u) return;  // never seen, or no albedo learnt
-    if (giFrameIndex() + 1u - seen < GI_RELIGHT_AFTER || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    // Coarser cascades are injected by every 2^k-th pixel only (inject_radiance.comp), so a brick there
+    // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
+    uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);
+    if (giFrameIndex() + 1u - seen < (GI_RELIGHT_AFTER << level) || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
     uint slot = atomicAdd(relightList[3], 1u);
     if (slot >= GI_RELIGHT_BUDGET) return;
     relightList[4u + slot] = brick;

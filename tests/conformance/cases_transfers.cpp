@@ -25,6 +25,29 @@ BL_CONFORMANCE_CASE(transfer_buffer_write_copy_clear, "writeBuffer at offsets, c
     ctx.output("b", bytesOf(v));
 }
 
+BL_CONFORMANCE_CASE(transfer_large_write_then_dispatch, "a writeBuffer of 256 KiB is seen in full by the next dispatch") {
+    // 65 537 values: past 64 KiB, where one driver (NVIDIA 580, GL) lost a single large glBufferSubData for the
+    // dispatches that followed.
+    const uint32_t n = 65537;
+    std::vector<uint32_t> values(n);
+    for (uint32_t i = 0; i < n; ++i) values[i] = i * 3u + 1u;
+    rhi::BufferHandle src = ctx.buffer(n * 4, kStorageUsage, nullptr, "written");
+    rhi::BufferHandle dst = ctx.buffer(n * 4, kStorageUsage, nullptr, "doubled");
+    ctx.check(ctx.device.writeBuffer(src, 0, values.data(), n * 4), "writeBuffer");
+    struct { uint32_t count, step; } p{n, 5};
+    rhi::DispatchState s;
+    s.shader = ctx.shader("rhi_tests/chain_step.comp");
+    s.label = "double";
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.readBuffers.push({0, src, {}});
+    s.bindings.storageBuffers.push({0, dst, {}, rhi::Access::Write});
+    ctx.check(ctx.device.dispatch(s, groupsFor(n, 64), 1, 1), "dispatch");
+    auto v = ctx.read<uint32_t>(dst, n);
+    for (uint32_t i = 0; i < n; ++i)
+        if (!ctx.check(v[i] == values[i] * 2u + 5u, "value " + std::to_string(i))) break;
+    ctx.output("doubled", bytesOf(v));
+}
+
 BL_CONFORMANCE_CASE(readback_without_waiting, "requestReadback/pollReadback: sees the writes before it, not after; Ready within the frames in flight; a ticket is taken once") {
     const uint32_t n = 256;
     rhi::BufferHandle out = ctx.buffer(n * 4, kStorageUsage, nullptr, "values");
