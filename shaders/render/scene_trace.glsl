@@ -70,11 +70,15 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
                 if (abs(det) < 1e-20) continue;
                 float invDet = 1.0 / det;
                 vec3 s = o - v0;
+                // Barycentric bounds widened by kEdge: a ray through the edge two triangles share must hit
+                // at least one of them whatever the rounding (NVIDIA's GL compiler let the centre ray of a
+                // test slip between the two triangles of a quad); hitting both is harmless.
+                const float kEdge = 1e-6;
                 float u = dot(s, p) * invDet;
-                if (u < 0.0 || u > 1.0) continue;
+                if (u < -kEdge || u > 1.0 + kEdge) continue;
                 vec3 q = cross(s, e1);
                 float v = dot(d, q) * invDet;
-                if (v < 0.0 || u + v > 1.0) continue;
+                if (v < -kEdge || u + v > 1.0 + kEdge) continue;
                 float t = dot(e2, q) * invDet;
                 if (t > tMin && t < hit.t) {
                     hit.t = t;
