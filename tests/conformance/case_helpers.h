@@ -45,4 +45,18 @@ inline rhi::TextureDesc texture2D(rhi::Format f, uint32_t w, uint32_t h, uint32_
 
 inline uint32_t groupsFor(uint32_t n, uint32_t size) { return (n + size - 1) / size; }
 
+// Dispatches rhi_tests/chain_step.comp over whole buffers, one thread per element: dst[i] = src[i] * 2 + step
+// for i < count. (A helper that dispatches rather than returns the state: constants are read at the call.)
+inline bool dispatchChainStep(rhi::IDevice& device, rhi::ShaderHandle shader, const char* label, rhi::BufferHandle src,
+                              rhi::BufferHandle dst, uint32_t count, uint32_t step) {
+    struct { uint32_t count, step; } p{count, step};
+    rhi::DispatchState s;
+    s.shader = shader;
+    s.label = label;
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.readBuffers.push({0, src, {}});
+    s.bindings.storageBuffers.push({0, dst, {}, rhi::Access::Write});
+    return device.dispatch(s, groupsFor(count, 64), 1, 1);
+}
+
 }  // namespace bricklight::conformance

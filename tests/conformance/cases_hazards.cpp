@@ -19,14 +19,7 @@ BL_CONFORMANCE_CASE(hazard_read_after_write_chain, "read-after-write across 48 d
     rhi::ShaderHandle sh = ctx.shader("rhi_tests/chain_step.comp");
     int64_t before = ctx.barriers();
     for (uint32_t step = 0; step < kChainLength; ++step) {
-        struct { uint32_t count, step; } p{kElements, step};
-        rhi::DispatchState s;
-        s.shader = sh;
-        s.label = "chain";
-        s.bindings.constants.push(rhi::constants(0, p));
-        s.bindings.readBuffers.push({0, step % 2 ? b : a, {}});
-        s.bindings.storageBuffers.push({0, step % 2 ? a : b, {}, rhi::Access::Write});
-        ctx.device.dispatch(s, kElements / 64, 1, 1);
+        dispatchChainStep(ctx.device, sh, "chain", step % 2 ? b : a, step % 2 ? a : b, kElements, step);
     }
     int64_t after = ctx.barriers();
     auto v = ctx.read<uint32_t>(kChainLength % 2 ? b : a, kElements);
@@ -94,14 +87,7 @@ BL_CONFORMANCE_CASE(hazard_write_after_read, "write-after-read: a buffer read by
     std::vector<uint32_t> init(n, 3);
     rhi::BufferHandle src = ctx.buffer(n * 4, kStorageUsage, init.data(), "source");
     rhi::BufferHandle dst = ctx.buffer(n * 4, kStorageUsage, nullptr, "copy");
-    struct { uint32_t count, step; } p{n, 1};
-    rhi::DispatchState read;
-    read.shader = ctx.shader("rhi_tests/chain_step.comp");
-    read.label = "read source";
-    read.bindings.constants.push(rhi::constants(0, p));
-    read.bindings.readBuffers.push({0, src, {}});
-    read.bindings.storageBuffers.push({0, dst, {}, rhi::Access::Write});
-    ctx.device.dispatch(read, n / 64, 1, 1);
+    dispatchChainStep(ctx.device, ctx.shader("rhi_tests/chain_step.comp"), "read source", src, dst, n, 1);
     struct { uint32_t count, scale, offset; } f{n, 0, 99};
     rhi::DispatchState overwrite;
     overwrite.shader = ctx.shader("rhi_tests/fill_buffer.comp");

@@ -34,14 +34,7 @@ BL_CONFORMANCE_CASE(transfer_large_write_then_dispatch, "a writeBuffer of 256 Ki
     rhi::BufferHandle src = ctx.buffer(n * 4, kStorageUsage, nullptr, "written");
     rhi::BufferHandle dst = ctx.buffer(n * 4, kStorageUsage, nullptr, "doubled");
     ctx.check(ctx.device.writeBuffer(src, 0, values.data(), n * 4), "writeBuffer");
-    struct { uint32_t count, step; } p{n, 5};
-    rhi::DispatchState s;
-    s.shader = ctx.shader("rhi_tests/chain_step.comp");
-    s.label = "double";
-    s.bindings.constants.push(rhi::constants(0, p));
-    s.bindings.readBuffers.push({0, src, {}});
-    s.bindings.storageBuffers.push({0, dst, {}, rhi::Access::Write});
-    ctx.check(ctx.device.dispatch(s, groupsFor(n, 64), 1, 1), "dispatch");
+    ctx.check(dispatchChainStep(ctx.device, ctx.shader("rhi_tests/chain_step.comp"), "double", src, dst, n, 5), "dispatch");
     auto v = ctx.read<uint32_t>(dst, n);
     for (uint32_t i = 0; i < n; ++i)
         if (!ctx.check(v[i] == values[i] * 2u + 5u, "value " + std::to_string(i))) break;
