@@ -44,6 +44,9 @@ inline PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
 
 // The device of --backend (null with a message on stderr).
 std::unique_ptr<rhi::IDevice> makeDevice(const Options& o);
+// Every technique's start: the scene of --scene and the device of --backend (a warning on stderr when it has
+// no GPU timestamps). False with a message on stderr.
+bool openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_ptr<rhi::IDevice>* device);
 
 // The scene's distance field with o.cascades cascades, cascade 0 spanning 1/8 of the scene (cascade 3 all
 // of it), every mesh and instance added (not built yet). Null with a message on stderr.

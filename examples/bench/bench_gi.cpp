@@ -53,15 +53,9 @@ Camera cameraAt(const scenes::Camera& c, float yawDegrees, float aspect, float s
 }  // namespace
 
 int runGi(const Options& o) {
-    std::string error;
-    scenes::SceneGeometry geometry = scenes::loadScene(o.scene, &error);
-    if (geometry.meshes.empty()) {
-        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
-        return 1;
-    }
-    std::unique_ptr<rhi::IDevice> device = makeDevice(o);
-    if (!device) return 1;
-    if (!device->capabilities().timestamps) std::fprintf(stderr, "bricklight-bench: warning: the device has no GPU timestamps\n");
+    scenes::SceneGeometry geometry;
+    std::unique_ptr<rhi::IDevice> device;
+    if (!openBench(o, &geometry, &device)) return 1;
 
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
     const float size = std::max(extent.x, std::max(extent.y, extent.z));
@@ -75,6 +69,7 @@ int runGi(const Options& o) {
     cd.displayWidth = o.width;
     cd.displayHeight = o.height;
     cd.internalResolution = resolutionOf(o.scalePercent);
+    std::string error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
     if (!context) {
         std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());

@@ -145,16 +145,23 @@ std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& d
     return scene;
 }
 
-int bricklight::bench::runSdf(const Options& o) {
+bool bricklight::bench::openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_ptr<rhi::IDevice>* device) {
     std::string error;
-    scenes::SceneGeometry geometry = scenes::loadScene(o.scene, &error);
-    if (geometry.meshes.empty()) {
+    *geometry = scenes::loadScene(o.scene, &error);
+    if (geometry->meshes.empty()) {
         std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
-        return 1;
+        return false;
     }
-    std::unique_ptr<rhi::IDevice> device = makeDevice(o);
-    if (!device) return 1;
-    if (!device->capabilities().timestamps) std::fprintf(stderr, "bricklight-bench: warning: the device has no GPU timestamps\n");
+    *device = makeDevice(o);
+    if (!*device) return false;
+    if (!(*device)->capabilities().timestamps) std::fprintf(stderr, "bricklight-bench: warning: the device has no GPU timestamps\n");
+    return true;
+}
+
+int bricklight::bench::runSdf(const Options& o) {
+    scenes::SceneGeometry geometry;
+    std::unique_ptr<rhi::IDevice> device;
+    if (!openBench(o, &geometry, &device)) return 1;
     device->setTimingEnabled(true);
 
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
