@@ -56,7 +56,11 @@ private:
     void fillConstants(const DispatchDesc& d);
     void uploadLights(const DispatchDesc& d);
     void addTrace(rhi::Bindings& b) const;
+    void addEnvironment(rhi::Bindings& b, const DispatchDesc& d) const;
+    // Sets the shader, the label and the camera/frame constants, then records the dispatch in a marker.
+    void prepare(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s);
     void run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z = 1);
+    void runIndirect(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, rhi::BufferHandle args);
 
     rhi::IDevice& device_;
     const sdf::SdfScene& scene_;

@@ -22,13 +22,30 @@ constexpr uint32_t kMaxGroups = 65535;
 
 void GiContextImpl::addTrace(rhi::Bindings& b) const { scene_.traceBindings(b); }
 
-void GiContextImpl::run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z) {
+void GiContextImpl::addEnvironment(rhi::Bindings& b, const DispatchDesc& d) const {
+    // Both samplers are always bound (gi_environment.glsl); the unused one gets a black 1×1.
+    texture(b, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
+    texture(b, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
+}
+
+void GiContextImpl::prepare(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s) {
     s.shader = shader;
     s.label = label;
     s.bindings.constants.push(rhi::constants(0, camera_));
     s.bindings.constants.push(rhi::constants(1, frame_));
+}
+
+void GiContextImpl::run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z) {
+    prepare(label, shader, s);
     device_.beginMarker(label);
     device_.dispatch(s, x, y, z);
+    device_.endMarker();
+}
+
+void GiContextImpl::runIndirect(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, rhi::BufferHandle args) {
+    prepare(label, shader, s);
+    device_.beginMarker(label);
+    device_.dispatchIndirect(s, args, 0);
     device_.endMarker();
 }
 
@@ -156,10 +173,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     }
     if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
         rhi::DispatchState s;
-        s.shader = shaders_.relight;
-        s.label = "relight cache";
-        s.bindings.constants.push(rhi::constants(0, camera_));
-        s.bindings.constants.push(rhi::constants(1, frame_));
         readBuffer(s.bindings, 0, relightList_);
         readBuffer(s.bindings, 1, owners);
         readBuffer(s.bindings, 2, brickMaterial_);
@@ -167,11 +180,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         addTrace(s.bindings);
-        texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
-        texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
-        device_.beginMarker(s.label);
-        device_.dispatchIndirect(s, relightList_, 0);
-        device_.endMarker();
+        addEnvironment(s.bindings, d);
+        runIndirect("relight cache", shaders_.relight, s, relightList_);
     }
     {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
         const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];
@@ -209,8 +219,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 1, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
-        texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
-        texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
+        addEnvironment(s.bindings, d);
         const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
         run("fill probes", shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
     }
@@ -242,8 +251,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 1, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
-        texture(s.bindings, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
-        texture(s.bindings, 14, d.environmentKind == EnvironmentKind::Equirectangular ? d.environmentMap : black2D_, environment_);
+        addEnvironment(s.bindings, d);
         run("specular trace", shaders_.specularTrace, s, groups(width_, 8), groups(height_, 8));
     }
     {  // 12. project probes to SH

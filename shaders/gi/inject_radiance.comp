@@ -62,9 +62,13 @@ void main() {
     float footprint = max(length(side - p) / max(dot(n, toCamera), 0.25), 1e-6);
     uint hash = giPcg(tile.x * 7919u + tile.y * 104729u + giFrameIndex());
     bool learn = (giFrame.relight.y & GI_RELIGHT_ALBEDO) != 0u;
-    vec3 albedo = clamp(textureLod(diffuseAlbedo, uv, 0.0).rgb, vec3(0.0), vec3(1.0));
-    vec3 emitted = textureLod(emission, uv, 0.0).rgb;
-    if (!giFinite(albedo) || !giFinite(emitted) || any(lessThan(emitted, vec3(0.0)))) learn = false;
+    vec3 albedo = vec3(0.0), emitted = vec3(0.0);
+    if (learn) {  // only with relighting: the two inputs are black 1×1 stand-ins otherwise
+        albedo = textureLod(diffuseAlbedo, uv, 0.0).rgb;
+        emitted = textureLod(emission, uv, 0.0).rgb;
+        learn = giFinite(albedo) && giFinite(emitted) && all(greaterThanEqual(emitted, vec3(0.0)));
+        albedo = clamp(albedo, vec3(0.0), vec3(1.0));
+    }
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         // Coarser cascades' texels are reached by many pixels: only every 2^k-th pixel (k = cascade above
         // the start, at most 4) injects there, which the blend weight below accounts for.
