@@ -33,8 +33,9 @@ struct GpuFrame {  // BL_CONSTANTS(1)
     uint32_t cascades[4];   // start, end, atlas bricks per axis, brick capacity
     glm::vec4 epsilon;      // diffuse, specular epsilon scale
     uint32_t relight[4];    // light count, relight flags (RelightFlags), unused, unused
+    glm::vec4 traceLimits;  // iterations per cascade of every GI ray, diffuse rays' coarsenAfterVoxels (TraceParams)
 };
-static_assert(sizeof(GpuFrame) == 176);
+static_assert(sizeof(GpuFrame) == 192);
 
 enum RelightFlags : uint32_t {
     RelightAlbedo = 1u,    // DispatchDesc::diffuseAlbedo given: bricks learn their albedo, unseen texels are re-lit

@@ -87,6 +87,7 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.cascades[2] = scene_.desc().atlasBricksPerAxis;
     frame_.cascades[3] = scene_.brickCapacity();
     frame_.epsilon = glm::vec4(d.trace.epsilonScale, d.trace.specularEpsilonScale, 0.0f, 0.0f);
+    frame_.traceLimits = glm::vec4(float(d.trace.maxIterationsPerCascade), d.trace.coarsenAfterVoxels, 0.0f, 0.0f);
     frame_.relight[0] = d.lightCount;
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
                         (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
@@ -153,6 +154,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 4, slotOfBrick_, Access::ReadWrite);
         storageBuffer(s.bindings, 5, freeSlots_, Access::ReadWrite);
         image(s.bindings, 0, radianceCache_, Access::Write);
+        texture(s.bindings, 0, depth_[cur], point_);
+        addTrace(s.bindings);
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
     {  // 4. inject last frame's lit image into the radiance cache

@@ -112,6 +112,11 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     if (!(t.epsilonScale > 0.0f) || !(t.specularEpsilonScale > 0.0f) || !std::isfinite(t.epsilonScale) ||
         !std::isfinite(t.specularEpsilonScale))
         return fail("dispatch: trace epsilon scales must be finite and > 0");
+    if (!(t.coarsenAfterVoxels >= 0.0f) || !std::isfinite(t.coarsenAfterVoxels))
+        return fail("dispatch: trace.coarsenAfterVoxels must be finite and >= 0");
+    if (t.maxIterationsPerCascade == 0 || t.maxIterationsPerCascade > kMaxTraceIterations)
+        return fail("dispatch: trace.maxIterationsPerCascade " + std::to_string(t.maxIterationsPerCascade) + " is outside 1.." +
+                    std::to_string(kMaxTraceIterations));
     return true;
 }
 

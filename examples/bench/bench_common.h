@@ -22,6 +22,8 @@ struct Options {
     uint32_t frames = 16;
     uint32_t width = 1920, height = 1080;
     uint32_t scalePercent = 50;  // gi: internal resolution
+    uint32_t giIterations = 0;   // gi: TraceParams::maxIterationsPerCascade (0: GI's default)
+    float giCoarsen = -1.0f;     // gi: TraceParams::coarsenAfterVoxels (< 0: GI's default)
 };
 
 // Sums of GPU milliseconds per marker label over the frames of one phase.

@@ -112,10 +112,13 @@ int runGi(const Options& o) {
         std::fprintf(stderr, "bricklight-bench: the device could not create the benchmark's G-buffer\n");
         return 1;
     }
-    std::printf("scene %s: %llu triangles; %s on %s; %ux%u, GI at %u %% (%ux%u); %u cascades, finest voxel %.4g\n",
+    const uint32_t iterations = o.giIterations ? o.giIterations : gi::TraceParams{}.maxIterationsPerCascade;
+    const float coarsen = o.giCoarsen >= 0.0f ? o.giCoarsen : gi::TraceParams{}.coarsenAfterVoxels;
+    std::printf("scene %s: %llu triangles; %s on %s; %ux%u, GI at %u %% (%ux%u); %u cascades, finest voxel %.4g; "
+                "GI rays %u steps per cascade, diffuse rays coarsen after %g voxels\n",
                 geometry.name.c_str(), (unsigned long long)geometry.triangleCount(), o.backend.c_str(),
                 device->capabilities().deviceName.c_str(), o.width, o.height, o.scalePercent, context->internalWidth(),
-                context->internalHeight(), o.cascades, desc.finestVoxelSize);
+                context->internalHeight(), o.cascades, desc.finestVoxelSize, iterations, coarsen);
 
     const float aspect = float(o.width) / float(o.height);
     Camera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
@@ -146,6 +149,8 @@ int runGi(const Options& o) {
         d.diffuseAlbedo = albedo;
         d.lights = &sun;
         d.lightCount = 1;
+        if (o.giIterations) d.trace.maxIterationsPerCascade = o.giIterations;
+        if (o.giCoarsen >= 0.0f) d.trace.coarsenAfterVoxels = o.giCoarsen;
         d.outputDiffuse = diffuse;
         d.outputSpecular = specular;
         rhi::DispatchState s;
@@ -190,7 +195,7 @@ int runGi(const Options& o) {
         std::ofstream out(o.json);
         out << "{\"technique\": \"gi\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend << "\", \"device\": \""
             << device->capabilities().deviceName << "\", \"width\": " << o.width << ", \"height\": " << o.height
-            << ", \"scale_percent\": " << o.scalePercent << ", \"total_ms\": " << total << ", \"passes_ms\": {";
+            << ", \"scale_percent\": " << o.scalePercent << ", \"iterations_per_cascade\": " << iterations << ", \"coarsen_after_voxels\": " << coarsen << ", \"total_ms\": " << total << ", \"passes_ms\": {";
         bool first = true;
         for (const char* p : kGiPasses) {
             out << (first ? "" : ", ") << "\"" << p << "\": " << t.perFrame(std::string("gi/") + p);

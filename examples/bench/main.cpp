@@ -3,7 +3,7 @@
 //   bricklight-bench sdf [--scene NAME|FILE] [--backend vulkan|gl] [--cascades N] [--frames N]
 //                        [--width W] [--height H] [--json FILE]
 //   bricklight-bench gi  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--scale 100|75|50|25]
-//                        [--frames N] [--json FILE]
+//                        [--frames N] [--iterations N] [--coarsen N] [--json FILE]
 //
 // sdf: a full build, frames with one moving ~100k-triangle dynamic instance, frames where the centre moves
 // by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080).
@@ -20,6 +20,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "bricklight/gi.h"
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_vulkan.h"
 #include "bench_common.h"
@@ -38,7 +39,9 @@ namespace {
                  "                            [--frames N] [--width W] [--height H] [--json FILE]\n"
                  "                            [--dynamic-max-cascade C]  (highest cascade of the moving instance)\n"
                  "       bricklight-bench gi  [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
-                 "                            [--scale 100|75|50|25] [--frames N] [--json FILE]\n");
+                 "                            [--scale 100|75|50|25] [--frames N] [--json FILE]\n"
+                 "                            [--iterations N]  (GI rays' steps per cascade; default GI's)\n"
+                 "                            [--coarsen N]  (diffuse GI rays' voxels per cascade; 0 off; default GI's)\n");
     std::exit(2);
 }
 
@@ -68,6 +71,8 @@ Options parse(int argc, char** argv) {
         else if (a == "--cascades") o.cascades = number(value(), "--cascades", 1, 16);
         else if (a == "--frames") o.frames = number(value(), "--frames", 1, 10000);
         else if (a == "--dynamic-max-cascade") o.dynamicMaxCascade = number(value(), "--dynamic-max-cascade", 0, 15);
+        else if (a == "--coarsen") o.giCoarsen = float(number(value(), "--coarsen", 0, 1024));
+        else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
         else if (a == "--width") o.width = number(value(), "--width", 1, 16384);
         else if (a == "--height") o.height = number(value(), "--height", 1, 16384);
         else if (a == "--scale") {

@@ -57,7 +57,20 @@ struct TraceParams {
     float specularEpsilonScale = 1.0f;
     float tMin = 0.0f;
     float tMax = 1e30f;
+    // Node, voxel and sphere-tracing steps a GI ray may take in one cascade before it goes on in the next
+    // coarser one (BlSdfRay::maxIterations; 1..kMaxTraceIterations). The published technique uses 32: the
+    // slowest rays (grazing a surface, crossing busy fine cascades) set each tracing pass's time, and a
+    // coarser answer for them costs little light. A ray that runs out in the last cascade counts as
+    // "unknown" (no vote), not as the sky.
+    uint32_t maxIterationsPerCascade = 32;
+    // Diffuse rays stand for cones (64 per probe): once one has gone this many voxels of its current
+    // cascade, it goes on in the next coarser cascade (BlSdfRay::coarsenAfterVoxels), as the cone's
+    // footprint has outgrown the finer voxels. Fewer steps per ray; 0 turns it off (a ray leaves a cascade
+    // only at its boundary). Specular rays of GGX roughness α coarsen after max(this, 1/α) voxels (their
+    // lobe's width), shadow rays never.
+    float coarsenAfterVoxels = 8.0f;
 };
+constexpr uint32_t kMaxTraceIterations = 4096;
 
 // A light of the application's direct lighting, for relighting the radiance cache where the camera does
 // not see (DispatchDesc::lights). Units are the lit image's.

@@ -1,14 +1,16 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
+#include "bricklight/trace.glsl"
 #include "gi_common.glsl"
 // Pass 3: forget the cache entries of bricks the SDF freed, and pick this frame's bricks to re-light.
 // Every brick remembers the owner (voxel) its cache was written for; where the SDF's owner differs, the
 // brick was freed and reused elsewhere (or never written): its radiance cache slot is cleared and pushed
 // back on the free stack, its SH and its material are cleared. A full pass over the brick pool, so it also catches bricks freed by several SDF
 // updates between two GI frames.
-// With relighting on, a brick whose albedo is known and that the camera has not seen for GI_RELIGHT_AFTER
-// frames is appended, every GI_RELIGHT_PERIOD-th frame, to the relight list: words 0..2 are the
+// With relighting on, a brick whose albedo is known, that the camera has not seen for GI_RELIGHT_AFTER
+// frames and that is out of view (giBrickInView) is appended, every GI_RELIGHT_PERIOD-th frame, to the
+// relight list: words 0..2 are the
 // indirect dispatch's arguments (x = bricks listed, one group each; the host resets them to 0, 1, 1),
 // word 3 counts the candidates, the bricks follow.
 layout(local_size_x = 64) in;
@@ -20,6 +22,36 @@ BL_STORAGE_BUFFER(3) RelightList { uint relightList[]; };
 BL_STORAGE_BUFFER(4) CacheSlots { uint giCacheSlots[]; };
 BL_STORAGE_BUFFER(5) FreeSlots { int freeSlotCount; uint freeSlots[]; };
 BL_IMAGE(0, r32ui) uniform writeonly uimage3D radianceCache;
+BL_TEXTURE(0) uniform sampler2D depthNow;
+#include "gi_bricks.glsl"
+
+// Whether the camera may see the voxel (world coordinates `voxel`, edge `size`): some of its box inside
+// the frustum's side planes, and its centre not hidden behind this frame's depth buffer. A brick in view
+// is the screen's to update, however long injection happened to miss it (coarse cascades are injected by
+// every 2^k-th pixel only): re-lighting it as well would make its radiance depend on which of the two
+// passes' writes land last. In doubt (the centre off screen, or on sky), in view.
+bool giBrickInView(ivec3 voxel, float size) {
+    vec3 lo = vec3(voxel) * size;
+    bvec4 allOutside = bvec4(true);  // beyond +x, -x, +y, -y
+    bool allBehind = true;
+    for (int k = 0; k < 8; ++k) {
+        vec4 c = giCamera.viewProjection * vec4(lo + vec3(k & 1, (k >> 1) & 1, k >> 2) * size, 1.0);
+        allOutside = bvec4(allOutside.x && c.x > c.w, allOutside.y && c.x < -c.w, allOutside.z && c.y > c.w, allOutside.w && c.y < -c.w);
+        allBehind = allBehind && c.w <= 0.0;
+    }
+    if (allBehind || any(allOutside)) return false;
+    vec3 centre = lo + 0.5 * size;
+    vec4 c = giCamera.viewProjection * vec4(centre, 1.0);
+    if (c.w <= 0.0) return true;
+    vec2 uv = c.xy / c.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return true;
+    float depth = texelFetch(depthNow, ivec2(uv * vec2(giFrame.size.xy)), 0).r;
+    if (giIsSky(depth)) return true;
+    // Hidden: the visible surface there is nearer than the box's nearest point (half a diagonal, 0.87
+    // voxel, from the centre), with half a voxel to spare.
+    float visible = length(giWorldPosition(uv, depth, giCamera.inverseViewProjection) - giFrame.camera.xyz);
+    return visible > length(centre - giFrame.camera.xyz) - 1.4 * size;
+}
 
 void main() {
     uint brick = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;
@@ -46,6 +78,9 @@ void main() {
     // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
     uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);
     if (giFrameIndex() + 1u - seen < (GI_RELIGHT_AFTER << level) || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    uint cascade;
+    ivec3 voxel = giOwnerVoxel(owner, cascade);
+    if (giBrickInView(voxel, giVoxelSize(cascade))) return;
     uint slot = atomicAdd(relightList[3], 1u);
     if (slot >= GI_RELIGHT_BUDGET) return;
     relightList[4u + slot] = brick;

@@ -3,10 +3,11 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
-// Pass 8: trace the screen probes. 16 threads per probe (4 probes per group), one ray per traced texel (jittered within the texel,
-// equal-area hemisphere mapping around the probe normal): a hit reads the radiance cache at the hit (the
-// finest cascade with data there), a miss the environment. New probes take the result; reprojected probes
-// retrace a quarter of their texels (one of each 2×2 block, rotating per frame). A hit with no
+// Pass 8: trace the screen probes. 16 threads per probe (4 probes per group), one ray per traced texel
+// (jittered within the texel, equal-area hemisphere mapping around the probe normal): a hit reads the
+// radiance cache at the hit (the finest cascade with data there), a miss the environment. Every probe
+// traces a quarter of its texels a frame (one of each 2×2 block, rotating per frame); a reprojected probe
+// keeps the others, a new one leaves them empty until their turn. A hit with no
 // cached radiance anywhere is marked "hit, unknown" (alpha, see gi_common.glsl) for project_probes to fill
 // with the mean of the probe's known hits — not left out, which would weigh the misses (the environment)
 // too much.
@@ -31,13 +32,15 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     vec3 d = giProbeDirection(n, u);
     uvec2 pixel = giProbePixel(info);
     vec3 p = giWorldPosition(giPixelUv(pixel), uintBitsToFloat(info.y), giCamera.inverseViewProjection);
-    BlSdfRay ray = blSdfMakeRay(p + n * giPushOff(p, giFrame.trace.x), d, giFrame.trace.z, giFrame.trace.w);
-    ray.startCascade = giFrame.cascades.x;
-    ray.endCascade = giFrame.cascades.y;
-    ray.epsilonScale = giFrame.epsilon.x;
+    BlSdfRay ray = giMakeRay(p + n * giPushOff(p, giFrame.trace.x), d, giFrame.trace.w, GI_RAY_DIFFUSE);
     BlSdfHit hit = blSdfTrace(ray);
     vec3 radiance;
     float kind = GI_TEXEL_HIT;
+    if (hit.gaveUp) {
+        // Out of iterations before any answer: neither the sky nor a known surface (like an unknown hit).
+        imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
+        return;
+    }
     if (!hit.hit) {
         radiance = giEnvironment(d);
         kind = GI_TEXEL_MISS;
@@ -53,9 +56,11 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     imageStore(probes, texel, value);
 }
 
-// 16 threads per probe, one per 2×2 block of texels, so that the traced rays fill whole SIMD groups:
-// a reprojected probe retraces one texel of each block per frame (all four within four frames), a new
-// probe all four.
+// 16 threads per probe, one per 2×2 block of texels, one ray per thread and frame: every probe, new or
+// reprojected, traces one texel of each block (rotating per frame, all four within four frames). A new
+// probe's other texels stay empty until their turn; the projection scales the traced ones up to the whole
+// hemisphere. (New probes tracing all 64 texels at once made their SIMD groups trace four rays in series,
+// and those groups set the pass's time: 0.28 instead of 0.17 ms at 1080p on an H100.)
 void main() {
     uint probeIndex = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u + gl_LocalInvocationIndex / 16u;
     if (probeIndex >= giFrame.tiles.x * giFrame.tiles.y) return;
@@ -63,16 +68,16 @@ void main() {
     uvec4 info = probeInfo[probeIndex];
     uint block = gl_LocalInvocationIndex % 16u;
     uvec2 base = uvec2(block % 4u, block / 4u) * 2u;
+    bool valid = (info.w & GI_PROBE_VALID) != 0u;
     bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
+    uint turn = giFrameIndex() & 3u;
     for (uint k = 0u; k < 4u; ++k) {
         uvec2 local = base + uvec2(k & 1u, k >> 1);
         ivec2 texel = ivec2(tile * 8u + local);
-        if ((info.w & GI_PROBE_VALID) == 0u) {
-            imageStore(probes, texel, vec4(0.0));
-            continue;
-        }
-        vec4 old = imageLoad(probes, texel);
-        if (reprojected && old.a > 0.0 && k != (giFrameIndex() & 3u)) continue;
-        giFillTexel(tile, probeIndex, info, local, reprojected, old);
+        if (!valid || (k != turn && !reprojected)) imageStore(probes, texel, vec4(0.0));  // GI_TEXEL_EMPTY
     }
+    if (!valid) return;
+    uvec2 local = base + uvec2(turn & 1u, turn >> 1);
+    vec4 old = reprojected ? imageLoad(probes, ivec2(tile * 8u + local)) : vec4(0.0);
+    giFillTexel(tile, probeIndex, info, local, reprojected, old);
 }

@@ -24,6 +24,7 @@ BL_CONSTANTS(1) uniform GiFrame {
     uvec4 cascades;      // x start, y end (clamped), z atlas bricks per axis, w brick capacity
     vec4 epsilon;        // x diffuse epsilon scale, y specular epsilon scale
     uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
+    vec4 traceLimits;    // x iterations per cascade of every GI ray, y diffuse rays' coarsen-after voxels
 } giFrame;
 
 #define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)
@@ -193,5 +194,22 @@ vec2 giHammersley(uint i, uint n) {
 #define GI_TEXEL_HIT 1.0          // the radiance cache at the hit
 uvec2 giProbePixel(uvec4 info) { return uvec2(info.x & 0xFFFFu, info.x >> 16); }
 vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
+
+#ifdef BRICKLIGHT_TRACE_GLSL
+// A GI ray through the frame's cascades, with its tMin and iteration budget. Diffuse rays (a cone each)
+// coarsen with distance and use the diffuse epsilon; specular and shadow rays ("exact") do neither.
+#define GI_RAY_DIFFUSE 0u
+#define GI_RAY_SPECULAR 1u
+#define GI_RAY_SHADOW 2u
+BlSdfRay giMakeRay(vec3 origin, vec3 direction, float tMax, uint kind) {
+    BlSdfRay ray = blSdfMakeRay(origin, direction, giFrame.trace.z, tMax);
+    ray.startCascade = giFrame.cascades.x;
+    ray.endCascade = giFrame.cascades.y;
+    ray.epsilonScale = kind == GI_RAY_SPECULAR ? giFrame.epsilon.y : giFrame.epsilon.x;
+    ray.maxIterations = uint(giFrame.traceLimits.x);
+    if (kind == GI_RAY_DIFFUSE) ray.coarsenAfterVoxels = giFrame.traceLimits.y;
+    return ray;
+}
+#endif
 
 #endif

@@ -30,7 +30,10 @@ bool giSurfaceRadiance(vec3 p, vec3 n, out vec3 radiance) {
     return false;
 }
 
-shared float partial[64][28];
+// [value][thread]: a thread's neighbours in a reduction step are neighbours in memory (no bank conflicts;
+// [thread][value] had a stride of 28 words, four threads per bank).
+shared float partial[28][64];
+shared vec4 ownRadiance;  // the probe's own surface (giSurfaceRadiance); w 1 where a cache knows it
 
 void main() {
     uvec2 tile = gl_WorkGroupID.xy;
@@ -39,38 +42,44 @@ void main() {
     uvec4 info = probeInfo[index];
     uvec2 local = uvec2(t % 8u, t / 8u);
     vec4 radiance = texelFetch(probes, ivec2(tile * 8u + local), 0);
+    vec3 n = giProbeNormal(info);
+    if (t == 0u) {  // first: the chain of lookups overlaps the reductions instead of following them
+        vec3 own = vec3(0.0);
+        bool known = (info.w & GI_PROBE_VALID) != 0u &&
+                     giSurfaceRadiance(giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection), n, own);
+        ownRadiance = vec4(own, known ? 1.0 : 0.0);
+    }
     bool probeValid = (info.w & GI_PROBE_VALID) != 0u && giFinite(radiance.rgb);
     // First reduction: the mean of the known hits, which stands in for the hits of unknown radiance.
     bool knownHit = probeValid && radiance.a > GI_TEXEL_MISS + 0.1;
-    partial[t][0] = knownHit ? radiance.r : 0.0;
-    partial[t][1] = knownHit ? radiance.g : 0.0;
-    partial[t][2] = knownHit ? radiance.b : 0.0;
-    partial[t][3] = knownHit ? 1.0 : 0.0;
+    partial[0][t] = knownHit ? radiance.r : 0.0;
+    partial[1][t] = knownHit ? radiance.g : 0.0;
+    partial[2][t] = knownHit ? radiance.b : 0.0;
+    partial[3][t] = knownHit ? 1.0 : 0.0;
     barrier();
     for (uint stride = 32u; stride > 0u; stride >>= 1) {
         if (t < stride)
-            for (int k = 0; k < 4; ++k) partial[t][k] += partial[t + stride][k];
+            for (int k = 0; k < 4; ++k) partial[k][t] += partial[k][t + stride];
         barrier();
     }
-    vec4 hits = vec4(partial[0][0], partial[0][1], partial[0][2], partial[0][3]);
+    vec4 hits = vec4(partial[0][0], partial[1][0], partial[2][0], partial[3][0]);
     barrier();
     bool unknownHit = probeValid && abs(radiance.a - GI_TEXEL_UNKNOWN_HIT) < 0.1;
     if (unknownHit && hits.w > 0.0) radiance = vec4(hits.rgb / hits.w, GI_TEXEL_HIT);
     bool use = probeValid && radiance.a > GI_TEXEL_UNKNOWN_HIT + 0.1;
     float y[9];
-    vec3 n = giProbeNormal(info);
     giShBasis(giProbeDirection(n, (vec2(local) + 0.5) / 8.0), y);
     for (int i = 0; i < 9; ++i) {
         vec3 c = use ? radiance.rgb * (y[i] * 2.0 * GI_PI / 64.0) : vec3(0.0);
-        partial[t][3 * i] = c.r;
-        partial[t][3 * i + 1] = c.g;
-        partial[t][3 * i + 2] = c.b;
+        partial[3 * i][t] = c.r;
+        partial[3 * i + 1][t] = c.g;
+        partial[3 * i + 2][t] = c.b;
     }
-    partial[t][27] = use ? 1.0 : 0.0;
+    partial[27][t] = use ? 1.0 : 0.0;
     barrier();
     for (uint stride = 32u; stride > 0u; stride >>= 1) {
         if (t < stride)
-            for (int k = 0; k < 28; ++k) partial[t][k] += partial[t + stride][k];
+            for (int k = 0; k < 28; ++k) partial[k][t] += partial[k][t + stride];
         barrier();
     }
     if (t < 9u) {
@@ -80,14 +89,10 @@ void main() {
         // it changes nothing (the L2 clamped-cosine kernel integrates to 0 over the lower hemisphere).
         // Its projection is the SH of a constant over the lower hemisphere: c·(√π, 0, -√(3π)/2, 0, ...)
         // rotated to n, i.e. c·Y-weights evaluated analytically below.
-        vec3 self = hits.w > 0.0 ? hits.rgb / hits.w : vec3(0.0);
-        vec3 own;
-        if ((info.w & GI_PROBE_VALID) != 0u &&
-            giSurfaceRadiance(giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection), n, own))
-            self = own;
-        float covered = partial[0][27];
+        vec3 self = ownRadiance.w > 0.0 ? ownRadiance.rgb : (hits.w > 0.0 ? hits.rgb / hits.w : vec3(0.0));
+        float covered = partial[27][0];
         float scale = covered > 0.0 ? 64.0 / covered : 0.0;
-        vec3 c = vec3(partial[0][3 * t], partial[0][3 * t + 1], partial[0][3 * t + 2]) * scale;
+        vec3 c = vec3(partial[3 * t][0], partial[3 * t + 1][0], partial[3 * t + 2][0]) * scale;
         if (covered > 0.0) {
             // ∫ over the lower hemisphere of Y_lm: zonal coefficients (l0: 2π·0.282095, l1: -π·0.488603,
             // l2: 0) along n.

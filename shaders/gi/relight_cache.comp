@@ -8,13 +8,16 @@
 // for ever. For each brick of this frame's relight list (clear_freed_bricks.comp picks bricks unseen for a
 // few frames), one thread per written texel: the surface near the texel (the distance field's gradient
 // and distance), then
-//   radiance = emission + albedo · (E_lights / π + mean of GI_RELIGHT_RAYS cosine-weighted rays' radiance)
+//   radiance = emission + albedo · (E_lights / π + mean of GI_RELIGHT_HALVES cosine-weighted rays' radiance)
 // with the lights shadowed through the field and the rays reading the cache (the environment on a miss):
 // one more bounce each time, as the screen's feedback gives on screen. Albedo and emission are the brick's
 // (learnt by inject_radiance.comp where the camera saw it): one value per brick, so texels of a brick
 // that spans two materials get their mean.
-layout(local_size_x = 64) in;  // one group per listed brick, one thread per texel
-#define GI_RELIGHT_RAYS 2u
+// One group per listed brick, two threads per texel: each traces one cosine-weighted ray and half of the
+// lights' shadow rays, and the two halves meet in shared memory. (One thread per texel tracing all of them
+// in series took 0.117 ms for 2048 bricks on an H100; the pass's time is that of its longest thread.)
+layout(local_size_x = 128) in;
+#define GI_RELIGHT_HALVES 2u
 // How far a re-lit texel moves towards the new value (a brick is re-lit every GI_RELIGHT_PERIOD frames).
 #define GI_RELIGHT_BLEND 0.75
 BL_READ_BUFFER(0) RelightList { uint relightList[]; };
@@ -58,17 +61,14 @@ bool giSurfaceNear(uint brick, vec3 uvw, float band, out vec3 n, out float dista
 }
 
 bool giShadowed(vec3 p, vec3 l, float distance) {
-    BlSdfRay ray = blSdfMakeRay(p, l, giFrame.trace.z, min(distance, giFrame.trace.w));
-    ray.startCascade = giFrame.cascades.x;
-    ray.endCascade = giFrame.cascades.y;
-    ray.epsilonScale = giFrame.epsilon.x;
-    return blSdfTrace(ray).hit;
+    BlSdfHit hit = blSdfTrace(giMakeRay(p, l, min(distance, giFrame.trace.w), GI_RAY_SHADOW));
+    return hit.hit || hit.gaveUp;  // no answer: in shadow, the safer guess (no light from nowhere)
 }
 
-// Irradiance from the frame's lights at p (normal n), shadowed through the field.
-vec3 giLightIrradiance(vec3 p, vec3 n) {
+// Irradiance from the frame's lights first, first + stride, ... at p (normal n), shadowed through the field.
+vec3 giLightIrradiance(vec3 p, vec3 n, uint first, uint stride) {
     vec3 sum = vec3(0.0);
-    for (uint i = 0u; i < giFrame.relight.x; ++i) {
+    for (uint i = first; i < giFrame.relight.x; i += stride) {
         vec4 a = giLights[3u * i], b = giLights[3u * i + 1u], c = giLights[3u * i + 2u];
         vec3 l = b.xyz, irradiance = c.rgb;
         float distance = 1e30;
@@ -90,60 +90,71 @@ vec3 giLightIrradiance(vec3 p, vec3 n) {
     return sum;
 }
 
+// What the second thread of each texel hands over: its ray (rgb; w 1 if it voted) and its lights.
+shared vec4 halfBounce[64];
+shared vec3 halfIrradiance[64];
+
 void main() {
     uint slot = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
     if (slot >= min(relightList[3], GI_RELIGHT_BUDGET)) return;
     uint brick = relightList[4u + slot];
     uint owner = brickOwners[brick];
     if (owner == 0xFFFFFFFFu) return;
-    uint t = gl_LocalInvocationIndex;
-    ivec3 local = ivec3(t & 3u, (t >> 2) & 3u, t >> 4);
     uint cacheSlot = giCacheSlots[brick];
     if (cacheSlot >= GI_SLOT_PENDING) return;
+    // Every return above is the whole group's (one brick); below, threads only go idle until the barrier.
+    uint t = gl_LocalInvocationIndex % 64u, side = gl_LocalInvocationIndex / 64u;
+    ivec3 local = ivec3(t & 3u, (t >> 2) & 3u, t >> 4);
     ivec3 texel = giCacheSlotBase(cacheSlot) + local;
     uint old = imageLoad(giRadianceCache, texel).r;
-    if (old == 0u) return;  // nothing was ever seen here
     uint cascade;
     ivec3 voxel = giOwnerVoxel(owner, cascade);
     BlSdfCascade info = blSdfTable.cascades[cascade];
     vec3 uvw = (vec3(local) + 0.5) / 4.0;
-    vec3 n;
-    float distance;
-    if (!giSurfaceNear(brick, uvw, info.voxelSize.w, n, distance)) return;
-    vec3 q = (vec3(voxel) + uvw) * info.voxelSize.x;
-    vec3 s = q - n * distance;
-    vec3 p = s + n * giPushOff(s, giFrame.trace.x);
-
-    uint m = brick * GI_MATERIAL_WORDS;
-    vec3 albedo = unpackUnorm4x8(brickMaterial[m]).rgb;
-    // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
+    vec3 n = vec3(0.0, 0.0, 1.0);
+    float distance = 0.0;
+    // Texels never seen have nothing to re-light; nor have texels with no surface within the band.
+    bool relit = old != 0u && giSurfaceNear(brick, uvw, info.voxelSize.w, n, distance);
+    vec3 p = vec3(0.0);
+    vec4 bounce = vec4(0.0);  // rgb radiance of this thread's ray, w 1 if it voted
+    vec3 irradiance = vec3(0.0);
     bool emissionInRays = (giFrame.relight.y & GI_RELIGHT_EMISSION_IN_RAYS) != 0u;
-    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? giDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
-    vec3 bounce = vec3(0.0);
-    float known = 0.0;
-    uint rng = giPcg(brick * 64u + t + giPcg(giFrameIndex()));
-    vec3 tangent, bitangent;
-    giBasis(n, tangent, bitangent);
-    for (uint r = 0u; r < GI_RELIGHT_RAYS; ++r) {
+    if (relit) {
+        vec3 q = (vec3(voxel) + uvw) * info.voxelSize.x;
+        vec3 s = q - n * distance;
+        p = s + n * giPushOff(s, giFrame.trace.x);
         // Cosine-weighted: the mean radiance is the irradiance over π.
+        uint rng = giPcg(brick * 128u + gl_LocalInvocationIndex + giPcg(giFrameIndex()));
+        vec3 tangent, bitangent;
+        giBasis(n, tangent, bitangent);
         float u1 = giRandom(rng), phi = 2.0 * GI_PI * giRandom(rng);
         float sr = sqrt(u1);
         vec3 d = normalize(tangent * (sr * cos(phi)) + bitangent * (sr * sin(phi)) + n * sqrt(max(1.0 - u1, 0.0)));
-        BlSdfRay ray = blSdfMakeRay(p, d, giFrame.trace.z, giFrame.trace.w);
-        ray.startCascade = giFrame.cascades.x;
-        ray.endCascade = giFrame.cascades.y;
-        ray.epsilonScale = giFrame.epsilon.x;
-        BlSdfHit hit = blSdfTrace(ray);
+        BlSdfHit hit = blSdfTrace(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE));
         vec3 radiance;
-        if (!hit.hit) radiance = giEnvironment(d);
-        else if (!giRadianceAt(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) continue;  // unknown: no vote
-        else if (emissionInRays && brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u] != 0u)
-            radiance += giDecodeRgb9e5(brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u]);
-        bounce += radiance;
-        known += 1.0;
+        // No answer, or a surface of unknown radiance: no vote.
+        if (!hit.gaveUp) {
+            if (!hit.hit) bounce = vec4(giEnvironment(d), 1.0);
+            else if (giRadianceAt(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) {
+                uint e = brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u];
+                bounce = vec4(radiance + (emissionInRays && e != 0u ? giDecodeRgb9e5(e) : vec3(0.0)), 1.0);
+            }
+        }
+        irradiance = giLightIrradiance(p, n, side, GI_RELIGHT_HALVES);
     }
-    if (known > 0.0) bounce /= known;
-    vec3 target = emitted + albedo * (giLightIrradiance(p, n) / GI_PI + bounce);
+    if (side == 1u) {
+        halfBounce[t] = bounce;
+        halfIrradiance[t] = irradiance;
+    }
+    barrier();
+    if (side == 1u || !relit) return;
+    bounce += halfBounce[t];
+    irradiance += halfIrradiance[t];
+    uint m = brick * GI_MATERIAL_WORDS;
+    vec3 albedo = unpackUnorm4x8(brickMaterial[m]).rgb;
+    // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
+    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? giDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
+    vec3 target = emitted + albedo * (irradiance / GI_PI + (bounce.w > 0.0 ? bounce.rgb / bounce.w : vec3(0.0)));
     if (!giFinite(target)) return;
     imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(mix(giDecodeRgb9e5(old), target, GI_RELIGHT_BLEND))));
 }
