@@ -46,6 +46,8 @@ inline PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
 
 // The device of --backend (null with a message on stderr).
 std::unique_ptr<rhi::IDevice> makeDevice(const Options& o);
+// Barriers the device of --backend has recorded so far (pipeline barriers on Vulkan, glMemoryBarrier on GL).
+uint64_t barriersSoFar(const Options& o, rhi::IDevice& device);
 // Every technique's start: the scene of --scene and the device of --backend (a warning on stderr when it has
 // no GPU timestamps). False with a message on stderr.
 bool openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_ptr<rhi::IDevice>* device);

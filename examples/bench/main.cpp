@@ -125,6 +125,10 @@ std::unique_ptr<rhi::IDevice> bricklight::bench::makeDevice(const Options& o) {
     return device;
 }
 
+uint64_t bricklight::bench::barriersSoFar(const Options& o, rhi::IDevice& device) {
+    return o.backend == "vulkan" ? vulkan::barrierCount(device) : gl::barrierCount(device);
+}
+
 std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry,
                                                                  const Options& o) {
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;

@@ -9,8 +9,8 @@
 // back on the free stack, its SH and its material are cleared. A full pass over the brick pool, so it also catches bricks freed by several SDF
 // updates between two GI frames.
 // With relighting on, a brick whose albedo is known, that the camera has not seen for GI_RELIGHT_AFTER
-// frames and that is out of view (giBrickInView) is appended, every GI_RELIGHT_PERIOD-th frame, to the
-// relight list: words 0..2 are the
+// frames and that is out of view (giBrickInView) — or that it has not seen for GI_RELIGHT_STALE frames —
+// is appended, every GI_RELIGHT_PERIOD-th frame, to the relight list: words 0..2 are the
 // indirect dispatch's arguments (x = bricks listed, one group each; the host resets them to 0, 1, 1),
 // word 3 counts the candidates, the bricks follow.
 layout(local_size_x = 64) in;
@@ -77,10 +77,14 @@ void main() {
     // Coarser cascades are injected by every 2^k-th pixel only (inject_radiance.comp), so a brick there
     // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
     uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);
-    if (giFrameIndex() + 1u - seen < (GI_RELIGHT_AFTER << level) || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    uint unseen = giFrameIndex() + 1u - seen;
+    if (unseen < (GI_RELIGHT_AFTER << level) || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    // The view test is conservative (in doubt, in view), so a brick it calls visible may still be one the
+    // screen never reaches (its centre on sky, behind a thin occluder, ...): after GI_RELIGHT_STALE × 2^k
+    // frames without injection it is re-lit all the same, or it would keep stale light for ever.
     uint cascade;
     ivec3 voxel = giOwnerVoxel(owner, cascade);
-    if (giBrickInView(voxel, giVoxelSize(cascade))) return;
+    if (unseen < (GI_RELIGHT_STALE << level) && giBrickInView(voxel, giVoxelSize(cascade))) return;
     uint slot = atomicAdd(relightList[3], 1u);
     if (slot >= GI_RELIGHT_BUDGET) return;
     relightList[4u + slot] = brick;

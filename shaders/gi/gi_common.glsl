@@ -33,11 +33,13 @@ BL_CONSTANTS(1) uniform GiFrame {
 // Per-brick material (GI_MATERIAL_WORDS uints per brick): albedo RGBA8 (a = 1 once learnt), emission
 // RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never).
 #define GI_MATERIAL_WORDS 3u
-// Relighting (relight_cache.comp): a brick the camera has not seen for GI_RELIGHT_AFTER frames (twice the
-// injection's rotation through its 2×2 tiles; × 2^k in the k-th cascade above the start) is re-lit
-// every GI_RELIGHT_PERIOD-th frame; at most GI_RELIGHT_BUDGET bricks per frame (core/gi/gi_constants.h:
+// Relighting (relight_cache.comp): a brick out of view that the camera has not seen for GI_RELIGHT_AFTER
+// frames (twice the injection's rotation through its 2×2 tiles; × 2^k in the k-th cascade above the
+// start) — or any brick not seen for GI_RELIGHT_STALE (× 2^k) frames — is re-lit every
+// GI_RELIGHT_PERIOD-th frame; at most GI_RELIGHT_BUDGET bricks per frame (core/gi/gi_constants.h:
 // kRelightBudget).
 #define GI_RELIGHT_AFTER 4u
+#define GI_RELIGHT_STALE 8u
 #define GI_RELIGHT_PERIOD 2u
 #define GI_RELIGHT_BUDGET 2048u
 

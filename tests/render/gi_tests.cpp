@@ -210,6 +210,8 @@ void badInputChangesNothing(const std::string& backend) {
         {"roughnessChannel 7", [](gi::DispatchDesc& d) { d.roughnessChannel = 7; }},
         {"matrix 'projection' is not finite", [](gi::DispatchDesc& d) { d.projection[0][0] = NAN; }},
         {"trace.startCascade 9", [](gi::DispatchDesc& d) { d.trace.startCascade = 9; }},
+        {"trace.maxIterationsPerCascade 0 is outside", [](gi::DispatchDesc& d) { d.trace.maxIterationsPerCascade = 0; }},
+        {"trace.coarsenAfterVoxels must be finite", [](gi::DispatchDesc& d) { d.trace.coarsenAfterVoxels = NAN; }},
         {"environmentMap is missing", [](gi::DispatchDesc& d) { d.environmentKind = gi::EnvironmentKind::Cube; }},
         {"an output is also bound as an input", [&](gi::DispatchDesc& d) { d.outputDiffuse = g.lit; }},
         {"lights are given without 'diffuseAlbedo'", [&](gi::DispatchDesc& d) {
