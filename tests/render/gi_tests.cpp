@@ -79,6 +79,59 @@ void cornellAgainstReference(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+void glossyFloorAgainstReference(const std::string& backend) {
+    // The specular path: the Cornell box with a glossy metal floor (metalness 1, roughness 0.3), whose
+    // reflections of the lit walls and blocks come from GI's specular output (the pre-trace, the per-pixel
+    // trace in the found brick, the SH lobe where that fails). `combined` against 512 spp of the path
+    // tracer, 128², 64 frames; and the floor's own pixels (the lower third of the image), where the
+    // reflections are. Measured (lavapipe and llvmpipe alike): combined relMSE 0.024, SSIM 0.80, mean 0.099
+    // vs 0.119; floor relMSE 0.011, SSIM 0.79; on the floor GI adds 0.0095 where the path tracer's
+    // indirect light adds 0.0157 (60 %: the same shortfall as the diffuse GI's, docs/gi.md). Without
+    // specular GI the floor would show its direct light only (0.0060). Bounds: about twice the measured
+    // distance from perfect.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry scene = scenes::cornellBox();
+    bool found = false;
+    for (scenes::TriangleMesh& m : scene.meshes)
+        if (m.name == "floor") {
+            m.albedo = glm::vec3(0.9f);
+            m.metalness = 1.0f;
+            m.roughness = 0.3f;
+            m.specular = true;
+            found = true;
+        }
+    REQUIRE(found);
+    auto gi = giRenderer(td, scene, kCornellSize);
+    frames(td, *gi, 64);
+    auto reference = traced(td, scene, kCornellSize, 512);
+    const render::Image combined = gi->read(render::Aov::Combined), refCombined = reference->read(render::Aov::Combined);
+    REQUIRE(allFinite(combined.rgb));
+    const render::ImageMetrics c = render::compareImages(combined, refCombined);
+    INFO("combined relMSE " << c.relMse << " SSIM " << c.ssim << " mean " << c.meanA << " vs " << c.meanB);
+    auto lowerThird = [](const render::Image& img) {
+        render::Image out;
+        out.width = img.width;
+        out.height = img.height / 3;
+        out.rgb.assign(img.rgb.end() - ptrdiff_t(3 * size_t(out.width) * out.height), img.rgb.end());
+        return out;
+    };
+    const render::ImageMetrics f = render::compareImages(lowerThird(combined), lowerThird(refCombined));
+    INFO("floor relMSE " << f.relMse << " SSIM " << f.ssim << " mean " << f.meanA << " vs " << f.meanB);
+    // What GI adds on the floor (combined - direct; a metal has no diffuse term, so this is the specular
+    // GI), against what the path tracer's indirect light adds there.
+    const double giAdds = f.meanA - mean(lowerThird(gi->read(render::Aov::Direct)));
+    const double referenceAdds = f.meanB - mean(lowerThird(reference->read(render::Aov::Direct)));
+    INFO("on the floor GI adds " << giAdds << ", the path tracer's indirect light " << referenceAdds);
+    CHECK(c.relMse < 0.05);
+    CHECK(c.ssim > 0.65);
+    CHECK(f.relMse < 0.025);
+    CHECK(f.ssim > 0.6);
+    CHECK(giAdds > 0.4 * referenceAdds);
+    CHECK(giAdds < 1.3 * referenceAdds);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 void noFlickerWhenConverged(const std::string& backend) {
     // A static view after convergence: the mean absolute change between two consecutive frames is below
     // 2 % of the mean GI (temporal accumulation and the caches' slow weights keep it still). Measured:
@@ -124,10 +177,13 @@ void noLeakThroughWall(const std::string& backend) {
 void recoversAfterMotion(const std::string& backend) {
     // dynamic: the torus and the light move for 24 frames, then stop. GI must move towards what a renderer
     // that saw only the final state reaches in 128 frames: 24 frames after the stop the relMSE to it is
-    // below 0.008 and below its value at the stop, and it stays there: below 0.006 80 frames later (no
-    // light left behind by the moving lamp). Measured on lavapipe / llvmpipe: 0.018 / 0.016 at the stop,
-    // 0.0057 / 0.0049 after 24 frames, 0.0024 / 0.0035 after 104. Without relighting (unseen surfaces
-    // keep the light they had when last seen): 0.020, 0.0062, then 0.0041 and rising (docs/gi.md).
+    // below 0.009 and below its value at the stop, and it stays there: below 0.008 80 frames later (no
+    // light left behind by the moving lamp). Measured on lavapipe / llvmpipe over eight runs of each:
+    // ~0.020 at the stop, 0.0055–0.0071 after 24 frames, 0.0039–0.0067 after 104. Two still renderers
+    // differ by ~1e-4 at equal frame counts, so what is left is slow convergence, not noise. Before
+    // relighting was restricted to bricks out of view it was 0.0057 / 0.0024 (single runs): re-lighting
+    // bricks in view that injection happened to miss sped this up, but made Vulkan and GL drift apart
+    // (docs/gi.md, "Relighting"). Without relighting: 0.020, 0.0062, then 0.0041 and rising.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry scene = scenes::dynamicRoom();
@@ -149,9 +205,9 @@ void recoversAfterMotion(const std::string& backend) {
     frames(td, *moving, 80);
     const double later = render::compareImages(moving->read(render::Aov::IndirectDiffuse), converged).relMse;
     INFO("relMSE to the still scene's GI: " << atStop << " at the stop, " << after << " 24 frames later, " << later << " 104 frames later");
-    CHECK(after < 0.008);
+    CHECK(after < 0.009);
     CHECK(after < atStop);
-    CHECK(later < 0.006);
+    CHECK(later < 0.008);
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -452,6 +508,7 @@ void followsOffscreenLight(const std::string& backend) {
 BACKEND_TEST("GI follows light that changes off screen", "[gi]", followsOffscreenLight)
 BACKEND_TEST("GI with a full radiance cache stays finite and lit", "[gi]", fullCacheDegradesGracefully)
 BACKEND_TEST("GI on the Cornell box against the path tracer", "[gi]", cornellAgainstReference)
+BACKEND_TEST("GI's specular on a glossy floor against the path tracer", "[gi]", glossyFloorAgainstReference)
 BACKEND_TEST("GI does not flicker on a static view", "[gi]", noFlickerWhenConverged)
 BACKEND_TEST("GI does not leak through a wall", "[gi]", noLeakThroughWall)
 BACKEND_TEST("GI rejects bad input and records nothing", "[gi]", badInputChangesNothing)
