@@ -28,8 +28,9 @@ BL_TEXTURE(0) uniform sampler2D depthNow;
 // Whether the camera may see the voxel (world coordinates `voxel`, edge `size`): some of its box inside
 // the frustum's side planes, and its centre not hidden behind this frame's depth buffer. A brick in view
 // is the screen's to update, however long injection happened to miss it (coarse cascades are injected by
-// every 2^k-th pixel only): re-lighting it as well would make its radiance depend on which of the two
-// passes' writes land last. In doubt (the centre off screen, or on sky), in view.
+// every 2^k-th pixel only): re-lighting such bricks as well made what the camera sees depend on which
+// bricks injection happened to miss, and Vulkan and GL drifted apart (docs/gi.md, "Relighting"). In
+// doubt (the centre off screen, or on sky), in view.
 bool giBrickInView(ivec3 voxel, float size) {
     vec3 lo = vec3(voxel) * size;
     bvec4 allOutside = bvec4(true);  // beyond +x, -x, +y, -y
