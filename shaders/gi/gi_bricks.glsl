@@ -86,12 +86,16 @@ vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) {
     return weight > 0.0 ? sum / weight : vec3(0.0);
 }
 
-// Radiance leaving the surface at p (found by a ray in `cascade`): the finest cache that has data there.
+// Radiance leaving the surface at p (found by a ray in `cascade`): the hit brick's cache, else the finest
+// other cascade with data there. Finer cascades come first: a ray that coarsened (giMakeRay) hits in a
+// coarse cascade, whose bricks the screen injects only every 2^k-th pixel, while the finer bricks around
+// the same surface may hold fresher light (or be the only ones with a cache slot when the pool is full).
 bool giRadianceAt(vec3 p, uint brick, vec3 uvw, uint cascade, out vec3 radiance) {
     float w;
     radiance = giSampleRadianceCache(brick, uvw, w);
     if (w > 0.0) return true;
-    for (uint c = cascade + 1u; c <= giFrame.cascades.y; ++c) {
+    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+        if (c == cascade) continue;
         uint b;
         vec3 u;
         if (!giBrickAt(p, c, b, u)) continue;
