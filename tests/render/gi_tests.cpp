@@ -485,7 +485,7 @@ void followsOffscreenLight(const std::string& backend) {
     // H100), though the exact
     // answer is 0 — the run that shows the test tells the two apart. With relighting (the renderer passes
     // GI the albedo and the lights) it follows: below 70 % of its lit value 40 frames after the switch-off
-    // (measured: 59 %) and back above 70 % 40 frames after the switch-on (measured: 80 %). What remains
+    // (measured: 61 %) and back above 70 % 40 frames after the switch-on (measured: 83 %). What remains
     // after 40 frames is the room's multi-bounce light, which converges through the screen's feedback
     // loop at the pace of its temporal history (docs/gi.md, "Relighting").
     TestDevice td = makeDevice(backend);
