@@ -199,7 +199,8 @@ vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
 
 #ifdef BRICKLIGHT_TRACE_GLSL
 // A GI ray through the frame's cascades, with its tMin and iteration budget. Diffuse rays (a cone each)
-// coarsen with distance and use the diffuse epsilon; specular and shadow rays ("exact") do neither.
+// coarsen with distance and use the diffuse epsilon; specular rays coarsen by their lobe
+// (giMakeSpecularRay), shadow rays not at all.
 #define GI_RAY_DIFFUSE 0u
 #define GI_RAY_SPECULAR 1u
 #define GI_RAY_SHADOW 2u
@@ -210,6 +211,14 @@ BlSdfRay giMakeRay(vec3 origin, vec3 direction, float tMax, uint kind) {
     ray.epsilonScale = kind == GI_RAY_SPECULAR ? giFrame.epsilon.y : giFrame.epsilon.x;
     ray.maxIterations = uint(giFrame.traceLimits.x);
     if (kind == GI_RAY_DIFFUSE) ray.coarsenAfterVoxels = giFrame.traceLimits.y;
+    return ray;
+}
+// A specular ray of GGX roughness α: its lobe is a cone too, about α·t wide at distance t, so it coarsens
+// once that outgrows the voxel (t > 1/α voxels), never sooner than a diffuse ray; near-mirrors (small α)
+// hardly coarsen.
+BlSdfRay giMakeSpecularRay(vec3 origin, vec3 direction, float tMax, float alpha) {
+    BlSdfRay ray = giMakeRay(origin, direction, tMax, GI_RAY_SPECULAR);
+    if (giFrame.traceLimits.y > 0.0 && alpha > 1e-3) ray.coarsenAfterVoxels = max(giFrame.traceLimits.y, 1.0 / alpha);
     return ray;
 }
 #endif

@@ -31,12 +31,8 @@ void main() {
         if (dot(n, toEye) < 0.0) n = -n;
         uint rng = giPcg(giPcg(pixel.y * giFrame.size.x + pixel.x) ^ giFrameIndex());
         vec3 d = giSpecularDirection(n, toEye, giSurfaceRoughness(surface), vec2(giRandom(rng), giRandom(rng)));
-        BlSdfRay ray = giMakeRay(p + n * giPushOff(p, giFrame.trace.y), d, giFrame.trace.w, GI_RAY_SPECULAR);
-        // A rough lobe is a cone too, about α·t wide at distance t: it coarsens once that outgrows the voxel
-        // (t > 1/α voxels), never sooner than a diffuse ray. Near-mirrors (small α) hardly coarsen.
         float alpha = giSurfaceRoughness(surface) * giSurfaceRoughness(surface);
-        if (giFrame.traceLimits.y > 0.0 && alpha > 1e-3) ray.coarsenAfterVoxels = max(giFrame.traceLimits.y, 1.0 / alpha);
-        BlSdfHit hit = blSdfTrace(ray);
+        BlSdfHit hit = blSdfTrace(giMakeSpecularRay(p + n * giPushOff(p, giFrame.trace.y), d, giFrame.trace.w, alpha));
         // A ray that gave up leaves the tile to the SH caches (GI_PRETRACE_NONE), not to the sky.
         if (!hit.gaveUp) result = hit.hit ? hit.brickId : GI_PRETRACE_MISS;
     }
