@@ -1,9 +1,11 @@
 #include "vk_barriers.h"
 
+#include <algorithm>
+
 namespace bricklight::vulkan::detail {
 
 bool AccessRequest::merge(const AccessRequest& o) {
-    if (layout != o.layout) return false;
+    if (layout != o.layout || sampled != o.sampled) return false;
     stages |= o.stages;
     access |= o.access;
     write = write || o.write;
@@ -13,6 +15,22 @@ bool AccessRequest::merge(const AccessRequest& o) {
 }
 
 namespace {
+
+constexpr VkAccessFlags2 kShaderAccessBits = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_UNIFORM_READ_BIT;
+constexpr VkPipelineStageFlags2 kShaderStageBits =
+    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+    VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+
+bool stagesCover(VkPipelineStageFlags2 have, VkPipelineStageFlags2 want) {
+    return (have & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) || (have & want) == want;
+}
+bool accessCovers(VkAccessFlags2 have, VkAccessFlags2 want) {
+    if (have & VK_ACCESS_2_MEMORY_WRITE_BIT) want &= ~kWriteAccessBits;
+    if (have & VK_ACCESS_2_MEMORY_READ_BIT) want &= kWriteAccessBits;
+    return (have & want) == want;
+}
+
 bool isVisible(const AccessState& s, VkPipelineStageFlags2 stages, VkAccessFlags2 access) {
     for (uint8_t i = 0; i < s.visibleCount; ++i)
         if ((s.visible[i].stages & stages) == stages && (s.visible[i].access & access) == access) return true;
@@ -20,7 +38,46 @@ bool isVisible(const AccessState& s, VkPipelineStageFlags2 stages, VkAccessFlags
 }
 }  // namespace
 
-BarrierNeed computeBarrier(const AccessState& s, const AccessRequest& r, bool image) {
+void BarrierHistory::record(const Entry& e) {
+    entries_[next_] = e;
+    next_ = (next_ + 1) % entries_.size();
+    count_ = std::min<uint32_t>(count_ + 1, uint32_t(entries_.size()));
+}
+
+bool BarrierHistory::orders(uint64_t after, VkPipelineStageFlags2 src, VkPipelineStageFlags2 dst) const {
+    for (uint32_t i = 0; i < count_; ++i) {
+        const Entry& e = entries_[i];
+        if (e.serial > after && stagesCover(e.srcStages, src) && stagesCover(e.dstStages, dst)) return true;
+    }
+    return false;
+}
+
+bool BarrierHistory::makesVisible(uint64_t after, VkPipelineStageFlags2 src, VkAccessFlags2 srcAccess,
+                                  VkPipelineStageFlags2 dst, VkAccessFlags2 dstAccess) const {
+    for (uint32_t i = 0; i < count_; ++i) {
+        const Entry& e = entries_[i];
+        if (e.serial > after && stagesCover(e.srcStages, src) && stagesCover(e.dstStages, dst) &&
+            accessCovers(e.srcAccess, srcAccess) && accessCovers(e.dstAccess, dstAccess))
+            return true;
+    }
+    return false;
+}
+
+VkAccessFlags2 accessesOfStages(VkPipelineStageFlags2 stages) {
+    VkAccessFlags2 a = 0;
+    if (stages & kShaderStageBits) a |= kShaderAccessBits;
+    if (stages & VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT) a |= VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT)
+        a |= VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT)
+        a |= VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+    if (stages & (VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT))
+        a |= VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT) a |= VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    return a;
+}
+
+BarrierNeed computeBarrier(const AccessState& s, const AccessRequest& r, bool image, const BarrierHistory* h) {
     BarrierNeed n;
     n.oldLayout = s.layout;
     const VkAccessFlags2 readBits = r.access & ~kWriteAccessBits;
@@ -36,16 +93,20 @@ BarrierNeed computeBarrier(const AccessState& s, const AccessRequest& r, bool im
         if (s.readStages) {
             // Write after read: the readers must finish first; an execution dependency suffices. If this
             // call also reads, the last write must become visible to it as well.
-            n.needed = true;
-            n.srcStages = s.readStages;
-            if (readBits && s.writeStages && !isVisible(s, r.stages, readBits)) {
+            if (!(h && h->orders(s.readSerial, s.readStages, r.stages))) {
+                n.needed = true;
+                n.srcStages = s.readStages;
+            }
+            if (readBits && s.writeStages && !isVisible(s, r.stages, readBits) &&
+                !(h && h->makesVisible(s.writeSerial, s.writeStages, s.writeAccess, r.stages, readBits))) {
+                n.needed = true;
                 n.srcStages |= s.writeStages;
                 n.srcAccess = s.writeAccess;
             }
         } else if (s.writeStages) {
             if (r.noBarrierWithPreviousWriter && r.shaderWriteOnly && s.shaderWriteOnlyWriter) {
                 n.skippedWriteAfterWrite = true;
-            } else {
+            } else if (!(h && h->makesVisible(s.writeSerial, s.writeStages, s.writeAccess, r.stages, r.access))) {
                 n.needed = true;
                 n.srcStages = s.writeStages;
                 n.srcAccess = s.writeAccess;
@@ -53,7 +114,8 @@ BarrierNeed computeBarrier(const AccessState& s, const AccessRequest& r, bool im
         }
         return n;
     }
-    if (s.writeStages && !isVisible(s, r.stages, r.access)) {
+    if (s.writeStages && !isVisible(s, r.stages, r.access) &&
+        !(h && h->makesVisible(s.writeSerial, s.writeStages, s.writeAccess, r.stages, r.access))) {
         n.needed = true;
         n.srcStages = s.writeStages;
         n.srcAccess = s.writeAccess;
@@ -61,9 +123,10 @@ BarrierNeed computeBarrier(const AccessState& s, const AccessRequest& r, bool im
     return n;
 }
 
-void applyAccess(AccessState& s, const AccessRequest& r, const BarrierNeed& n, bool image) {
+void applyAccess(AccessState& s, const AccessRequest& r, const BarrierNeed& n, bool image, uint64_t serial) {
     const bool transition = image && r.layout != s.layout;
     if (r.write) {
+        s.writeSerial = serial;
         if (n.skippedWriteAfterWrite) {
             // Both writers stay outstanding; the next consumer waits for both.
             s.writeStages |= r.stages;
@@ -80,12 +143,14 @@ void applyAccess(AccessState& s, const AccessRequest& r, const BarrierNeed& n, b
         // in another stage later chains from this stage (srcAccess 0).
         s.writeStages = r.stages;
         s.writeAccess = 0;
+        s.writeSerial = s.readSerial = serial;
         s.readStages = r.stages;
         s.visible[0] = {r.stages, r.access};
         s.visibleCount = 1;
         s.shaderWriteOnlyWriter = false;
     } else {
         s.readStages |= r.stages;
+        s.readSerial = serial;
         if (n.needed) {
             if (s.visibleCount < 4) {
                 s.visible[s.visibleCount++] = {r.stages, r.access};

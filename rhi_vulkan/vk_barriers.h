@@ -8,10 +8,17 @@
 //   write after read  -> execution dependency on the readers only
 //   layout change     -> image barrier from the writer and all readers since
 //   read after read   -> nothing
+// A hazard that an earlier barrier already ordered needs nothing more (BarrierHistory): a
+// vkCmdPipelineBarrier2 orders *every* earlier command's work in its source stages before every later
+// command's work in its destination stages, whatever resources it names, so a write-after-read against
+// readers from several passes ago is usually covered. The backend records all non-transition dependencies
+// of a call as one global memory barrier over everything outstanding (vk_tracking.cpp), which makes such
+// reuse common: passes without a hazard of their own then run between the same two barriers and overlap.
 #pragma once
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -35,6 +42,8 @@ struct AccessState {
     uint8_t visibleCount = 0;
     bool shaderWriteOnlyWriter = false;  // the last writer only wrote (Write/Atomic) from a shader
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    uint64_t writeSerial = 0;  // the call that made the last write (or transition)
+    uint64_t readSerial = 0;   // the latest call among the readers since
 };
 
 // Everything one call does to one buffer or subresource, merged over its bindings.
@@ -43,6 +52,7 @@ struct AccessRequest {
     VkAccessFlags2 access = 0;
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // images only
     bool write = false;
+    bool sampled = false;         // a sampled-texture binding (never merged with a storage one)
     bool shaderWriteOnly = true;  // every access of the call is a shader Write/Atomic
     bool noBarrierWithPreviousWriter = false;
 
@@ -62,8 +72,37 @@ struct BarrierNeed {
     }
 };
 
-BarrierNeed computeBarrier(const AccessState& state, const AccessRequest& request, bool image);
-void applyAccess(AccessState& state, const AccessRequest& request, const BarrierNeed& need, bool image);
+// The barriers recorded lately, by the serial of the call they were recorded for (each call's barrier
+// precedes its own command, so it orders accesses of calls with a smaller serial only). A bounded ring:
+// forgetting old entries only costs barriers, never correctness.
+class BarrierHistory {
+public:
+    struct Entry {
+        uint64_t serial;
+        VkPipelineStageFlags2 srcStages, dstStages;
+        VkAccessFlags2 srcAccess, dstAccess;  // of the global memory barrier (0: execution only)
+    };
+    void record(const Entry& entry);
+    // True when a barrier recorded after call `after` made work in `srcStages` finish before `dstStages`.
+    bool orders(uint64_t after, VkPipelineStageFlags2 srcStages, VkPipelineStageFlags2 dstStages) const;
+    // The same, and it also made writes of `srcAccess` visible to `dstAccess`.
+    bool makesVisible(uint64_t after, VkPipelineStageFlags2 srcStages, VkAccessFlags2 srcAccess,
+                      VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) const;
+
+private:
+    std::array<Entry, 32> entries_{};
+    uint32_t count_ = 0, next_ = 0;
+};
+
+// `history` may be null: no reuse of earlier barriers (resources the application also writes). `serial`
+// is the call that makes the access.
+BarrierNeed computeBarrier(const AccessState& state, const AccessRequest& request, bool image,
+                           const BarrierHistory* history);
+void applyAccess(AccessState& state, const AccessRequest& request, const BarrierNeed& need, bool image,
+                 uint64_t serial);
+
+// The access types a global barrier into `stages` makes visible (every kind this backend declares there).
+VkAccessFlags2 accessesOfStages(VkPipelineStageFlags2 stages);
 
 // The barriers of one call, recorded with a single vkCmdPipelineBarrier2.
 class BarrierBatch {

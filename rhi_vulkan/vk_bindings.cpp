@@ -251,9 +251,13 @@ bool VulkanDevice::planBindings(const Program& program, const rhi::Bindings& b, 
                     default: return mismatch();
                 }
                 // Sampled depth uses the depth read-only layout, which Vulkan only allows on images that can
-                // be depth attachments; a sampled-only depth texture uses SHADER_READ_ONLY_OPTIMAL.
+                // be depth attachments; a sampled-only depth texture uses SHADER_READ_ONLY_OPTIMAL. A colour
+                // texture that is also a storage image is sampled in GENERAL: passes that write it and passes
+                // that sample it then need only a memory dependency, not a layout transition, and that can
+                // share one global barrier with the call's other hazards (docs/backend_vulkan.md, Barriers).
                 const bool depthReadOnly = isDepthFormat(fmt) && (td.usage & TU::DepthTarget);
-                const VkImageLayout layout = !sampled      ? VK_IMAGE_LAYOUT_GENERAL
+                const bool storageCapable = (td.usage & TU::Storage) && !isDepthFormat(fmt);
+                const VkImageLayout layout = !sampled || storageCapable ? VK_IMAGE_LAYOUT_GENERAL
                                              : depthReadOnly ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                                              : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
                 ViewKey key{toVkFormat(fmt), type, VkImageUsageFlags(sampled ? VK_IMAGE_USAGE_SAMPLED_BIT
@@ -266,6 +270,7 @@ bool VulkanDevice::planBindings(const Program& program, const rhi::Bindings& b, 
                 req.stages = pb.pipelineStages;
                 req.access = sampled ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : storageAccess(access);
                 req.layout = layout;
+                req.sampled = sampled;
                 req.write = !sampled && rhi::accessWrites(access);
                 req.shaderWriteOnly = !sampled && (access == rhi::Access::Write || access == rhi::Access::Atomic);
                 req.noBarrierWithPreviousWriter = flags & rhi::DispatchFlags::NoBarrierWithPreviousWriter;

@@ -227,6 +227,7 @@ public:
     uint32_t queueFamily() const { return queueFamily_; }
     void setAppCommandBuffer(VkCommandBuffer commandBuffer);
     uint64_t barrierCount() const { return barrierCount_; }
+    uint64_t pipelineBarrierCount() const { return pipelineBarriers_; }
     uint64_t validationMessages() const { return reporter_->validationMessages; }
     bool pushDescriptors() const { return pushDescriptors_; }
     VkImage nativeImage(rhi::TextureHandle t) const;
@@ -289,6 +290,7 @@ private:
     // vk_tracking.cpp
     void recordBarriers(VkCommandBuffer cmd, const CallPlan& plan);
     void releaseWrapped(VkCommandBuffer cmd, const CallPlan& plan);
+    void notePending(const AccessRequest& request);
 
     // vk_commands.cpp
     bool prepareDispatch(const rhi::DispatchState& state, const std::string& call, CallPlan& plan, Shader** shader,
@@ -364,6 +366,13 @@ private:
     VkCommandBuffer recording_ = VK_NULL_HANDLE;  // internal command buffer being recorded
     VkCommandBuffer appCommandBuffer_ = VK_NULL_HANDLE;
     uint64_t barrierCount_ = 0;
+    uint64_t pipelineBarriers_ = 0;  // vkCmdPipelineBarrier2 calls made by recordBarriers
+    // Barrier reuse (vk_barriers.h): calls are numbered, the barriers recorded lately are remembered, and
+    // the stages (and writes) used since the last barrier are folded into the next one.
+    uint64_t callSerial_ = 0;
+    BarrierHistory history_;
+    VkPipelineStageFlags2 pendingStages_ = 0;
+    VkAccessFlags2 pendingWriteAccess_ = 0;
 
     // Non-blocking read-backs: a host-visible copy, finished once the frame it was recorded in (serial)
     // has been recycled or a full wait (waitCount_) happened after it.

@@ -440,6 +440,10 @@ uint64_t barrierCount(rhi::IDevice& device) {
     auto* d = asVulkan(device);
     return d ? d->barrierCount() : 0;
 }
+uint64_t pipelineBarrierCount(rhi::IDevice& device) {
+    auto* d = asVulkan(device);
+    return d ? d->pipelineBarrierCount() : 0;
+}
 uint64_t validationMessageCount(rhi::IDevice& device) {
     auto* d = asVulkan(device);
     return d ? d->validationMessages() : 0;

@@ -6,13 +6,29 @@
 namespace bricklight::vulkan::detail {
 
 void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
+    const uint64_t serial = ++callSerial_;
     BarrierBatch batch;
-    for (const auto& u : planIn.buffers) {
-        BarrierNeed need = computeBarrier(u.buffer->state, u.request, false);
-        if (need.needed) batch.buffer(u.buffer->buffer, need, u.request);
-        applyAccess(u.buffer->state, u.request, need, false);
+    // Every dependency without a layout change goes into one global memory barrier. It also takes in
+    // everything outstanding since the last barrier (pending*), which costs nothing more on hardware that
+    // waits for whole stages anyway, and lets later calls find their hazards ordered already (history_).
+    VkPipelineStageFlags2 srcStages = 0, dstStages = 0;
+    VkAccessFlags2 srcAccess = 0;
+    bool needed = false;
+    auto take = [&](const BarrierNeed& need, const AccessRequest& request) {
+        dstStages |= request.stages;
+        if (!need.needed) return;
+        needed = true;
+        srcStages |= need.srcStages;
+        srcAccess |= need.srcAccess;
+    };
+    std::vector<BarrierNeed> bufferNeeds(planIn.buffers.size());
+    for (size_t i = 0; i < planIn.buffers.size(); ++i) {
+        const auto& u = planIn.buffers[i];
+        bufferNeeds[i] = computeBarrier(u.buffer->state, u.request, false, u.buffer->wrapped ? nullptr : &history_);
+        take(bufferNeeds[i], u.request);
     }
-    // Subresources in (texture, mip, layer) order so that neighbouring layers with the same barrier merge.
+    // Subresources in (texture, mip, layer) order so that neighbouring layers with the same transition
+    // merge into one image barrier.
     std::vector<const CallPlan::TextureUse*> uses;
     uses.reserve(planIn.textures.size());
     for (const auto& u : planIn.textures) uses.push_back(&u);
@@ -21,6 +37,7 @@ void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
         if (a->mip != b->mip) return a->mip < b->mip;
         return a->layer < b->layer;
     });
+    std::vector<BarrierNeed> textureNeeds(uses.size());
     struct Run {
         const CallPlan::TextureUse* first = nullptr;
         uint32_t layers = 0;
@@ -32,9 +49,17 @@ void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
                         run.layers, run.need, run.first->request);
         run = Run{};
     };
-    for (const CallPlan::TextureUse* u : uses) {
-        AccessState& state = u->texture->sub(u->mip, u->layer);
-        BarrierNeed need = computeBarrier(state, u->request, true);
+    for (size_t i = 0; i < uses.size(); ++i) {
+        const CallPlan::TextureUse* u = uses[i];
+        const AccessState& state = u->texture->sub(u->mip, u->layer);
+        BarrierNeed need = computeBarrier(state, u->request, true, u->texture->wrapped ? nullptr : &history_);
+        textureNeeds[i] = need;
+        if (need.oldLayout == u->request.layout) {  // no transition: part of the global barrier
+            take(need, u->request);
+            continue;
+        }
+        dstStages |= u->request.stages;
+        srcStages |= need.srcStages;  // the global barrier orders the same work (it is a superset)
         const bool extends = run.first && run.first->texture == u->texture && run.first->mip == u->mip &&
                              run.first->layer + run.layers == u->layer && run.need == need &&
                              run.first->request.stages == u->request.stages &&
@@ -48,10 +73,35 @@ void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
             run.layers = 1;
             run.need = need;
         }
-        applyAccess(state, u->request, need, true);
     }
     emit();
+    if (needed || !batch.empty()) {
+        srcStages |= pendingStages_;
+        srcAccess |= pendingWriteAccess_;
+        if (srcStages) {
+            const VkAccessFlags2 dstAccess = accessesOfStages(dstStages);
+            batch.memory(srcStages, srcAccess, dstStages, srcAccess ? dstAccess : 0);
+            history_.record({serial, srcStages, dstStages, srcAccess, srcAccess ? dstAccess : 0});
+        }
+        pendingStages_ = 0;
+        pendingWriteAccess_ = 0;
+    }
+    // The call's own accesses come after its barrier.
+    for (size_t i = 0; i < planIn.buffers.size(); ++i) {
+        applyAccess(planIn.buffers[i].buffer->state, planIn.buffers[i].request, bufferNeeds[i], false, serial);
+        notePending(planIn.buffers[i].request);
+    }
+    for (size_t i = 0; i < uses.size(); ++i) {
+        applyAccess(uses[i]->texture->sub(uses[i]->mip, uses[i]->layer), uses[i]->request, textureNeeds[i], true, serial);
+        notePending(uses[i]->request);
+    }
+    if (!batch.empty()) ++pipelineBarriers_;
     barrierCount_ += batch.flush(c);
+}
+
+void VulkanDevice::notePending(const AccessRequest& request) {
+    pendingStages_ |= request.stages;
+    if (request.write) pendingWriteAccess_ |= request.access & kWriteAccessBits;
 }
 
 void VulkanDevice::releaseWrapped(VkCommandBuffer c, const CallPlan& plan) {

@@ -1,5 +1,7 @@
-// One GI frame as records, in the order of docs/gi.md's pass table. Ping-pong resources alternate with the
-// frame index: [cur] is written this frame, [prev] holds last frame's.
+// One GI frame as records. Ping-pong resources alternate with the frame index: [cur] is written this frame,
+// [prev] holds last frame's. The passes keep docs/gi.md's numbers but are recorded by dependency level, so
+// that passes with no hazard between them follow each other and a backend can run them between the same
+// two barriers: 1 | 2 3 6 9 | 4 7 10 5 | 4b | 8 11 | 12 | 13 | 14 | 15 | 16 | 17.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -118,6 +120,11 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     const rhi::BufferHandle owners = scene_.brickOwnerBuffer();
     device_.beginMarker(desc_.debugName.c_str());
 
+    const bool relight = bool(d.diffuseAlbedo);
+    if (relight) {  // the relight list's dispatch arguments and count start at (0, 1, 1), 0
+        const uint32_t start[4] = {0, 1, 1, 0};
+        device_.writeBuffer(relightList_, 0, start, sizeof(start));
+    }
     {  // 1. downsample
         rhi::DispatchState s;
         texture(s.bindings, 0, d.depth, point_);
@@ -139,11 +146,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, disocclusion_, Access::Write);
         run("disocclusion mask", shaders_.disocclusion, s, groups(width_, 8), groups(height_, 8));
     }
-    const bool relight = bool(d.diffuseAlbedo);
-    if (relight) {  // the relight list's dispatch arguments and count start at (0, 1, 1), 0
-        const uint32_t start[4] = {0, 1, 1, 0};
-        device_.writeBuffer(relightList_, 0, start, sizeof(start));
-    }
     {  // 3. clear the cache entries of freed bricks; pick the bricks to re-light
         rhi::DispatchState s;
         readBuffer(s.bindings, 0, owners);
@@ -157,6 +159,21 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 0, depth_[cur], point_);
         addTrace(s.bindings);
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
+    }
+    {  // 6. spawn screen probes
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        storageBuffer(s.bindings, 0, probeInfo_[cur], Access::Write);
+        run("spawn probes", shaders_.spawn, s, groups(tilesX_, 8), groups(tilesY_, 8));
+    }
+    if (specular) {  // 9. specular pre-trace (one ray per 4×4 tile)
+        rhi::DispatchState s;
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        image(s.bindings, 0, pretrace_, Access::Write);
+        addTrace(s.bindings);
+        run("specular pretrace", shaders_.pretrace, s, groups(groups(width_, kPretraceTile), 8), groups(groups(height_, kPretraceTile), 8));
     }
     {  // 4. inject last frame's lit image into the radiance cache
         rhi::DispatchState s;
@@ -174,17 +191,24 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         run("inject radiance", shaders_.inject, s, groups(groups(width_, kInjectTile), 8), groups(groups(height_, kInjectTile), 8));
     }
-    if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
+    {  // 7. reproject screen probes
         rhi::DispatchState s;
-        readBuffer(s.bindings, 0, relightList_);
-        readBuffer(s.bindings, 1, owners);
-        readBuffer(s.bindings, 2, brickMaterial_);
-        readBuffer(s.bindings, 3, lights_);
-        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
-        image(s.bindings, 0, radianceCache_, Access::ReadWrite);
-        addTrace(s.bindings);
-        addEnvironment(s.bindings, d);
-        runIndirect("relight cache", shaders_.relight, s, relightList_);
+        readBuffer(s.bindings, 0, probeInfo_[prev]);
+        storageBuffer(s.bindings, 0, probeInfo_[cur], Access::ReadWrite);
+        texture(s.bindings, 0, probes_[prev], point_);
+        texture(s.bindings, 1, motion_, point_);
+        image(s.bindings, 0, probes_[cur], Access::Write);
+        run("reproject probes", shaders_.reprojectProbes, s, tilesX_, tilesY_);
+    }
+    {  // 10. reproject GI history
+        rhi::DispatchState s;
+        texture(s.bindings, 0, motion_, point_);
+        texture(s.bindings, 1, disocclusion_, point_);
+        texture(s.bindings, 2, diffuseHistory_[prev], linear_);
+        texture(s.bindings, 3, specularHistory_[prev], linear_);
+        image(s.bindings, 0, diffuseHistory_[cur], Access::Write);
+        image(s.bindings, 1, specularHistory_[cur], Access::Write);
+        run("reproject GI", shaders_.reprojectGi, s, groups(width_, 8), groups(height_, 8));
     }
     {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
         const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];
@@ -199,21 +223,17 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         run("propagate SH", shaders_.propagate, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
-    {  // 6. spawn screen probes
+    if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
         rhi::DispatchState s;
-        texture(s.bindings, 0, depth_[cur], point_);
-        texture(s.bindings, 1, surface_[cur], point_);
-        storageBuffer(s.bindings, 0, probeInfo_[cur], Access::Write);
-        run("spawn probes", shaders_.spawn, s, groups(tilesX_, 8), groups(tilesY_, 8));
-    }
-    {  // 7. reproject screen probes
-        rhi::DispatchState s;
-        readBuffer(s.bindings, 0, probeInfo_[prev]);
-        storageBuffer(s.bindings, 0, probeInfo_[cur], Access::ReadWrite);
-        texture(s.bindings, 0, probes_[prev], point_);
-        texture(s.bindings, 1, motion_, point_);
-        image(s.bindings, 0, probes_[cur], Access::Write);
-        run("reproject probes", shaders_.reprojectProbes, s, tilesX_, tilesY_);
+        readBuffer(s.bindings, 0, relightList_);
+        readBuffer(s.bindings, 1, owners);
+        readBuffer(s.bindings, 2, brickMaterial_);
+        readBuffer(s.bindings, 3, lights_);
+        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
+        image(s.bindings, 0, radianceCache_, Access::ReadWrite);
+        addTrace(s.bindings);
+        addEnvironment(s.bindings, d);
+        runIndirect("relight cache", shaders_.relight, s, relightList_);
     }
     {  // 8. fill screen probes by tracing the field
         rhi::DispatchState s;
@@ -225,24 +245,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addEnvironment(s.bindings, d);
         const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
         run("fill probes", shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
-    }
-    if (specular) {  // 9. specular pre-trace (one ray per 4×4 tile)
-        rhi::DispatchState s;
-        texture(s.bindings, 0, depth_[cur], point_);
-        texture(s.bindings, 1, surface_[cur], point_);
-        image(s.bindings, 0, pretrace_, Access::Write);
-        addTrace(s.bindings);
-        run("specular pretrace", shaders_.pretrace, s, groups(groups(width_, kPretraceTile), 8), groups(groups(height_, kPretraceTile), 8));
-    }
-    {  // 10. reproject GI history
-        rhi::DispatchState s;
-        texture(s.bindings, 0, motion_, point_);
-        texture(s.bindings, 1, disocclusion_, point_);
-        texture(s.bindings, 2, diffuseHistory_[prev], linear_);
-        texture(s.bindings, 3, specularHistory_[prev], linear_);
-        image(s.bindings, 0, diffuseHistory_[cur], Access::Write);
-        image(s.bindings, 1, specularHistory_[cur], Access::Write);
-        run("reproject GI", shaders_.reprojectGi, s, groups(width_, 8), groups(height_, 8));
     }
     if (specular) {  // 11. specular trace (full internal resolution, inside the pre-traced brick)
         rhi::DispatchState s;

@@ -66,6 +66,9 @@ VkBuffer nativeBuffer(rhi::IDevice& device, rhi::BufferHandle buffer);
 // Number of barrier structures (buffer + image + memory) recorded so far; tests use it to check that
 // read-after-read and similar sequences emit none.
 uint64_t barrierCount(rhi::IDevice& device);
+// Number of vkCmdPipelineBarrier2 calls the device's own calls recorded (each waits for the work before it
+// in its source stages, so this is how many times the GPU may drain between calls).
+uint64_t pipelineBarrierCount(rhi::IDevice& device);
 // Number of validation-layer messages received so far (all severities reported).
 uint64_t validationMessageCount(rhi::IDevice& device);
 // True when descriptors are pushed (VK_KHR_push_descriptor), false when per-frame pools are used.
