@@ -369,6 +369,7 @@ private:
     uint64_t pipelineBarriers_ = 0;  // vkCmdPipelineBarrier2 calls made by recordBarriers
     // Barrier reuse (vk_barriers.h): calls are numbered, the barriers recorded lately are remembered, and
     // the stages (and writes) used since the last barrier are folded into the next one.
+    bool barrierReuse_ = true;
     uint64_t callSerial_ = 0;
     BarrierHistory history_;
     VkPipelineStageFlags2 pendingStages_ = 0;

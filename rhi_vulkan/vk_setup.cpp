@@ -224,6 +224,7 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
     f2.features = en;
 
     std::vector<const char*> devExt;
+    dev->barrierReuse_ = !(options.disableBarrierReuse || envFlag("BRICKLIGHT_VK_NO_BARRIER_REUSE"));
     const bool noPush = options.disablePushDescriptors || envFlag("BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS");
     dev->pushDescriptors_ = !noPush && hasDeviceExtension(dev->physical_, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
     if (dev->pushDescriptors_) devExt.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);

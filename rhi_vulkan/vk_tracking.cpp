@@ -7,6 +7,7 @@ namespace bricklight::vulkan::detail {
 
 void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
     const uint64_t serial = ++callSerial_;
+    const BarrierHistory* history = barrierReuse_ ? &history_ : nullptr;
     BarrierBatch batch;
     // Every dependency without a layout change goes into one global memory barrier. It also takes in
     // everything outstanding since the last barrier (pending*), which costs nothing more on hardware that
@@ -24,7 +25,7 @@ void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
     std::vector<BarrierNeed> bufferNeeds(planIn.buffers.size());
     for (size_t i = 0; i < planIn.buffers.size(); ++i) {
         const auto& u = planIn.buffers[i];
-        bufferNeeds[i] = computeBarrier(u.buffer->state, u.request, false, u.buffer->wrapped ? nullptr : &history_);
+        bufferNeeds[i] = computeBarrier(u.buffer->state, u.request, false, u.buffer->wrapped ? nullptr : history);
         take(bufferNeeds[i], u.request);
     }
     // Subresources in (texture, mip, layer) order so that neighbouring layers with the same transition
@@ -52,7 +53,7 @@ void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
     for (size_t i = 0; i < uses.size(); ++i) {
         const CallPlan::TextureUse* u = uses[i];
         const AccessState& state = u->texture->sub(u->mip, u->layer);
-        BarrierNeed need = computeBarrier(state, u->request, true, u->texture->wrapped ? nullptr : &history_);
+        BarrierNeed need = computeBarrier(state, u->request, true, u->texture->wrapped ? nullptr : history);
         textureNeeds[i] = need;
         if (need.oldLayout == u->request.layout) {  // no transition: part of the global barrier
             take(need, u->request);
@@ -76,12 +77,14 @@ void VulkanDevice::recordBarriers(VkCommandBuffer c, const CallPlan& planIn) {
     }
     emit();
     if (needed || !batch.empty()) {
-        srcStages |= pendingStages_;
-        srcAccess |= pendingWriteAccess_;
+        if (barrierReuse_) {
+            srcStages |= pendingStages_;
+            srcAccess |= pendingWriteAccess_;
+        }
         if (srcStages) {
-            const VkAccessFlags2 dstAccess = accessesOfStages(dstStages);
-            batch.memory(srcStages, srcAccess, dstStages, srcAccess ? dstAccess : 0);
-            history_.record({serial, srcStages, dstStages, srcAccess, srcAccess ? dstAccess : 0});
+            const VkAccessFlags2 dstAccess = srcAccess ? accessesOfStages(dstStages) : 0;
+            batch.memory(srcStages, srcAccess, dstStages, dstAccess);
+            if (barrierReuse_) history_.record({serial, srcStages, dstStages, srcAccess, dstAccess});
         }
         pendingStages_ = 0;
         pendingWriteAccess_ = 0;

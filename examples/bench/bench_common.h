@@ -46,8 +46,13 @@ inline PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
 
 // The device of --backend (null with a message on stderr).
 std::unique_ptr<rhi::IDevice> makeDevice(const Options& o);
-// Barriers the device of --backend has recorded so far (pipeline barriers on Vulkan, glMemoryBarrier on GL).
-uint64_t barriersSoFar(const Options& o, rhi::IDevice& device);
+// Barriers the device of --backend has recorded so far: the points where the GPU may wait for earlier work
+// (vkCmdPipelineBarrier2 calls on Vulkan, glMemoryBarrier calls on GL), and on Vulkan the barrier
+// structures in them (on GL the same number).
+struct BarrierCounts {
+    uint64_t waits = 0, structures = 0;
+};
+BarrierCounts barriersSoFar(const Options& o, rhi::IDevice& device);
 // Every technique's start: the scene of --scene and the device of --backend (a warning on stderr when it has
 // no GPU timestamps). False with a message on stderr.
 bool openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_ptr<rhi::IDevice>* device);

@@ -177,15 +177,18 @@ int runGi(const Options& o) {
     device->waitIdle();
     device->setTimingEnabled(true);
     collect(*device, 0);
-    const uint64_t barriersBefore = barriersSoFar(o, *device);
+    const BarrierCounts barriersBefore = barriersSoFar(o, *device);
     for (uint32_t f = 0; f < o.frames; ++f) frame(16 + f);
-    const double barriersPerFrame = double(barriersSoFar(o, *device) - barriersBefore) / o.frames;
+    const BarrierCounts barriersAfter = barriersSoFar(o, *device);
+    const double waitsPerFrame = double(barriersAfter.waits - barriersBefore.waits) / o.frames;
+    const double structuresPerFrame = double(barriersAfter.structures - barriersBefore.structures) / o.frames;
     PhaseTimes t = collect(*device, o.frames);
 
     double total = t.perFrame("gi");
     std::printf("%-24s %9.3f ms/frame (G-buffer %.3f ms, not included)\n", "GI total", total, t.perFrame("bench gbuffer"));
     for (const char* p : kGiPasses) std::printf("  %-22s %9.3f ms\n", p, t.perFrame(std::string("gi/") + p));
-    std::printf("barriers: %.1f a frame (the G-buffer's included)\n", barriersPerFrame);
+    std::printf("barriers: %.1f a frame, %.1f barrier structures (the G-buffer's and the uploads' included)\n", waitsPerFrame,
+                structuresPerFrame);
     const gi::MemoryUse memory = context->memoryUse();
     std::printf("GI memory: %.1f MiB (%.1f MB; without the SDF, and without the two display-size outputs the app owns)\n",
                 double(memory.totalBytes) / (1 << 20), double(memory.totalBytes) / 1e6);

@@ -125,8 +125,9 @@ std::unique_ptr<rhi::IDevice> bricklight::bench::makeDevice(const Options& o) {
     return device;
 }
 
-uint64_t bricklight::bench::barriersSoFar(const Options& o, rhi::IDevice& device) {
-    return o.backend == "vulkan" ? vulkan::barrierCount(device) : gl::barrierCount(device);
+bricklight::bench::BarrierCounts bricklight::bench::barriersSoFar(const Options& o, rhi::IDevice& device) {
+    if (o.backend == "vulkan") return {vulkan::pipelineBarrierCount(device), vulkan::barrierCount(device)};
+    return {gl::barrierCount(device), gl::barrierCount(device)};
 }
 
 std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry,

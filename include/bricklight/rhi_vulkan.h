@@ -26,6 +26,10 @@ struct DeviceOptions {
     // Test hook: use per-frame descriptor pools even when VK_KHR_push_descriptor is available
     // (also env BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS=1).
     bool disablePushDescriptors = false;
+    // Emit every hazard's barrier even when an earlier barrier already ordered it, and fold nothing
+    // outstanding into a barrier (the behaviour before barrier reuse; for A/B timing and tests; also env
+    // BRICKLIGHT_VK_NO_BARRIER_REUSE=1).
+    bool disableBarrierReuse = false;
     rhi::ErrorCallback errorCallback;  // if empty, errors go to stderr
 };
 
