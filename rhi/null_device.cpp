@@ -117,6 +117,7 @@ public:
     void beginMarker(const char*) override {}
     void endMarker() override {}
     void setTimingEnabled(bool) override {}
+    void setTimingDepth(uint32_t) override {}
     std::vector<MarkerTiming> takeTimings() override { return {}; }
     void endFrame() override {}
     void waitIdle() override {}

@@ -134,6 +134,7 @@ public:
     }
     void endMarker() override { write({{"call", "endMarker"}}), inner_.endMarker(); }
     void setTimingEnabled(bool e) override { write({{"call", "setTimingEnabled"}, {"enabled", e}}), inner_.setTimingEnabled(e); }
+    void setTimingDepth(uint32_t depth) override { write({{"call", "setTimingDepth"}, {"depth", depth}}), inner_.setTimingDepth(depth); }
     std::vector<MarkerTiming> takeTimings() override { return inner_.takeTimings(); }
     void endFrame() override { write({{"call", "endFrame"}}), inner_.endFrame(); }
     void waitIdle() override { write({{"call", "waitIdle"}}), inner_.waitIdle(); }

@@ -113,6 +113,8 @@ bool replayLine(const json& j, IDevice& device, record::DecodeContext& ctx, bool
         device.endMarker();
     } else if (call == "setTimingEnabled") {
         device.setTimingEnabled(j.at("enabled"));
+    } else if (call == "setTimingDepth") {
+        device.setTimingDepth(j.at("depth"));
     } else if (call == "endFrame") {
         device.endFrame();
     } else if (call == "waitIdle") {

@@ -258,6 +258,7 @@ public:
         inner_.endMarker();
     }
     void setTimingEnabled(bool enabled) override { inner_.setTimingEnabled(enabled); }
+    void setTimingDepth(uint32_t depth) override { inner_.setTimingDepth(depth); }
     std::vector<MarkerTiming> takeTimings() override { return inner_.takeTimings(); }
     void endFrame() override {
         if (markerDepth_) emit(Severity::Warning, "endFrame: " + std::to_string(markerDepth_) + " marker(s) still open");

@@ -202,7 +202,7 @@ void Device::beginMarker(const char* label) {
     Marker m;
     m.path = markers_.empty() ? name : markers_.back().path + "/" + name;
     gl.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name.c_str());
-    if (timingEnabled_) {
+    if (timingEnabled_ && markers_.size() < timingDepth_) {
         m.timed = true;
         m.timerIndex = timer_.begin(gl, m.path, frame_);
     }

@@ -215,6 +215,7 @@ public:
     void beginMarker(const char* label) override;
     void endMarker() override;
     void setTimingEnabled(bool enabled) override { timingEnabled_ = enabled && caps_.timestamps; }
+    void setTimingDepth(uint32_t depth) override { timingDepth_ = depth ? depth : 1; }
     std::vector<rhi::MarkerTiming> takeTimings() override;
     void endFrame() override;
     void waitIdle() override;
@@ -399,6 +400,7 @@ private:
     };
     std::vector<OpenMarker> markers_;
     bool timingEnabled_ = false;
+    uint32_t timingDepth_ = UINT32_MAX;  // setTimingDepth
     std::vector<rhi::MarkerTiming> finishedTimings_;
     bool queryOverflowReported_ = false;
 };

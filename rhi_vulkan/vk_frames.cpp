@@ -195,7 +195,7 @@ void VulkanDevice::beginMarker(const char* label) {
         m.labelCommandBuffer = c;
     }
     FrameSlot& slot = frame();
-    if (timingEnabled_ && slot.queryPool) {
+    if (timingEnabled_ && slot.queryPool && markers_.size() < timingDepth_) {
         if (slot.queriesUsed + 2 <= kQueriesPerFrame) {
             if (slot.queriesUsed == 0) vkCmdResetQueryPool(c, slot.queryPool, 0, kQueriesPerFrame);
             m.beginQuery = slot.queriesUsed++;

@@ -267,7 +267,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
-        run("project probes", shaders_.project, s, tilesX_, tilesY_);
+        const uint32_t projectGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
+        run("project probes", shaders_.project, s, std::min(projectGroups, kMaxGroups), groups(projectGroups, kMaxGroups));
     }
     {  // 13. emit the probes into the brick SH irradiance cache
         rhi::DispatchState s;

@@ -502,6 +502,10 @@ public:
     virtual void beginMarker(const char* label) = 0;
     virtual void endMarker() = 0;
     virtual void setTimingEnabled(bool enabled) = 0;
+    // Times only markers nested at most `depth` deep (1: the outermost; 0 is taken as 1; default: all).
+    // The end of a timed marker waits for all the work before it, so timing inner markers keeps the calls
+    // inside an outer marker from overlapping; time only the outer level to measure what overlap gains.
+    virtual void setTimingDepth(uint32_t depth) = 0;
     // Returns the timings that the GPU has finished since the last call, without waiting.
     virtual std::vector<MarkerTiming> takeTimings() = 0;
 
