@@ -1,13 +1,31 @@
-// Irradiance SH at a surface point from the two caches: the screen probes around the pixel and the
+// Irradiance at a surface point from the two caches: the screen probes around the pixel and the
 // world-space brick SH around the point. Needs ProbeInfo/ProbeSH (`probeInfo`, `probeSH`) and the brick
 // SH buffer (`giBrickSH`) declared by the including pass.
+//
+// A pixel reads two things from the SH: the diffuse value for its normal and the specular fallback's lobe
+// along its reflection. Both are linear in the SH, so each source's coefficients are dotted with the two
+// weight sets as they are loaded (GiShReads), instead of summing whole SH per cache and blending them:
+// 18 weights and a few sums in registers instead of three 27-float SH, which held the pass's occupancy
+// down (it was the largest per-pixel pass at 4K).
 #ifndef BRICKLIGHT_GI_IRRADIANCE_GLSL
 #define BRICKLIGHT_GI_IRRADIANCE_GLSL
 
+struct GiShReads {
+    float diffuse[9];  // giShDiffuseWeights for the normal
+    float lobe[9];     // giShLobeWeights for the reflection and roughness
+};
+
+// Adds coefficient i of an SH, times w, to the two readings.
+void giShRead(GiShReads reads, int i, vec3 coefficient, float w, inout vec3 diffuse, inout vec3 lobe) {
+    diffuse += coefficient * (reads.diffuse[i] * w);
+    lobe += coefficient * (reads.lobe[i] * w);
+}
+
 // The up to 4 probes of the tiles around the pixel, weighted bilinearly, by how close they are to the
 // pixel's plane and how similar their normal is. Returns the total weight (0: no usable probe).
-float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, out GiSH result) {
-    result = giShZero();
+float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
+    diffuse = vec3(0.0);
+    lobe = vec3(0.0);
     vec2 f = (vec2(pixel) + 0.5) / 8.0 - 0.5;
     ivec2 t0 = ivec2(floor(f));
     vec2 w2 = f - vec2(t0);
@@ -28,19 +46,22 @@ float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, out GiSH result) {
         vec2 b = mix(1.0 - w2, w2, vec2(o));
         float w = (b.x * b.y + 1e-3) * exp(-plane * plane) * pow(facing, 8.0) * covered;
         if (w <= 1e-6) continue;
-        for (int i = 0; i < 9; ++i) result.c[i] += probeSH[index * 9u + uint(i)].rgb * w;
+        for (int i = 0; i < 9; ++i) giShRead(reads, i, probeSH[index * 9u + uint(i)].rgb, w, diffuse, lobe);
         total += w;
     }
-    if (total > 0.0)
-        for (int i = 0; i < 9; ++i) result.c[i] /= total;
+    if (total > 0.0) {
+        diffuse /= total;
+        lobe /= total;
+    }
     return total;
 }
 
 // Trilinear over the bricks around p (moved a quarter voxel off the surface) in the finest traced
 // cascade that has any; bricks whose centre lies behind the surface are left out (no light from the other
 // side of a wall). Returns the total weight (0: none).
-float giWorldCache(vec3 p, vec3 n, out GiSH result) {
-    result = giShZero();
+float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
+    diffuse = vec3(0.0);
+    lobe = vec3(0.0);
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         BlSdfCascade info = blSdfTable.cascades[c];
         if (info.origin.w == 0) continue;
@@ -56,16 +77,23 @@ float giWorldCache(vec3 p, vec3 n, out GiSH result) {
             if (brick == BL_SDF_UNBUILT) continue;
             vec3 centre = (vec3(voxel) + 0.5) * size;
             if (dot(centre - p, n) < -0.75 * size) continue;
-            float weight;
-            GiSH s = giLoadBrickSH(brick, weight);
-            if (weight <= 0.0) continue;
+            // All nine words load before the weight is looked at (branching on the weight first put the
+            // other loads after its latency).
+            uvec2 words[9];
+            for (int i = 0; i < 9; ++i) words[i] = giBrickSH[brick * 9u + uint(i)];
+            float samples = unpackHalf2x16(words[0].y).y;
+            if (!(samples > 0.0)) continue;
             vec3 w3 = mix(1.0 - f, f, vec3(o));
-            float w = w3.x * w3.y * w3.z * min(weight, 4.0) + 1e-4;
-            for (int i = 0; i < 9; ++i) result.c[i] += s.c[i] * w;
+            float w = w3.x * w3.y * w3.z * min(samples, 4.0) + 1e-4;
+            for (int i = 0; i < 9; ++i) {
+                vec2 rg = unpackHalf2x16(words[i].x), ba = unpackHalf2x16(words[i].y);
+                giShRead(reads, i, vec3(rg, ba.x), w, diffuse, lobe);
+            }
             total += w;
         }
         if (total > 0.0) {
-            for (int i = 0; i < 9; ++i) result.c[i] /= total;
+            diffuse /= total;
+            lobe /= total;
             return total;
         }
     }
@@ -73,19 +101,19 @@ float giWorldCache(vec3 p, vec3 n, out GiSH result) {
 }
 
 // Both caches: the screen probes where they exist (they see this view's detail), blended with the world
-// cache (stable, and the fallback where probes are missing).
+// cache (stable, and the fallback where probes are missing). The readings are clamped at 0 (an L2
+// estimate can ring below it).
 #define GI_WORLD_SHARE 0.3
-bool giIrradianceSH(uvec2 pixel, vec3 p, vec3 n, out GiSH result) {
-    GiSH screen, world;
-    float ws = giScreenProbes(pixel, p, n, screen);
-    float ww = giWorldCache(p, n, world);
-    if (ws > 0.0 && ww > 0.0) result = giShMix(screen, world, GI_WORLD_SHARE);
-    else if (ws > 0.0) result = screen;
-    else if (ww > 0.0) result = world;
-    else {
-        result = giShZero();
-        return false;
-    }
+bool giIrradiance(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
+    vec3 screenDiffuse, screenLobe, worldDiffuse, worldLobe;
+    float ws = giScreenProbes(pixel, p, n, reads, screenDiffuse, screenLobe);
+    float ww = giWorldCache(p, n, reads, worldDiffuse, worldLobe);
+    diffuse = vec3(0.0);
+    lobe = vec3(0.0);
+    if (ws <= 0.0 && ww <= 0.0) return false;
+    float t = ws > 0.0 && ww > 0.0 ? GI_WORLD_SHARE : (ws > 0.0 ? 0.0 : 1.0);
+    diffuse = max(mix(screenDiffuse, worldDiffuse, t), vec3(0.0));
+    lobe = max(mix(screenLobe, worldLobe, t), vec3(0.0));
     return true;
 }
 

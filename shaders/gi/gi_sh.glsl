@@ -24,23 +24,34 @@ GiSH giShZero() {
     return s;
 }
 
-// Radiance SH convolved with a lobe of band weights (1, g1, g2) and evaluated along d.
-vec3 giShEvaluate(GiSH s, vec3 d, float g1, float g2) {
-    float y[9];
-    giShBasis(d, y);
-    vec3 r = s.c[0] * y[0];
-    for (int i = 1; i < 4; ++i) r += s.c[i] * (y[i] * g1);
-    for (int i = 4; i < 9; ++i) r += s.c[i] * (y[i] * g2);
-    return r;
+// The basis along d times a lobe's band weights (1, g1, g2): radiance SH convolved with the lobe and
+// evaluated along d is the dot product of its coefficients with these (linear in the SH, so a sum of
+// weighted SH can be evaluated term by term).
+void giShWeights(vec3 d, float g1, float g2, out float w[9]) {
+    giShBasis(d, w);
+    for (int i = 1; i < 4; ++i) w[i] *= g1;
+    for (int i = 4; i < 9; ++i) w[i] *= g2;
 }
 
 // Irradiance / pi for normal n (a white Lambertian surface's outgoing radiance): the clamped-cosine
 // convolution (pi, 2pi/3, pi/4) divided by pi.
-vec3 giShDiffuse(GiSH s, vec3 n) { return max(giShEvaluate(s, n, 2.0 / 3.0, 0.25), vec3(0.0)); }
+void giShDiffuseWeights(vec3 n, out float w[9]) { giShWeights(n, 2.0 / 3.0, 0.25, w); }
 
 // Radiance along d seen through a lobe of perceptual roughness r (the specular fallback): from the
 // unfiltered signal at r = 0 to the cosine lobe at r = 1.
-vec3 giShLobe(GiSH s, vec3 d, float r) { return max(giShEvaluate(s, d, mix(1.0, 2.0 / 3.0, r), mix(1.0, 0.25, r)), vec3(0.0)); }
+void giShLobeWeights(vec3 d, float r, out float w[9]) { giShWeights(d, mix(1.0, 2.0 / 3.0, r), mix(1.0, 0.25, r), w); }
+
+vec3 giShDot(GiSH s, float w[9]) {
+    vec3 r = vec3(0.0);
+    for (int i = 0; i < 9; ++i) r += s.c[i] * w[i];
+    return r;
+}
+
+vec3 giShDiffuse(GiSH s, vec3 n) {
+    float w[9];
+    giShDiffuseWeights(n, w);
+    return max(giShDot(s, w), vec3(0.0));
+}
 
 GiSH giShMix(GiSH a, GiSH b, float t) {
     for (int i = 0; i < 9; ++i) a.c[i] = mix(a.c[i], b.c[i], t);

@@ -6,7 +6,8 @@
 #include "gi_sh.glsl"
 // Pass 14: resolve each pixel's GI and accumulate it over time. Diffuse: the irradiance SH (screen probes
 // + world cache) for the pixel's normal, as irradiance / π. Specular: the traced value where the specular
-// trace found one, else the SH seen through the roughness lobe along the reflection. Both blend into the
+// trace found one, else the SH seen through the roughness lobe along the reflection (both read from the
+// caches' SH at once: gi_irradiance.glsl). Both blend into the
 // reprojected history (alpha = sample count, capped at kMaxDiffuseHistory (16), specular also at 8..64 by roughness for
 // specular); a value far from the history (relative change > 1/2) cuts the count to 4 so that changes of
 // light show within a few frames instead of ghosting.
@@ -47,15 +48,18 @@ void main() {
     vec3 toEye = normalize(giFrame.camera.xyz - p);
     if (dot(n, toEye) < 0.0) n = -n;
     float roughness = giSurfaceRoughness(surface);
-    GiSH sh;
-    bool have = giIrradianceSH(pixel, p, n, sh);
+    vec3 r = reflect(-toEye, n);
+    GiShReads reads;
+    giShDiffuseWeights(n, reads.diffuse);
+    giShLobeWeights(r, roughness, reads.lobe);
+    vec3 irradiance, lobe;
+    bool have = giIrradiance(pixel, p, n, reads, irradiance, lobe);
     vec4 diffuse = imageLoad(diffuseHistory, ivec2(pixel));
-    if (have) diffuse = giAccumulate(diffuse, giShDiffuse(sh, n), float(giFrame.inputs.w));
+    if (have) diffuse = giAccumulate(diffuse, irradiance, float(giFrame.inputs.w));
     imageStore(diffuseHistory, ivec2(pixel), diffuse);
 
     vec4 traced = texelFetch(specularTraced, ivec2(pixel), 0);
-    vec3 r = reflect(-toEye, n);
-    vec3 value = traced.a > 0.0 ? traced.rgb : giShLobe(sh, r, roughness);
+    vec3 value = traced.a > 0.0 ? traced.rgb : lobe;
     vec4 specular = imageLoad(specularHistory, ivec2(pixel));
     if (traced.a > 0.0 || have) specular = giAccumulate(specular, value, min(mix(8.0, 64.0, sqrt(roughness)), float(giFrame.inputs.w)));
     imageStore(specularHistory, ivec2(pixel), specular);
