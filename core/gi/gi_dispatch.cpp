@@ -1,7 +1,9 @@
 // One GI frame as records. Ping-pong resources alternate with the frame index: [cur] is written this frame,
 // [prev] holds last frame's. The passes keep docs/gi.md's numbers but are recorded by dependency level, so
 // that passes with no hazard between them follow each other and a backend can run them between the same
-// two barriers: 1 | 2 3 6 9 | 4 7 10 5 | 4b | 8 11 | 12 | 13 | 14 | 15 | 16 | 17.
+// two barriers: 1 | 2 3 6 | 4 7 10 | 4b 5 9 | 8 11 | 12 | 13 | 14 | 15 | 16 | 17 (the
+// relight pass, latency-bound on at most 2048 groups, shares its interval with two passes that need only
+// earlier levels).
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -167,14 +169,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 0, probeInfo_[cur], Access::Write);
         run("spawn probes", shaders_.spawn, s, groups(tilesX_, 8), groups(tilesY_, 8));
     }
-    if (specular) {  // 9. specular pre-trace (one ray per 4×4 tile)
-        rhi::DispatchState s;
-        texture(s.bindings, 0, depth_[cur], point_);
-        texture(s.bindings, 1, surface_[cur], point_);
-        image(s.bindings, 0, pretrace_, Access::Write);
-        addTrace(s.bindings);
-        run("specular pretrace", shaders_.pretrace, s, groups(groups(width_, kPretraceTile), 8), groups(groups(height_, kPretraceTile), 8));
-    }
     {  // 4. inject last frame's lit image into the radiance cache
         rhi::DispatchState s;
         texture(s.bindings, 0, depth_[cur], point_);
@@ -210,6 +204,18 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 1, specularHistory_[cur], Access::Write);
         run("reproject GI", shaders_.reprojectGi, s, groups(width_, 8), groups(height_, 8));
     }
+    if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
+        rhi::DispatchState s;
+        readBuffer(s.bindings, 0, relightList_);
+        readBuffer(s.bindings, 1, owners);
+        readBuffer(s.bindings, 2, brickMaterial_);
+        readBuffer(s.bindings, 3, lights_);
+        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
+        image(s.bindings, 0, radianceCache_, Access::ReadWrite);
+        addTrace(s.bindings);
+        addEnvironment(s.bindings, d);
+        runIndirect("relight cache", shaders_.relight, s, relightList_);
+    }
     {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
         const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];
         const uint32_t cascade = std::min(end, start + uint32_t(std::countr_zero(frameIndex_ + 1)));
@@ -223,17 +229,13 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         run("propagate SH", shaders_.propagate, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
-    if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
+    if (specular) {  // 9. specular pre-trace (one ray per 4×4 tile)
         rhi::DispatchState s;
-        readBuffer(s.bindings, 0, relightList_);
-        readBuffer(s.bindings, 1, owners);
-        readBuffer(s.bindings, 2, brickMaterial_);
-        readBuffer(s.bindings, 3, lights_);
-        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
-        image(s.bindings, 0, radianceCache_, Access::ReadWrite);
+        texture(s.bindings, 0, depth_[cur], point_);
+        texture(s.bindings, 1, surface_[cur], point_);
+        image(s.bindings, 0, pretrace_, Access::Write);
         addTrace(s.bindings);
-        addEnvironment(s.bindings, d);
-        runIndirect("relight cache", shaders_.relight, s, relightList_);
+        run("specular pretrace", shaders_.pretrace, s, groups(groups(width_, kPretraceTile), 8), groups(groups(height_, kPretraceTile), 8));
     }
     {  // 8. fill screen probes by tracing the field
         rhi::DispatchState s;
