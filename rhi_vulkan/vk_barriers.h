@@ -94,10 +94,11 @@ private:
     uint32_t count_ = 0, next_ = 0;
 };
 
-// `history` may be null: no reuse of earlier barriers (resources the application also writes). `serial`
-// is the call that makes the access.
+// What `request` needs against `state`. `history` may be null: no reuse of earlier barriers (objects the
+// application wraps, which it may write between our calls, or reuse turned off).
 BarrierNeed computeBarrier(const AccessState& state, const AccessRequest& request, bool image,
                            const BarrierHistory* history);
+// Records the access made by call `serial` (after its barrier, if any).
 void applyAccess(AccessState& state, const AccessRequest& request, const BarrierNeed& need, bool image,
                  uint64_t serial);
 
