@@ -61,5 +61,8 @@ constexpr uint32_t kShCoefficients = 9;
 constexpr uint32_t kMaxDiffuseHistory = 16;
 constexpr uint32_t kBrickMaterialWords = 3;  // per brick: albedo (RGBA8), emission (RGB9E5), frame last seen + 1
 constexpr uint32_t kRelightBudget = 2048;    // bricks re-lit per frame at most (GI_RELIGHT_BUDGET)
+// Shared memory of the largest GI pass (blur.comp: a 24×24 apron of 36 bytes and 24×16 x-blurred values
+// of 16 bytes).
+constexpr uint32_t kBlurSharedBytes = 24 * 24 * 36 + 24 * 16 * 16;
 
 }  // namespace bricklight::gi::detail

@@ -64,6 +64,9 @@ bool GiContextImpl::init(std::string* error) {
     cacheDepth_ = (cacheSlots_ + kCacheSlotsPerLayer - 1) / kCacheSlotsPerLayer * kCacheTexelsPerBrick;
     if (cacheDepth_ > caps.limits.maxTextureSize3D || 256 > caps.limits.maxTextureSize3D)
         return bad("the radiance cache (256x256x" + std::to_string(cacheDepth_) + ") exceeds the device's 3D texture limit");
+    if (caps.limits.maxComputeSharedMemoryBytes && caps.limits.maxComputeSharedMemoryBytes < kBlurSharedBytes)
+        return bad("device '" + caps.deviceName + "' allows " + std::to_string(caps.limits.maxComputeSharedMemoryBytes) +
+                   " bytes of shared memory per group; the GI blur needs " + std::to_string(kBlurSharedBytes));
 
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
@@ -151,6 +154,7 @@ bool GiContextImpl::init(std::string* error) {
     probeInfo_[0] = buffer("probeInfo0", tiles * 16);
     probeInfo_[1] = buffer("probeInfo1", tiles * 16);
     probeSH_ = buffer("probeSH", tiles * kShCoefficients * 16);
+    probeIrradianceSH_ = buffer("probeIrradianceSH", tiles * kShCoefficients * 16);
     brickSH_ = buffer("brickSH", uint64_t(capacity) * kShCoefficients * 8);
     const std::vector<uint32_t> noOwner(capacity, 0xFFFFFFFFu);
     cacheOwners_ = buffer("cacheOwners", uint64_t(capacity) * 4, noOwner.data());
@@ -177,7 +181,7 @@ bool GiContextImpl::init(std::string* error) {
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
         if (!h) return bad("the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
@@ -196,7 +200,7 @@ GiContextImpl::~GiContextImpl() {
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -220,6 +224,7 @@ void GiContextImpl::reset() {
     device_.clearBuffer(probeInfo_[0], {}, 0);
     device_.clearBuffer(probeInfo_[1], {}, 0);
     device_.clearBuffer(probeSH_, {}, 0);
+    device_.clearBuffer(probeIrradianceSH_, {}, 0);
     historyValid_ = false;
 }
 
@@ -251,6 +256,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("probes (2)", tex(probes_[0]) + tex(probes_[1]));
     add("probeInfo (2)", buf(probeInfo_[0]) + buf(probeInfo_[1]));
     add("probeSH", buf(probeSH_));
+    add("probeIrradianceSH", buf(probeIrradianceSH_));
     add("specularPretrace", tex(pretrace_));
     add("specularTraced", tex(specularTraced_));
     add("diffuseHistory (2)", tex(diffuseHistory_[0]) + tex(diffuseHistory_[1]));

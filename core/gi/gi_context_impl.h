@@ -78,10 +78,11 @@ private:
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], resolvedDiffuse_, resolvedSpecular_;
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
-    rhi::BufferHandle probeInfo_[2], probeSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_;
+    rhi::BufferHandle probeInfo_[2], probeSH_, probeIrradianceSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_;
     rhi::SamplerHandle point_, linear_, environment_;
 
     GpuCamera camera_{};
+    glm::mat4 lastInverseViewProjection_{1.0f};  // the latest dispatch's (emit places last frame's probes with it)
     GpuFrame frame_{};
     uint64_t frameIndex_ = 0;
     int lastFrame_ = 0;  // [cur] of the latest dispatch (for the debug views)

@@ -1,6 +1,7 @@
 // Irradiance at a surface point from the two caches: the screen probes around the pixel and the
-// world-space brick SH around the point. Needs ProbeInfo/ProbeSH (`probeInfo`, `probeSH`) and the brick
-// SH buffer (`giBrickSH`) declared by the including pass.
+// world-space brick SH around the point. Needs the brick SH buffer (`giBrickSH`) declared by the including
+// pass, and for giScreenProbes/giIrradiance ProbeInfo and the probes' irradiance SH (`probeInfo`,
+// `probeIrradianceSH`: the probe's SH with the world cache's share blended in, project_probes.comp).
 //
 // A pixel reads two things from the SH: the diffuse value for its normal and the specular fallback's lobe
 // along its reflection. Both are linear in the SH, so each source's coefficients are dotted with the two
@@ -9,6 +10,11 @@
 // down (it was the largest per-pixel pass at 4K).
 #ifndef BRICKLIGHT_GI_IRRADIANCE_GLSL
 #define BRICKLIGHT_GI_IRRADIANCE_GLSL
+
+// The world cache's share of the irradiance where screen probes exist (the rest is the probes'). The
+// screen probes see this view's detail; the world cache is stable, and the fallback where probes are
+// missing.
+#define GI_WORLD_SHARE 0.3
 
 struct GiShReads {
     float diffuse[9];  // giShDiffuseWeights for the normal
@@ -37,7 +43,7 @@ float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diff
         uint index = uint(tile.y) * giFrame.tiles.x + uint(tile.x);
         uvec4 info = probeInfo[index];
         if ((info.w & GI_PROBE_VALID) == 0u) continue;
-        float covered = probeSH[index * 9u].w;
+        float covered = probeIrradianceSH[index * 9u].w;
         if (covered <= 0.0) continue;
         vec3 q = giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection);
         vec3 m = giProbeNormal(info);
@@ -46,7 +52,7 @@ float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diff
         vec2 b = mix(1.0 - w2, w2, vec2(o));
         float w = (b.x * b.y + 1e-3) * exp(-plane * plane) * pow(facing, 8.0) * covered;
         if (w <= 1e-6) continue;
-        for (int i = 0; i < 9; ++i) giShRead(reads, i, probeSH[index * 9u + uint(i)].rgb, w, diffuse, lobe);
+        for (int i = 0; i < 9; ++i) giShRead(reads, i, probeIrradianceSH[index * 9u + uint(i)].rgb, w, diffuse, lobe);
         total += w;
     }
     if (total > 0.0) {
@@ -56,12 +62,16 @@ float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diff
     return total;
 }
 
-// Trilinear over the bricks around p (moved a quarter voxel off the surface) in the finest traced
-// cascade that has any; bricks whose centre lies behind the surface are left out (no light from the other
-// side of a wall). Returns the total weight (0: none).
-float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
-    diffuse = vec3(0.0);
-    lobe = vec3(0.0);
+// The world cache around p: the up to 8 bricks of the trilinear cell around p (moved a quarter voxel off
+// the surface) in the finest traced cascade that has any with samples, and their weights; bricks whose
+// centre lies behind the surface are left out (no light from the other side of a wall). Returns the total
+// weight (0: none); unused corners have weight 0. Callers read the coefficients they need
+// (giWorldCacheCoefficient, giWorldCache), so a pass can split the nine over threads.
+float giWorldCacheCorners(vec3 p, vec3 n, out uint bricks[8], out float weights[8]) {
+    for (int k = 0; k < 8; ++k) {
+        bricks[k] = 0u;
+        weights[k] = 0.0;
+    }
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         BlSdfCascade info = blSdfTable.cascades[c];
         if (info.origin.w == 0) continue;
@@ -77,43 +87,50 @@ float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 l
             if (brick == BL_SDF_UNBUILT) continue;
             vec3 centre = (vec3(voxel) + 0.5) * size;
             if (dot(centre - p, n) < -0.75 * size) continue;
-            // All nine words load before the weight is looked at (branching on the weight first put the
-            // other loads after its latency).
-            uvec2 words[9];
-            for (int i = 0; i < 9; ++i) words[i] = giBrickSH[brick * 9u + uint(i)];
-            float samples = unpackHalf2x16(words[0].y).y;
+            float samples = unpackHalf2x16(giBrickSH[brick * 9u].y).y;
             if (!(samples > 0.0)) continue;
             vec3 w3 = mix(1.0 - f, f, vec3(o));
-            float w = w3.x * w3.y * w3.z * min(samples, 4.0) + 1e-4;
-            for (int i = 0; i < 9; ++i) {
-                vec2 rg = unpackHalf2x16(words[i].x), ba = unpackHalf2x16(words[i].y);
-                giShRead(reads, i, vec3(rg, ba.x), w, diffuse, lobe);
-            }
-            total += w;
+            bricks[k] = brick;
+            weights[k] = w3.x * w3.y * w3.z * min(samples, 4.0) + 1e-4;
+            total += weights[k];
         }
-        if (total > 0.0) {
-            diffuse /= total;
-            lobe /= total;
-            return total;
-        }
+        if (total > 0.0) return total;
     }
     return 0.0;
 }
 
-// Both caches: the screen probes where they exist (they see this view's detail), blended with the world
-// cache (stable, and the fallback where probes are missing). The readings are clamped at 0 (an L2
-// estimate can ring below it).
-#define GI_WORLD_SHARE 0.3
-bool giIrradiance(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
-    vec3 screenDiffuse, screenLobe, worldDiffuse, worldLobe;
-    float ws = giScreenProbes(pixel, p, n, reads, screenDiffuse, screenLobe);
-    float ww = giWorldCache(p, n, reads, worldDiffuse, worldLobe);
+// Coefficient i of the world cache's SH at the corners found by giWorldCacheCorners (total > 0).
+vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int i) {
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 8; ++k) {
+        if (weights[k] <= 0.0) continue;
+        uvec2 v = giBrickSH[bricks[k] * 9u + uint(i)];
+        sum += vec3(unpackHalf2x16(v.x), unpackHalf2x16(v.y).x) * weights[k];
+    }
+    return sum / total;
+}
+
+// The world cache at p read through the pixel's weights. Returns the total weight (0: none).
+float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
     diffuse = vec3(0.0);
     lobe = vec3(0.0);
-    if (ws <= 0.0 && ww <= 0.0) return false;
-    float t = ws > 0.0 && ww > 0.0 ? GI_WORLD_SHARE : (ws > 0.0 ? 0.0 : 1.0);
-    diffuse = max(mix(screenDiffuse, worldDiffuse, t), vec3(0.0));
-    lobe = max(mix(screenLobe, worldLobe, t), vec3(0.0));
+    uint bricks[8];
+    float weights[8];
+    float total = giWorldCacheCorners(p, n, bricks, weights);
+    if (total <= 0.0) return 0.0;
+    for (int i = 0; i < 9; ++i) giShRead(reads, i, giWorldCacheCoefficient(bricks, weights, total, i), 1.0, diffuse, lobe);
+    return total;
+}
+
+// The pixel's irradiance and specular-fallback lobe: the screen probes around it, whose SH already hold
+// the world cache's share (project_probes.comp blends GI_WORLD_SHARE of the world cache at each probe
+// into the SH the pixels read), else — no usable probe around the pixel — the world cache at the pixel.
+// The readings are clamped at 0 (an L2 estimate can ring below it).
+bool giIrradiance(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
+    if (giScreenProbes(pixel, p, n, reads, diffuse, lobe) <= 0.0 && giWorldCache(p, n, reads, diffuse, lobe) <= 0.0)
+        return false;
+    diffuse = max(diffuse, vec3(0.0));
+    lobe = max(lobe, vec3(0.0));
     return true;
 }
 

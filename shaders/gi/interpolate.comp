@@ -4,8 +4,9 @@
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
 #include "gi_sh.glsl"
-// Pass 14: resolve each pixel's GI and accumulate it over time. Diffuse: the irradiance SH (screen probes
-// + world cache) for the pixel's normal, as irradiance / π. Specular: the traced value where the specular
+// Pass 14: resolve each pixel's GI and accumulate it over time. Diffuse: the irradiance SH (the screen
+// probes, which hold the world cache's share; the world cache alone where no probe is usable) for the
+// pixel's normal, as irradiance / π. Specular: the traced value where the specular
 // trace found one, else the SH seen through the roughness lobe along the reflection (both read from the
 // caches' SH at once: gi_irradiance.glsl). Both blend into the
 // reprojected history (alpha = sample count, capped at kMaxDiffuseHistory (16), specular also at 8..64 by roughness for
@@ -16,7 +17,7 @@ BL_TEXTURE(0) uniform sampler2D depthNow;
 BL_TEXTURE(1) uniform usampler2D surfaceNow;
 BL_TEXTURE(2) uniform sampler2D specularTraced;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
-BL_READ_BUFFER(1) ProbeSH { vec4 probeSH[]; };
+BL_READ_BUFFER(1) ProbeIrradianceSH { vec4 probeIrradianceSH[]; };
 BL_READ_BUFFER(2) BrickSH { uvec2 giBrickSH[]; };
 BL_IMAGE(0, rgba16f) uniform image2D diffuseHistory;
 BL_IMAGE(1, rgba16f) uniform image2D specularHistory;
