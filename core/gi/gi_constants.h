@@ -52,7 +52,9 @@ struct GpuLight {
 static_assert(sizeof(GpuLight) == 48);
 
 constexpr uint32_t kProbeTile = 8;          // internal pixels per probe tile side (8×8 texels per probe)
-constexpr uint32_t kInjectTile = 2;         // one injected pixel per tile per frame (GI_INJECT_TILE)
+// One injected pixel per tile per frame (GI_INJECT_TILE) when ContextDesc::injectTile is 0: 2×2 tiles,
+// 4×4 from an internal width of 1440 on (inject_radiance.comp says why).
+constexpr uint32_t injectTileFor(uint32_t internalWidth) { return internalWidth >= 1440 ? 4 : 2; }
 constexpr uint32_t kPretraceTile = 4;       // one specular pre-trace ray per 4×4 tile
 constexpr uint32_t kCacheTexelsPerBrick = 4;  // radiance cache texels per brick side
 constexpr uint32_t kCacheSlotsPerLayer = 64 * 64;  // slots per 4-texel layer of the cache image (giCacheSlotBase)
@@ -61,8 +63,5 @@ constexpr uint32_t kShCoefficients = 9;
 constexpr uint32_t kMaxDiffuseHistory = 16;
 constexpr uint32_t kBrickMaterialWords = 3;  // per brick: albedo (RGBA8), emission (RGB9E5), frame last seen + 1
 constexpr uint32_t kRelightBudget = 2048;    // bricks re-lit per frame at most (GI_RELIGHT_BUDGET)
-// Shared memory of the largest GI pass (blur.comp: a 24×24 apron of 36 bytes and 24×16 x-blurred values
-// of 16 bytes).
-constexpr uint32_t kBlurSharedBytes = 24 * 24 * 36 + 24 * 16 * 16;
 
 }  // namespace bricklight::gi::detail

@@ -46,6 +46,8 @@ bool GiContextImpl::init(std::string* error) {
         return bad("internalResolution " + std::to_string(uint32_t(desc_.internalResolution)) + " is not one of the four scales");
     if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth))
         return bad("unknown flag bits in flags");
+    if (desc_.injectTile != 0 && desc_.injectTile != 1 && desc_.injectTile != 2 && desc_.injectTile != 4 && desc_.injectTile != 8)
+        return bad("injectTile " + std::to_string(desc_.injectTile) + " is not 0 (automatic), 1, 2, 4 or 8");
     const rhi::Capabilities& caps = device_.capabilities();
     using F = rhi::Format;
     for (F f : {F::R32_FLOAT, F::R32_UINT, F::RG16_FLOAT, F::R8_UNORM, F::RGBA16_FLOAT})
@@ -56,6 +58,7 @@ bool GiContextImpl::init(std::string* error) {
     height_ = std::max(1u, uint32_t(std::lround(desc_.displayHeight * scale)));
     tilesX_ = (width_ + kProbeTile - 1) / kProbeTile;
     tilesY_ = (height_ + kProbeTile - 1) / kProbeTile;
+    injectTile_ = desc_.injectTile ? desc_.injectTile : injectTileFor(width_);
     const uint32_t capacity = scene_.brickCapacity();
     if (desc_.radianceCacheBricks > capacity)
         return bad("radianceCacheBricks " + std::to_string(desc_.radianceCacheBricks) + " is more than the scene's " +
@@ -64,9 +67,6 @@ bool GiContextImpl::init(std::string* error) {
     cacheDepth_ = (cacheSlots_ + kCacheSlotsPerLayer - 1) / kCacheSlotsPerLayer * kCacheTexelsPerBrick;
     if (cacheDepth_ > caps.limits.maxTextureSize3D || 256 > caps.limits.maxTextureSize3D)
         return bad("the radiance cache (256x256x" + std::to_string(cacheDepth_) + ") exceeds the device's 3D texture limit");
-    if (caps.limits.maxComputeSharedMemoryBytes && caps.limits.maxComputeSharedMemoryBytes < kBlurSharedBytes)
-        return bad("device '" + caps.deviceName + "' allows " + std::to_string(caps.limits.maxComputeSharedMemoryBytes) +
-                   " bytes of shared memory per group; the GI blur needs " + std::to_string(kBlurSharedBytes));
 
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
@@ -87,6 +87,7 @@ bool GiContextImpl::init(std::string* error) {
     shaders_.specularTrace = shader("gi/specular_trace.comp");
     shaders_.project = shader("gi/project_probes.comp");
     shaders_.emit = shader("gi/emit_irradiance.comp");
+    shaders_.probeWorld = shader("gi/probe_world_sh.comp");
     shaders_.interpolate = shader("gi/interpolate.comp");
     shaders_.blur = shader("gi/blur.comp");
     shaders_.upsample = shader("gi/upsample.comp");
@@ -155,6 +156,7 @@ bool GiContextImpl::init(std::string* error) {
     probeInfo_[1] = buffer("probeInfo1", tiles * 16);
     probeSH_ = buffer("probeSH", tiles * kShCoefficients * 16);
     probeIrradianceSH_ = buffer("probeIrradianceSH", tiles * kShCoefficients * 16);
+    probeWorldSH_ = buffer("probeWorldSH", tiles * kShCoefficients * 16);
     brickSH_ = buffer("brickSH", uint64_t(capacity) * kShCoefficients * 8);
     const std::vector<uint32_t> noOwner(capacity, 0xFFFFFFFFu);
     cacheOwners_ = buffer("cacheOwners", uint64_t(capacity) * 4, noOwner.data());
@@ -178,10 +180,10 @@ bool GiContextImpl::init(std::string* error) {
 
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
-                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
         if (!h) return bad("the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
@@ -193,14 +195,14 @@ bool GiContextImpl::init(std::string* error) {
 GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
-                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.interpolate, s.blur, s.upsample, s.debug})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -225,6 +227,7 @@ void GiContextImpl::reset() {
     device_.clearBuffer(probeInfo_[1], {}, 0);
     device_.clearBuffer(probeSH_, {}, 0);
     device_.clearBuffer(probeIrradianceSH_, {}, 0);
+    device_.clearBuffer(probeWorldSH_, {}, 0);
     historyValid_ = false;
 }
 
@@ -257,6 +260,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("probeInfo (2)", buf(probeInfo_[0]) + buf(probeInfo_[1]));
     add("probeSH", buf(probeSH_));
     add("probeIrradianceSH", buf(probeIrradianceSH_));
+    add("probeWorldSH", buf(probeWorldSH_));
     add("specularPretrace", tex(pretrace_));
     add("specularTraced", tex(specularTraced_));
     add("diffuseHistory (2)", tex(diffuseHistory_[0]) + tex(diffuseHistory_[1]));

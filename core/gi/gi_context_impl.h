@@ -67,22 +67,22 @@ private:
     ContextDesc desc_;
     std::string lastError_;
     uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
+    uint32_t injectTile_ = 2;  // ContextDesc::injectTile, resolved
     uint32_t cacheSlots_ = 0;  // radiance cache slots (bricks it can hold)
     uint32_t cacheDepth_ = 0;  // radiance cache image depth (texels); the image is 256 × 256 × cacheDepth_
 
     struct Shaders {
         rhi::ShaderHandle downsample, disocclusion, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
-            relight, reprojectGi, specularTrace, project, emit, interpolate, blur, upsample, debug;
+            relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug;
     } shaders_;
 
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], resolvedDiffuse_, resolvedSpecular_;
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
-    rhi::BufferHandle probeInfo_[2], probeSH_, probeIrradianceSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_;
+    rhi::BufferHandle probeInfo_[2], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_;
     rhi::SamplerHandle point_, linear_, environment_;
 
     GpuCamera camera_{};
-    glm::mat4 lastInverseViewProjection_{1.0f};  // the latest dispatch's (emit places last frame's probes with it)
     GpuFrame frame_{};
     uint64_t frameIndex_ = 0;
     int lastFrame_ = 0;  // [cur] of the latest dispatch (for the debug views)

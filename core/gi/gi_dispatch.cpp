@@ -1,9 +1,10 @@
 // One GI frame as records. Ping-pong resources alternate with the frame index: [cur] is written this frame,
 // [prev] holds last frame's. The passes keep docs/gi.md's numbers but are recorded by dependency level, so
 // that passes with no hazard between them follow each other and a backend can run them between the same
-// two barriers: 1 | 2 3 6 | 4 13 7 10 | 4b 5 9 | 8 11 | 12 | 14 | 15 | 17 (the
+// two barriers: 1 | 2 3 6 | 4 7 10 | 4b 5 9 | 8 8b 11 | 12 | 14 | 13 15 | 16 | 17 (the
 // relight pass, latency-bound on at most 2048 groups, shares its interval with two passes that need only
-// earlier levels; 13 emits last frame's probes).
+// earlier levels; 8b reads the world cache at the probes, and the emission into it waits until the
+// interpolation has read it).
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -170,7 +171,12 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         run("spawn probes", shaders_.spawn, s, groups(tilesX_, 8), groups(tilesY_, 8));
     }
     {  // 4. inject last frame's lit image into the radiance cache
+        const uint32_t tile = injectTile_;
         rhi::DispatchState s;
+        struct {
+            uint32_t inject[4];
+        } pass{{tile, 0, 0, 0}};
+        s.bindings.constants.push(rhi::constants(2, pass));
         texture(s.bindings, 0, depth_[cur], point_);
         texture(s.bindings, 1, surface_[cur], point_);
         texture(s.bindings, 2, motion_, point_);
@@ -183,19 +189,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 1, slotOfBrick_, Access::ReadWrite);
         storageBuffer(s.bindings, 2, freeSlots_, Access::ReadWrite);
         addTrace(s.bindings);
-        run("inject radiance", shaders_.inject, s, groups(groups(width_, kInjectTile), 8), groups(groups(height_, kInjectTile), 8));
-    }
-    if (historyValid_ && !d.resetHistory) {  // 13. emit last frame's probes into the brick SH irradiance cache
-        rhi::DispatchState s;
-        struct {
-            glm::mat4 inverseViewProjection;
-        } pass{lastInverseViewProjection_};
-        s.bindings.constants.push(rhi::constants(2, pass));
-        readBuffer(s.bindings, 0, probeInfo_[prev]);
-        readBuffer(s.bindings, 1, probeSH_);
-        storageBuffer(s.bindings, 0, brickSH_, Access::ReadWrite);
-        addTrace(s.bindings);
-        run("emit irradiance", shaders_.emit, s, groups(tilesX_ * tilesY_, 64), 1);
+        run("inject radiance", shaders_.inject, s, groups(groups(width_, tile), 8), groups(groups(height_, tile), 8));
     }
     {  // 7. reproject screen probes
         rhi::DispatchState s;
@@ -260,6 +254,14 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
         run("fill probes", shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
     }
+    {  // 8b. the world cache at each probe (for the projection's blend)
+        rhi::DispatchState s;
+        readBuffer(s.bindings, 0, probeInfo_[cur]);
+        readBuffer(s.bindings, 1, brickSH_);
+        storageBuffer(s.bindings, 0, probeWorldSH_, Access::Write);
+        addTrace(s.bindings);
+        run("probe world cache", shaders_.probeWorld, s, groups(tilesX_ * tilesY_, 64), 1);
+    }
     if (specular) {  // 11. specular trace (full internal resolution, inside the pre-traced brick)
         rhi::DispatchState s;
         texture(s.bindings, 0, depth_[cur], point_);
@@ -279,7 +281,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 0, probes_[cur], point_);
         storageBuffer(s.bindings, 0, probeSH_, Access::Write);
         storageBuffer(s.bindings, 1, probeIrradianceSH_, Access::Write);
-        readBuffer(s.bindings, 2, brickSH_);
+        readBuffer(s.bindings, 2, probeWorldSH_);
         image(s.bindings, 0, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
@@ -299,16 +301,40 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         run("interpolate", shaders_.interpolate, s, groups(width_, 8), groups(height_, 8));
     }
-    rhi::TextureHandle finalDiffuse = diffuseHistory_[cur], finalSpecular = specularHistory_[cur];
-    if (denoise) {  // 15. bilateral blur (x then y, in one pass)
+    {  // 13. emit the probes into the brick SH irradiance cache (after the interpolation, the last pass of
+        // the frame to read it, so that the two do not wait for each other)
         rhi::DispatchState s;
-        texture(s.bindings, 0, diffuseHistory_[cur], point_);
-        texture(s.bindings, 1, specularHistory_[cur], point_);
-        texture(s.bindings, 2, depth_[cur], point_);
-        texture(s.bindings, 3, surface_[cur], point_);
-        image(s.bindings, 0, resolvedDiffuse_, Access::Write);
-        image(s.bindings, 1, resolvedSpecular_, Access::Write);
-        run("blur", shaders_.blur, s, groups(width_, 16), groups(height_, 16));
+        readBuffer(s.bindings, 0, probeInfo_[cur]);
+        readBuffer(s.bindings, 1, probeSH_);
+        storageBuffer(s.bindings, 0, brickSH_, Access::ReadWrite);
+        addTrace(s.bindings);
+        run("emit irradiance", shaders_.emit, s, groups(tilesX_ * tilesY_, 64), 1);
+    }
+    rhi::TextureHandle finalDiffuse = diffuseHistory_[cur], finalSpecular = specularHistory_[cur];
+    if (denoise) {  // 15, 16. bilateral blur, x (into last frame's history, free since pass 10) then y
+        struct Step {
+            const char* label;
+            int32_t direction[4];
+            rhi::TextureHandle in[2], out[2];
+        };
+        const Step steps[2] = {
+            {"blur x", {1, 0, 0, 0}, {diffuseHistory_[cur], specularHistory_[cur]}, {diffuseHistory_[prev], specularHistory_[prev]}},
+            {"blur y", {0, 1, 0, 0}, {diffuseHistory_[prev], specularHistory_[prev]}, {resolvedDiffuse_, resolvedSpecular_}},
+        };
+        for (const Step& step : steps) {
+            struct {
+                int32_t direction[4];
+            } pass{{step.direction[0], step.direction[1], 0, 0}};
+            rhi::DispatchState s;
+            s.bindings.constants.push(rhi::constants(2, pass));
+            texture(s.bindings, 0, step.in[0], point_);
+            texture(s.bindings, 1, step.in[1], point_);
+            texture(s.bindings, 2, depth_[cur], point_);
+            texture(s.bindings, 3, surface_[cur], point_);
+            image(s.bindings, 0, step.out[0], Access::Write);
+            image(s.bindings, 1, step.out[1], Access::Write);
+            run(step.label, shaders_.blur, s, groups(width_, 8), groups(height_, 8));
+        }
         finalDiffuse = resolvedDiffuse_;
         finalSpecular = resolvedSpecular_;
     }
@@ -330,7 +356,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     }
     device_.endMarker();
     lastFrame_ = cur;
-    lastInverseViewProjection_ = camera_.inverseViewProjection;
     ++frameIndex_;
     historyValid_ = true;
     return true;

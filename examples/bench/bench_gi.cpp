@@ -21,7 +21,7 @@ namespace {
 
 const char* const kGiPasses[] = {"downsample",        "disocclusion mask", "clear freed bricks", "inject radiance",
                                  "relight cache",     "propagate SH",      "spawn probes",      "reproject probes",   "fill probes",
-                                 "specular pretrace", "reproject GI",      "specular trace",     "project probes",
+                                 "probe world cache", "specular pretrace", "reproject GI",      "specular trace",     "project probes",
                                  "emit irradiance",   "interpolate",       "blur x",             "blur y",
                                  "upsample"};
 

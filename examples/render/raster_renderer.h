@@ -21,8 +21,9 @@ struct RasterOptions {
     uint32_t seed = 1;
     bool gi = false;  // true: GI from the distance field (bricklight-render turns it on)
     gi::InternalResolution giResolution = gi::InternalResolution::Native;
-    bool giRelight = true;
-    uint32_t giCacheBricks = 0;  // gi::ContextDesc::radianceCacheBricks (0: the default)  // give GI the albedo, emission and lights, so it re-lights what the camera does not see
+    bool giRelight = true;  // give GI the albedo, emission and lights, so it re-lights what the camera does not see
+    uint32_t giCacheBricks = 0;  // gi::ContextDesc::radianceCacheBricks (0: the default)
+    uint32_t giInjectTile = 0;   // gi::ContextDesc::injectTile (0: automatic)
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
 };
 

@@ -38,6 +38,10 @@ struct ContextDesc {
     // first injected into it and gives it back when the SDF frees it; when all are taken, further bricks
     // stay uncached until some are freed. 0: min(the scene's brick capacity, 65536) = 16 MiB.
     uint32_t radianceCacheBricks = 0;
+    // The injection of the lit image into the radiance cache takes one pixel of each injectTile ×
+    // injectTile tile a frame (1, 2, 4 or 8). 0: 2, or 4 from an internal width of 1440 on — the cache's
+    // texels are a fixed size in the world, so at higher resolutions more pixels reach each of them.
+    uint32_t injectTile = 0;
     std::string debugName = "gi";
     // Receives the context's own messages (bad inputs); stderr when empty.
     rhi::ErrorCallback errorCallback;

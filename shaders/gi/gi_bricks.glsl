@@ -117,6 +117,54 @@ GiSH giLoadBrickSH(uint brick, out float weight) {
     }
     return s;
 }
+
+// The world cache around p: the up to 8 bricks of the trilinear cell around p (moved a quarter voxel off
+// the surface) in the finest traced cascade that has any with samples, and their weights; bricks whose
+// centre lies behind the surface are left out (no light from the other side of a wall). Returns the total
+// weight (0: none); unused corners have weight 0. Callers read the coefficients they need
+// (giWorldCacheCoefficient, giWorldCache), so a pass can split the nine over threads.
+float giWorldCacheCorners(vec3 p, vec3 n, out uint bricks[8], out float weights[8]) {
+    for (int k = 0; k < 8; ++k) {
+        bricks[k] = 0u;
+        weights[k] = 0.0;
+    }
+    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+        BlSdfCascade info = blSdfTable.cascades[c];
+        if (info.origin.w == 0) continue;
+        float size = info.voxelSize.x;
+        vec3 local = (p + n * (0.25 * size)) * info.voxelSize.y - 0.5;
+        ivec3 cell = ivec3(floor(local));
+        vec3 f = local - vec3(cell);
+        float total = 0.0;
+        for (int k = 0; k < 8; ++k) {
+            ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
+            ivec3 voxel = cell + o;
+            uint brick = giBrickOfVoxel(voxel, c);
+            if (brick == BL_SDF_UNBUILT) continue;
+            vec3 centre = (vec3(voxel) + 0.5) * size;
+            if (dot(centre - p, n) < -0.75 * size) continue;
+            float samples = unpackHalf2x16(giBrickSH[brick * 9u].y).y;
+            if (!(samples > 0.0)) continue;
+            vec3 w3 = mix(1.0 - f, f, vec3(o));
+            bricks[k] = brick;
+            weights[k] = w3.x * w3.y * w3.z * min(samples, 4.0) + 1e-4;
+            total += weights[k];
+        }
+        if (total > 0.0) return total;
+    }
+    return 0.0;
+}
+
+// Coefficient i of the world cache's SH at the corners found by giWorldCacheCorners (total > 0).
+vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int i) {
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 8; ++k) {
+        if (weights[k] <= 0.0) continue;
+        uvec2 v = giBrickSH[bricks[k] * 9u + uint(i)];
+        sum += vec3(unpackHalf2x16(v.x), unpackHalf2x16(v.y).x) * weights[k];
+    }
+    return sum / total;
+}
 #endif
 
 #endif

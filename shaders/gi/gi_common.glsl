@@ -50,6 +50,11 @@ BL_CONSTANTS(1) uniform GiFrame {
 #define GI_SLOT_PENDING 0xFFFFFFFEu
 ivec3 giCacheSlotBase(uint slot) { return ivec3(slot % 64u, (slot / 64u) % 64u, slot / 4096u) * 4; }
 
+// The world cache's share of the irradiance where screen probes exist (the rest is the probes'; blended
+// per probe in project_probes.comp). The screen probes see this view's detail; the world cache is stable,
+// and the fallback where probes are missing.
+#define GI_WORLD_SHARE 0.3
+
 #define GI_FLAG_REVERSED_DEPTH 1u
 #define GI_FLAG_RESET_HISTORY 2u
 #define GI_FLAG_HISTORY_VALID 8u   // a previous frame exists (not the first dispatch)

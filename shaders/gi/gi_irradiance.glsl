@@ -11,11 +11,6 @@
 #ifndef BRICKLIGHT_GI_IRRADIANCE_GLSL
 #define BRICKLIGHT_GI_IRRADIANCE_GLSL
 
-// The world cache's share of the irradiance where screen probes exist (the rest is the probes'). The
-// screen probes see this view's detail; the world cache is stable, and the fallback where probes are
-// missing.
-#define GI_WORLD_SHARE 0.3
-
 struct GiShReads {
     float diffuse[9];  // giShDiffuseWeights for the normal
     float lobe[9];     // giShLobeWeights for the reflection and roughness
@@ -62,54 +57,6 @@ float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diff
     return total;
 }
 
-// The world cache around p: the up to 8 bricks of the trilinear cell around p (moved a quarter voxel off
-// the surface) in the finest traced cascade that has any with samples, and their weights; bricks whose
-// centre lies behind the surface are left out (no light from the other side of a wall). Returns the total
-// weight (0: none); unused corners have weight 0. Callers read the coefficients they need
-// (giWorldCacheCoefficient, giWorldCache), so a pass can split the nine over threads.
-float giWorldCacheCorners(vec3 p, vec3 n, out uint bricks[8], out float weights[8]) {
-    for (int k = 0; k < 8; ++k) {
-        bricks[k] = 0u;
-        weights[k] = 0.0;
-    }
-    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
-        BlSdfCascade info = blSdfTable.cascades[c];
-        if (info.origin.w == 0) continue;
-        float size = info.voxelSize.x;
-        vec3 local = (p + n * (0.25 * size)) * info.voxelSize.y - 0.5;
-        ivec3 cell = ivec3(floor(local));
-        vec3 f = local - vec3(cell);
-        float total = 0.0;
-        for (int k = 0; k < 8; ++k) {
-            ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
-            ivec3 voxel = cell + o;
-            uint brick = giBrickOfVoxel(voxel, c);
-            if (brick == BL_SDF_UNBUILT) continue;
-            vec3 centre = (vec3(voxel) + 0.5) * size;
-            if (dot(centre - p, n) < -0.75 * size) continue;
-            float samples = unpackHalf2x16(giBrickSH[brick * 9u].y).y;
-            if (!(samples > 0.0)) continue;
-            vec3 w3 = mix(1.0 - f, f, vec3(o));
-            bricks[k] = brick;
-            weights[k] = w3.x * w3.y * w3.z * min(samples, 4.0) + 1e-4;
-            total += weights[k];
-        }
-        if (total > 0.0) return total;
-    }
-    return 0.0;
-}
-
-// Coefficient i of the world cache's SH at the corners found by giWorldCacheCorners (total > 0).
-vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int i) {
-    vec3 sum = vec3(0.0);
-    for (int k = 0; k < 8; ++k) {
-        if (weights[k] <= 0.0) continue;
-        uvec2 v = giBrickSH[bricks[k] * 9u + uint(i)];
-        sum += vec3(unpackHalf2x16(v.x), unpackHalf2x16(v.y).x) * weights[k];
-    }
-    return sum / total;
-}
-
 // The world cache at p read through the pixel's weights. Returns the total weight (0: none).
 float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
     diffuse = vec3(0.0);
@@ -123,8 +70,9 @@ float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 l
 }
 
 // The pixel's irradiance and specular-fallback lobe: the screen probes around it, whose SH already hold
-// the world cache's share (project_probes.comp blends GI_WORLD_SHARE of the world cache at each probe
-// into the SH the pixels read), else — no usable probe around the pixel — the world cache at the pixel.
+// the world cache's share (project_probes.comp blends GI_WORLD_SHARE of the world cache at each probe,
+// probe_world_sh.comp, into the SH the pixels read), else — no usable probe around the pixel — the world
+// cache at the pixel.
 // The readings are clamped at 0 (an L2 estimate can ring below it).
 bool giIrradiance(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
     if (giScreenProbes(pixel, p, n, reads, diffuse, lobe) <= 0.0 && giWorldCache(p, n, reads, diffuse, lobe) <= 0.0)

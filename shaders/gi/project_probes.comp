@@ -12,21 +12,18 @@
 // one texel each, spent its time in the six-step reductions and their barriers: 0.23 ms at 4K / 50 % on
 // an H100.)
 // Output per probe: 9 vec4 (rgb coefficient; w of the first = the fraction of texels with data), twice:
-// the probe's own SH (`probeSH`, which emit_irradiance.comp blends into the world cache next frame) and
-// the SH the pixels read (`probeIrradianceSH`): GI_WORLD_SHARE of it is the world cache at the probe,
-// trilinear over its bricks. Reading the world cache once per probe here instead of at every pixel in
-// interpolate.comp took three quarters of that pass away (eight brick lookups and 72 loads a pixel).
+// the probe's own SH (`probeSH`, which emit_irradiance.comp blends into the world cache) and the SH the
+// pixels read (`probeIrradianceSH`), GI_WORLD_SHARE of which is the world cache at the probe
+// (`probeWorldSH`, probe_world_sh.comp) where it has data.
 layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_TEXTURE(0) uniform sampler2D probes;
 BL_STORAGE_BUFFER(0) ProbeSH { vec4 probeSH[]; };
 BL_STORAGE_BUFFER(1) ProbeIrradianceSH { vec4 probeIrradianceSH[]; };
-BL_READ_BUFFER(2) BrickSH { uvec2 giBrickSH[]; };
+BL_READ_BUFFER(2) ProbeWorldSH { vec4 probeWorldSH[]; };
 BL_IMAGE(0, r32ui) uniform readonly uimage3D giRadianceCache;
 #define GI_USES_RADIANCE_CACHE
-#define GI_USES_BRICK_SH
 #include "gi_bricks.glsl"
-#include "gi_irradiance.glsl"
 
 // The radiance leaving the probe's own surface (the radiance cache there, finest cascade with data).
 bool giSurfaceRadiance(vec3 p, vec3 n, out vec3 radiance) {
@@ -69,17 +66,15 @@ void main() {
     uvec4 info = probeInfo[index];
     vec3 n = giProbeNormal(info);
     bool probeValid = exists && (info.w & GI_PROBE_VALID) != 0u;
-    vec3 position = giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection);
     if (lane == 0u) {  // first: the chain of lookups overlaps the reductions instead of following them
         vec3 own = vec3(0.0);
-        bool known = probeValid && giSurfaceRadiance(position, n, own);
+        bool known = probeValid &&
+                     giSurfaceRadiance(giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection), n, own);
         ownRadiance[slot] = vec4(own, known ? 1.0 : 0.0);
     }
-    // The world cache's bricks around the probe, found by the nine lanes that write a coefficient each
-    // (the same lookups side by side in one warp cost what one lane's would), also before the reductions.
-    uint worldBricks[8];
-    float worldWeights[8];
-    float worldTotal = probeValid && lane < 9u ? giWorldCacheCorners(position, n, worldBricks, worldWeights) : 0.0;
+    // The world cache at the probe (pass 8b), loaded before the reductions too.
+    vec4 world = lane < 9u ? probeWorldSH[index * 9u + lane] : vec4(0.0);
+    bool worldKnown = lane < 9u && probeWorldSH[index * 9u].w > 0.0;
     vec4 radiance[kTexelsPerLane];
     vec4 known = vec4(0.0);  // first reduction: the known hits, which stand in for the hits of unknown radiance
     for (uint j = 0u; j < kTexelsPerLane; ++j) {
@@ -134,8 +129,7 @@ void main() {
         }
         vec4 own = vec4(c, i == 0u ? covered / 64.0 : 0.0);
         probeSH[index * 9u + i] = own;
-        if (covered > 0.0 && worldTotal > 0.0)
-            own.rgb = mix(c, giWorldCacheCoefficient(worldBricks, worldWeights, worldTotal, int(i)), GI_WORLD_SHARE);
+        if (covered > 0.0 && worldKnown) own.rgb = mix(c, world.rgb, GI_WORLD_SHARE);
         probeIrradianceSH[index * 9u + i] = own;
     }
 }
