@@ -177,14 +177,21 @@ void noLeakThroughWall(const std::string& backend) {
 
 void recoversAfterMotion(const std::string& backend) {
     // dynamic: the torus and the light move for 24 frames, then stop. GI must move towards what a renderer
-    // that saw only the final state reaches in 128 frames: 24 frames after the stop the relMSE to it is
-    // below 0.009 and below its value at the stop, and it stays there: below 0.008 80 frames later (no
-    // light left behind by the moving lamp). Measured on lavapipe / llvmpipe over eight runs of each:
-    // ~0.020 at the stop, 0.0055–0.0071 after 24 frames, 0.0039–0.0067 after 104. Two still renderers
-    // differ by ~1e-4 at equal frame counts, so what is left is slow convergence, not noise. Before
-    // relighting was restricted to bricks out of view it was 0.0057 / 0.0024 (single runs): re-lighting
-    // bricks in view that injection happened to miss sped this up, but made Vulkan and GL drift apart
-    // (docs/gi.md, "Relighting"). Without relighting: 0.020, 0.0062, then 0.0041 and rising.
+    // that saw only the final state reaches in as many frames: 24 frames after the stop the relMSE to it
+    // is below 0.009 and below its value at the stop; 104 frames after, below 0.012; and 232 frames after
+    // (256 frames in all, against the still renderer at 256), below 0.006 — no light left behind by the
+    // moving lamp. Measured on lavapipe / llvmpipe: ~0.019 at the stop, 0.0051–0.0071 after 24 frames,
+    // 0.0039–0.0067 after 104, 0.0018–0.0026 after 232. On an H100 (20 runs): 0.0145–0.023 at the stop,
+    // 0.0041–0.0071 after 24, 0.0060–0.0095 after 104, 0.0025–0.0041 after 232, and one run that went
+    // wrong during the motion (0.032, 0.020, 0.0091, 0.018). Two still renderers agree to ~1e-5 at equal
+    // frame counts, but the GI is still brightening at 128 frames (128 against 256 frames: relMSE 0.0105,
+    // mean +16 %: each bounce of the multi-bounce feedback takes tens of frames), so what is left at +104
+    // is mostly how far the moving renderer's bounces have come against the still one's — which is why the
+    // bound there is 0.012 (it was 0.008 and failed in a third of the H100 runs) and the tight bound is at
+    // +232. Before relighting was restricted to bricks out of view it was 0.0057 / 0.0024 at +24 / +104
+    // (single runs): re-lighting bricks in view that injection happened to miss sped this up, but made
+    // Vulkan and GL drift apart (docs/gi.md, "Relighting"). Without relighting: 0.020, 0.0062, then
+    // 0.0041 and rising.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry scene = scenes::dynamicRoom();
@@ -197,18 +204,23 @@ void recoversAfterMotion(const std::string& backend) {
     }
     auto still = giRenderer(td, scene, 48);  // the final state from the start
     frames(td, *still, 128);
-    const render::Image converged = still->read(render::Aov::IndirectDiffuse);
+    const render::Image stillAt128 = still->read(render::Aov::IndirectDiffuse);  // not converged yet: see above
     REQUIRE(moving->setScene(scene, &error));  // the same state again: no more motion vectors
     frames(td, *moving, 1);
-    const double atStop = render::compareImages(moving->read(render::Aov::IndirectDiffuse), converged).relMse;
+    const double atStop = render::compareImages(moving->read(render::Aov::IndirectDiffuse), stillAt128).relMse;
     frames(td, *moving, 23);
-    const double after = render::compareImages(moving->read(render::Aov::IndirectDiffuse), converged).relMse;
+    const double after = render::compareImages(moving->read(render::Aov::IndirectDiffuse), stillAt128).relMse;
     frames(td, *moving, 80);
-    const double later = render::compareImages(moving->read(render::Aov::IndirectDiffuse), converged).relMse;
-    INFO("relMSE to the still scene's GI: " << atStop << " at the stop, " << after << " 24 frames later, " << later << " 104 frames later");
+    const double later = render::compareImages(moving->read(render::Aov::IndirectDiffuse), stillAt128).relMse;
+    frames(td, *moving, 128);
+    frames(td, *still, 128);
+    const double settled = render::compareImages(moving->read(render::Aov::IndirectDiffuse), still->read(render::Aov::IndirectDiffuse)).relMse;
+    INFO("relMSE to the still scene's GI: " << atStop << " at the stop, " << after << " 24 frames later, " << later << " 104 frames later, "
+                                              << settled << " 232 frames later");
     CHECK(after < 0.009);
     CHECK(after < atStop);
-    CHECK(later < 0.008);
+    CHECK(later < 0.012);
+    CHECK(settled < 0.006);
     REQUIRE_NO_MESSAGES(td);
 }
 
