@@ -61,6 +61,10 @@ private:
     void prepare(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s);
     void run(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, uint32_t x, uint32_t y, uint32_t z = 1);
     void runIndirect(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, rhi::BufferHandle args);
+    // A pass of one thread per probe (64-thread groups) that reads the probe info and one buffer and writes
+    // another, with the SDF bound: the world-cache read at the probes (8b) and the emission (13).
+    void runOverProbes(const char* label, rhi::ShaderHandle shader, rhi::BufferHandle probeInfo, rhi::BufferHandle input,
+                       rhi::BufferHandle output, rhi::Access outputAccess);
 
     rhi::IDevice& device_;
     const sdf::SdfScene& scene_;

@@ -54,6 +54,16 @@ void GiContextImpl::runIndirect(const char* label, rhi::ShaderHandle shader, rhi
     device_.endMarker();
 }
 
+void GiContextImpl::runOverProbes(const char* label, rhi::ShaderHandle shader, rhi::BufferHandle probeInfo, rhi::BufferHandle input,
+                                  rhi::BufferHandle output, rhi::Access outputAccess) {
+    rhi::DispatchState s;
+    readBuffer(s.bindings, 0, probeInfo);
+    readBuffer(s.bindings, 1, input);
+    storageBuffer(s.bindings, 0, output, outputAccess);
+    addTrace(s.bindings);
+    run(label, shader, s, groups(tilesX_ * tilesY_, 64), 1);
+}
+
 void GiContextImpl::fillConstants(const DispatchDesc& d) {
     // Inverted in double: with a near plane far below the far plane (standard depth) a float inverse
     // loses most of the depth range's precision, and positions rebuilt from depth land metres off.
@@ -254,14 +264,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
         run("fill probes", shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
     }
-    {  // 8b. the world cache at each probe (for the projection's blend)
-        rhi::DispatchState s;
-        readBuffer(s.bindings, 0, probeInfo_[cur]);
-        readBuffer(s.bindings, 1, brickSH_);
-        storageBuffer(s.bindings, 0, probeWorldSH_, Access::Write);
-        addTrace(s.bindings);
-        run("probe world cache", shaders_.probeWorld, s, groups(tilesX_ * tilesY_, 64), 1);
-    }
+    // 8b. the world cache at each probe (for the projection's blend)
+    runOverProbes("probe world cache", shaders_.probeWorld, probeInfo_[cur], brickSH_, probeWorldSH_, Access::Write);
     if (specular) {  // 11. specular trace (full internal resolution, inside the pre-traced brick)
         rhi::DispatchState s;
         texture(s.bindings, 0, depth_[cur], point_);
@@ -301,15 +305,9 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         run("interpolate", shaders_.interpolate, s, groups(width_, 8), groups(height_, 8));
     }
-    {  // 13. emit the probes into the brick SH irradiance cache (after the interpolation, the last pass of
-        // the frame to read it, so that the two do not wait for each other)
-        rhi::DispatchState s;
-        readBuffer(s.bindings, 0, probeInfo_[cur]);
-        readBuffer(s.bindings, 1, probeSH_);
-        storageBuffer(s.bindings, 0, brickSH_, Access::ReadWrite);
-        addTrace(s.bindings);
-        run("emit irradiance", shaders_.emit, s, groups(tilesX_ * tilesY_, 64), 1);
-    }
+    // 13. emit the probes into the brick SH irradiance cache (after the interpolation, the last pass of the
+    // frame to read it, so that the two do not wait for each other)
+    runOverProbes("emit irradiance", shaders_.emit, probeInfo_[cur], probeSH_, brickSH_, Access::ReadWrite);
     rhi::TextureHandle finalDiffuse = diffuseHistory_[cur], finalSpecular = specularHistory_[cur];
     if (denoise) {  // 15, 16. bilateral blur, x (into last frame's history, free since pass 10) then y
         struct Step {
