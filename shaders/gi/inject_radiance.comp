@@ -11,10 +11,10 @@
 // With relighting on, the brick also learns the pixel's albedo (and emission), and when it was last seen.
 layout(local_size_x = 8, local_size_y = 8) in;
 // One pixel of each GI_INJECT_TILE² tile per frame (ContextDesc::injectTile): by default 2, or 4 from an
-// internal width of 1440 on (core/gi/gi_constants.h: injectTileFor). The cache's texels are a fixed size in the world, so at a
-// higher resolution more pixels reach each of them; the wider tile keeps about as many injections per
-// texel and frame as 2×2 tiles at 1080p's internal 960×540, and the pass's cost with it (at 4K / 50 % it
-// was the largest pass of its level: 0.18 ms on an H100).
+// internal width of 1440 on (core/gi/gi_constants.h: injectTileFor). The cache's texels are a fixed size
+// in the world, so at a higher resolution more pixels reach each of them; the wider tile keeps about as
+// many injections per texel and frame as 2×2 tiles at 1080p's internal 960×540, and the pass's cost with
+// it (at 4K / 50 % it was the largest pass of its level: 0.18 ms on an H100).
 BL_CONSTANTS(2) uniform Pass { uvec4 inject; } pass;  // x: the tile side
 #define GI_INJECT_TILE (pass.inject.x)
 BL_TEXTURE(0) uniform sampler2D depthNow;

@@ -3,7 +3,7 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
-#include "gi_sh.glsl"
+#include "gi_sh.glsl"  // gi_bricks.glsl's brick SH reads use GiSH
 // Pass 8b: the world cache at each probe: its SH, trilinear over the bricks around the probe (a quarter
 // voxel off the surface, in the finest traced cascade that has any; gi_bricks.glsl), for the
 // projection to blend GI_WORLD_SHARE of into the SH the pixels read. It needs only the probes' places and
