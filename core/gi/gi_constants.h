@@ -34,8 +34,9 @@ struct GpuFrame {  // BL_CONSTANTS(1)
     glm::vec4 epsilon;      // diffuse, specular epsilon scale
     uint32_t relight[4];    // light count, relight flags (RelightFlags), unused, unused
     glm::vec4 traceLimits;  // iterations per cascade of every GI ray, diffuse rays' coarsenAfterVoxels (TraceParams)
+    uint32_t probes[4];     // probe tile side in internal pixels, unused, unused, unused
 };
-static_assert(sizeof(GpuFrame) == 192);
+static_assert(sizeof(GpuFrame) == 208);
 
 enum RelightFlags : uint32_t {
     RelightAlbedo = 1u,    // DispatchDesc::diffuseAlbedo given: bricks learn their albedo, unseen texels are re-lit
@@ -51,7 +52,10 @@ struct GpuLight {
 };
 static_assert(sizeof(GpuLight) == 48);
 
-constexpr uint32_t kProbeTile = 8;          // internal pixels per probe tile side (8×8 texels per probe)
+constexpr uint32_t kProbeTexels = 8;  // octahedral texels per probe side (8×8 rays)
+// Internal pixels per probe tile side when ContextDesc::probeTile is 0: 8, 16 from an internal width of
+// 1440 on (spawn_probes.comp says why).
+constexpr uint32_t probeTileFor(uint32_t internalWidth) { return internalWidth >= 1440 ? 16 : 8; }
 // One injected pixel per tile per frame (GI_INJECT_TILE) when ContextDesc::injectTile is 0: 2×2 tiles,
 // 4×4 from an internal width of 1440 on (inject_radiance.comp says why).
 constexpr uint32_t injectTileFor(uint32_t internalWidth) { return internalWidth >= 1440 ? 4 : 2; }

@@ -48,6 +48,8 @@ bool GiContextImpl::init(std::string* error) {
         return bad("unknown flag bits in flags");
     if (desc_.injectTile != 0 && desc_.injectTile != 1 && desc_.injectTile != 2 && desc_.injectTile != 4 && desc_.injectTile != 8)
         return bad("injectTile " + std::to_string(desc_.injectTile) + " is not 0 (automatic), 1, 2, 4 or 8");
+    if (desc_.probeTile != 0 && desc_.probeTile != 8 && desc_.probeTile != 16)
+        return bad("probeTile " + std::to_string(desc_.probeTile) + " is not 0 (automatic), 8 or 16");
     const rhi::Capabilities& caps = device_.capabilities();
     using F = rhi::Format;
     for (F f : {F::R32_FLOAT, F::R32_UINT, F::RG16_FLOAT, F::R8_UNORM, F::RGBA16_FLOAT})
@@ -56,8 +58,9 @@ bool GiContextImpl::init(std::string* error) {
     const float scale = internalScale(desc_.internalResolution);
     width_ = std::max(1u, uint32_t(std::lround(desc_.displayWidth * scale)));
     height_ = std::max(1u, uint32_t(std::lround(desc_.displayHeight * scale)));
-    tilesX_ = (width_ + kProbeTile - 1) / kProbeTile;
-    tilesY_ = (height_ + kProbeTile - 1) / kProbeTile;
+    probeTile_ = desc_.probeTile ? desc_.probeTile : probeTileFor(width_);
+    tilesX_ = (width_ + probeTile_ - 1) / probeTile_;
+    tilesY_ = (height_ + probeTile_ - 1) / probeTile_;
     injectTile_ = desc_.injectTile ? desc_.injectTile : injectTileFor(width_);
     const uint32_t capacity = scene_.brickCapacity();
     if (desc_.radianceCacheBricks > capacity)
@@ -74,7 +77,6 @@ bool GiContextImpl::init(std::string* error) {
         return sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
     };
     shaders_.downsample = shader("gi/downsample.comp");
-    shaders_.disocclusion = shader("gi/disocclusion_mask.comp");
     shaders_.clearFreed = shader("gi/clear_freed_bricks.comp");
     shaders_.inject = shader("gi/inject_radiance.comp");
     shaders_.propagate = shader("gi/propagate_sh.comp");
@@ -107,7 +109,7 @@ bool GiContextImpl::init(std::string* error) {
         const std::string s = std::to_string(i);
         depth_[i] = texture("depth" + s, F::R32_FLOAT, width_, height_);
         surface_[i] = texture("surface" + s, F::R32_UINT, width_, height_);
-        probes_[i] = texture("probes" + s, F::RGBA16_FLOAT, tilesX_ * kProbeTile, tilesY_ * kProbeTile);
+        probes_[i] = texture("probes" + s, F::RGBA16_FLOAT, tilesX_ * kProbeTexels, tilesY_ * kProbeTexels);
         diffuseHistory_[i] = texture("diffuseHistory" + s, F::RGBA16_FLOAT, width_, height_);
         specularHistory_[i] = texture("specularHistory" + s, F::RGBA16_FLOAT, width_, height_);
     }
@@ -179,7 +181,7 @@ bool GiContextImpl::init(std::string* error) {
     environment_ = device_.createSampler(sd);
 
     const Shaders& s = shaders_;
-    for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
+    for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
         if (!h) return bad("the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
@@ -194,7 +196,7 @@ bool GiContextImpl::init(std::string* error) {
 
 GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
-    for (rhi::ShaderHandle h : {s.downsample, s.disocclusion, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
+    for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,

@@ -43,6 +43,7 @@ public:
     const ContextDesc& desc() const override { return desc_; }
     uint32_t internalWidth() const override { return width_; }
     uint32_t internalHeight() const override { return height_; }
+    uint32_t probeTile() const override { return probeTile_; }
     const std::string& lastError() const override { return lastError_; }
     void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
     uint32_t radianceCacheBricksInUse() override;
@@ -72,11 +73,12 @@ private:
     std::string lastError_;
     uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
     uint32_t injectTile_ = 2;  // ContextDesc::injectTile, resolved
+    uint32_t probeTile_ = 8;   // ContextDesc::probeTile, resolved
     uint32_t cacheSlots_ = 0;  // radiance cache slots (bricks it can hold)
     uint32_t cacheDepth_ = 0;  // radiance cache image depth (texels); the image is 256 × 256 × cacheDepth_
 
     struct Shaders {
-        rhi::ShaderHandle downsample, disocclusion, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
+        rhi::ShaderHandle downsample, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
             relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug;
     } shaders_;
 

@@ -1,10 +1,11 @@
 // One GI frame as records. Ping-pong resources alternate with the frame index: [cur] is written this frame,
 // [prev] holds last frame's. The passes keep docs/gi.md's numbers but are recorded by dependency level, so
 // that passes with no hazard between them follow each other and a backend can run them between the same
-// two barriers: 1 | 2 3 6 | 4 7 10 | 4b 5 9 | 8 8b 11 | 12 | 14 | 13 15 | 16 | 17 (the
-// relight pass, latency-bound on at most 2048 groups, shares its interval with two passes that need only
-// earlier levels; 8b reads the world cache at the probes, and the emission into it waits until the
-// interpolation has read it).
+// two barriers: 1+2 3 6 | 4 7 10 | 4b 5 9 | 8 8b 11 | 12 | 14 | 13 15 | 16 | 17. The downsample also
+// writes the disocclusion mask, from its own pixel's values; 3 and 6 read the application's G-buffer as
+// the downsample stores it, so that they need not wait for it. The relight pass, latency-bound on at most
+// 2048 groups, shares its interval with two passes that need only earlier levels. 8b reads the world
+// cache at the probes, and the emission into it waits until the interpolation has read it.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -104,6 +105,7 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.epsilon = glm::vec4(d.trace.epsilonScale, d.trace.specularEpsilonScale, 0.0f, 0.0f);
     frame_.traceLimits = glm::vec4(float(d.trace.maxIterationsPerCascade), d.trace.coarsenAfterVoxels, 0.0f, 0.0f);
     frame_.relight[0] = d.lightCount;
+    frame_.probes[0] = probeTile_;
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
                         (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
 }
@@ -138,26 +140,24 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         const uint32_t start[4] = {0, 1, 1, 0};
         device_.writeBuffer(relightList_, 0, start, sizeof(start));
     }
-    {  // 1. downsample
+    // Passes 3 and 6 read the application's G-buffer as pass 1 stores it (gi_input.glsl), so that the three
+    // run side by side.
+    auto addInputs = [&](rhi::Bindings& b) {
+        texture(b, 0, d.depth, point_);
+        texture(b, 1, d.normals, point_);
+        texture(b, 2, d.roughness, point_);
+    };
+    {  // 1, 2. downsample; disocclusion mask
         rhi::DispatchState s;
-        texture(s.bindings, 0, d.depth, point_);
-        texture(s.bindings, 1, d.normals, point_);
-        texture(s.bindings, 2, d.roughness, point_);
+        addInputs(s.bindings);
         texture(s.bindings, 3, d.motionVectors, point_);
+        texture(s.bindings, 4, depth_[prev], point_);
+        texture(s.bindings, 5, surface_[prev], point_);
         image(s.bindings, 0, depth_[cur], Access::Write);
         image(s.bindings, 1, surface_[cur], Access::Write);
         image(s.bindings, 2, motion_, Access::Write);
+        image(s.bindings, 3, disocclusion_, Access::Write);
         run("downsample", shaders_.downsample, s, groups(width_, 8), groups(height_, 8));
-    }
-    {  // 2. disocclusion mask
-        rhi::DispatchState s;
-        texture(s.bindings, 0, depth_[cur], point_);
-        texture(s.bindings, 1, surface_[cur], point_);
-        texture(s.bindings, 2, motion_, point_);
-        texture(s.bindings, 3, depth_[prev], point_);
-        texture(s.bindings, 4, surface_[prev], point_);
-        image(s.bindings, 0, disocclusion_, Access::Write);
-        run("disocclusion mask", shaders_.disocclusion, s, groups(width_, 8), groups(height_, 8));
     }
     {  // 3. clear the cache entries of freed bricks; pick the bricks to re-light
         rhi::DispatchState s;
@@ -169,14 +169,13 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 4, slotOfBrick_, Access::ReadWrite);
         storageBuffer(s.bindings, 5, freeSlots_, Access::ReadWrite);
         image(s.bindings, 0, radianceCache_, Access::Write);
-        texture(s.bindings, 0, depth_[cur], point_);
+        addInputs(s.bindings);
         addTrace(s.bindings);
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
     {  // 6. spawn screen probes
         rhi::DispatchState s;
-        texture(s.bindings, 0, depth_[cur], point_);
-        texture(s.bindings, 1, surface_[cur], point_);
+        addInputs(s.bindings);
         storageBuffer(s.bindings, 0, probeInfo_[cur], Access::Write);
         run("spawn probes", shaders_.spawn, s, groups(tilesX_, 8), groups(tilesY_, 8));
     }

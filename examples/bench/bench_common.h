@@ -24,6 +24,7 @@ struct Options {
     uint32_t scalePercent = 50;  // gi: internal resolution
     uint32_t giIterations = 0;   // gi: TraceParams::maxIterationsPerCascade (0: GI's default)
     float giCoarsen = -1.0f;     // gi: TraceParams::coarsenAfterVoxels (< 0: GI's default)
+    uint32_t giProbeTile = 0;    // gi: ContextDesc::probeTile (0: automatic)
     bool giTotalOnly = false;    // gi: time only the whole GI (passes may overlap; no per-pass figures)
 };
 

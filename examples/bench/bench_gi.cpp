@@ -19,11 +19,12 @@ namespace bricklight::bench {
 
 namespace {
 
-const char* const kGiPasses[] = {"downsample",        "disocclusion mask", "clear freed bricks", "inject radiance",
-                                 "relight cache",     "propagate SH",      "spawn probes",      "reproject probes",   "fill probes",
-                                 "probe world cache", "specular pretrace", "reproject GI",      "specular trace",     "project probes",
-                                 "emit irradiance",   "interpolate",       "blur x",             "blur y",
-                                 "upsample"};
+// "downsample" includes the disocclusion mask (pass 2).
+const char* const kGiPasses[] = {"downsample",       "clear freed bricks", "inject radiance",   "relight cache",
+                                 "propagate SH",     "spawn probes",       "reproject probes",  "fill probes",
+                                 "probe world cache", "specular pretrace", "reproject GI",      "specular trace",
+                                 "project probes",   "emit irradiance",    "interpolate",       "blur x",
+                                 "blur y",           "upsample"};
 
 gi::InternalResolution resolutionOf(uint32_t percent) {
     switch (percent) {
@@ -69,6 +70,7 @@ int runGi(const Options& o) {
     cd.displayWidth = o.width;
     cd.displayHeight = o.height;
     cd.internalResolution = resolutionOf(o.scalePercent);
+    cd.probeTile = o.giProbeTile;
     std::string error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
     if (!context) {
@@ -114,11 +116,12 @@ int runGi(const Options& o) {
     }
     const uint32_t iterations = o.giIterations ? o.giIterations : gi::TraceParams{}.maxIterationsPerCascade;
     const float coarsen = o.giCoarsen >= 0.0f ? o.giCoarsen : gi::TraceParams{}.coarsenAfterVoxels;
-    std::printf("scene %s: %llu triangles; %s on %s; %ux%u, GI at %u %% (%ux%u); %u cascades, finest voxel %.4g; "
-                "GI rays %u steps per cascade, diffuse rays coarsen after %g voxels\n",
+    std::printf("scene %s: %llu triangles; %s on %s; %ux%u, GI at %u %% (%ux%u, probe tiles %ux%u); %u cascades, "
+                "finest voxel %.4g; GI rays %u steps per cascade, diffuse rays coarsen after %g voxels\n",
                 geometry.name.c_str(), (unsigned long long)geometry.triangleCount(), o.backend.c_str(),
                 device->capabilities().deviceName.c_str(), o.width, o.height, o.scalePercent, context->internalWidth(),
-                context->internalHeight(), o.cascades, desc.finestVoxelSize, iterations, coarsen);
+                context->internalHeight(), context->probeTile(), context->probeTile(), o.cascades, desc.finestVoxelSize,
+                iterations, coarsen);
 
     const float aspect = float(o.width) / float(o.height);
     Camera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
@@ -205,7 +208,9 @@ int runGi(const Options& o) {
         std::ofstream out(o.json);
         out << "{\"technique\": \"gi\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend << "\", \"device\": \""
             << device->capabilities().deviceName << "\", \"width\": " << o.width << ", \"height\": " << o.height
-            << ", \"scale_percent\": " << o.scalePercent << ", \"iterations_per_cascade\": " << iterations << ", \"coarsen_after_voxels\": " << coarsen << ", \"total_ms\": " << total << ", \"passes_ms\": {";
+            << ", \"scale_percent\": " << o.scalePercent << ", \"iterations_per_cascade\": " << iterations
+            << ", \"coarsen_after_voxels\": " << coarsen << ", \"probe_tile\": " << context->probeTile()
+            << ", \"total_ms\": " << total << ", \"passes_ms\": {";
         bool first = true;
         for (const char* p : kGiPasses) {
             out << (first ? "" : ", ") << "\"" << p << "\": " << t.perFrame(std::string("gi/") + p);

@@ -3,7 +3,8 @@
 //   bricklight-bench sdf [--scene NAME|FILE] [--backend vulkan|gl] [--cascades N] [--frames N]
 //                        [--width W] [--height H] [--json FILE]
 //   bricklight-bench gi  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--scale 100|75|50|25]
-//                        [--frames N] [--iterations N] [--coarsen N] [--timing passes|total] [--json FILE]
+//                        [--frames N] [--iterations N] [--coarsen N] [--probe-tile 0|8|16] [--timing passes|total]
+//                        [--json FILE]
 //
 // sdf: a full build, frames with one moving ~100k-triangle dynamic instance, frames where the centre moves
 // by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080).
@@ -42,6 +43,7 @@ namespace {
                  "                            [--scale 100|75|50|25] [--frames N] [--json FILE]\n"
                  "                            [--iterations N]  (GI rays' steps per cascade; default GI's)\n"
                  "                            [--coarsen N]  (diffuse GI rays' voxels per cascade; 0 off; default GI's)\n"
+                 "                            [--probe-tile 0|8|16]  (internal pixels per probe tile side; 0 automatic)\n"
                  "                            [--timing passes|total]  (total: time only the whole GI, so that its passes\n"
                  "                             may overlap as they do untimed; default passes)\n");
     std::exit(2);
@@ -74,7 +76,10 @@ Options parse(int argc, char** argv) {
         else if (a == "--frames") o.frames = number(value(), "--frames", 1, 10000);
         else if (a == "--dynamic-max-cascade") o.dynamicMaxCascade = number(value(), "--dynamic-max-cascade", 0, 15);
         else if (a == "--coarsen") o.giCoarsen = float(number(value(), "--coarsen", 0, 1024));
-        else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
+        else if (a == "--probe-tile") {
+            o.giProbeTile = number(value(), "--probe-tile", 0, 16);
+            if (o.giProbeTile != 0 && o.giProbeTile != 8 && o.giProbeTile != 16) usage("--probe-tile must be 0, 8 or 16");
+        } else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
         else if (a == "--timing") {
             const std::string t = value();
             if (t != "passes" && t != "total") usage("--timing expects passes or total");

@@ -157,6 +157,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     gd.internalResolution = options_.giResolution;
     gd.radianceCacheBricks = options_.giCacheBricks;
     gd.injectTile = options_.giInjectTile;
+    gd.probeTile = options_.giProbeTile;
     gd.debugName = "render gi";
     gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
     if (!gi_) return fail(why);

@@ -24,6 +24,7 @@ struct RasterOptions {
     bool giRelight = true;  // give GI the albedo, emission and lights, so it re-lights what the camera does not see
     uint32_t giCacheBricks = 0;  // gi::ContextDesc::radianceCacheBricks (0: the default)
     uint32_t giInjectTile = 0;   // gi::ContextDesc::injectTile (0: automatic)
+    uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
 };
 

@@ -42,6 +42,10 @@ struct ContextDesc {
     // injectTile tile a frame (1, 2, 4 or 8). 0: 2, or 4 from an internal width of 1440 on — the cache's
     // texels are a fixed size in the world, so at higher resolutions more pixels reach each of them.
     uint32_t injectTile = 0;
+    // One screen probe per probeTile × probeTile internal pixels (8 or 16). 0: 8, or 16 from an internal
+    // width of 1440 on — the probes then keep about the same density on the screen as 8 at 960x540, and
+    // at 1920x1080 internal a quarter of the probes' tracing and projection (docs/gi.md, "Probe tiles").
+    uint32_t probeTile = 0;
     std::string debugName = "gi";
     // Receives the context's own messages (bad inputs); stderr when empty.
     rhi::ErrorCallback errorCallback;
@@ -176,6 +180,8 @@ public:
     virtual const ContextDesc& desc() const = 0;
     virtual uint32_t internalWidth() const = 0;
     virtual uint32_t internalHeight() const = 0;
+    // Internal pixels per probe tile side (ContextDesc::probeTile, resolved).
+    virtual uint32_t probeTile() const = 0;
     virtual const std::string& lastError() const = 0;
 
     // For tests and tools (blocking read-backs): the world caches as floats. `radiance` gets 3 floats per

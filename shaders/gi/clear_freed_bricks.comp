@@ -22,8 +22,12 @@ BL_STORAGE_BUFFER(3) RelightList { uint relightList[]; };
 BL_STORAGE_BUFFER(4) CacheSlots { uint giCacheSlots[]; };
 BL_STORAGE_BUFFER(5) FreeSlots { int freeSlotCount; uint freeSlots[]; };
 BL_IMAGE(0, r32ui) uniform writeonly uimage3D radianceCache;
-BL_TEXTURE(0) uniform sampler2D depthNow;
+// The application's G-buffer (gi_input.glsl), as the downsample stores it: the two run side by side.
+BL_TEXTURE(0) uniform sampler2D inputDepth;
+BL_TEXTURE(1) uniform sampler2D inputNormals;
+BL_TEXTURE(2) uniform sampler2D inputRoughness;
 #include "gi_bricks.glsl"
+#include "gi_input.glsl"
 
 // Whether the camera may see the voxel (world coordinates `voxel`, edge `size`): some of its box inside
 // the frustum's side planes, and its centre not hidden behind this frame's depth buffer. A brick in view
@@ -46,7 +50,9 @@ bool giBrickInView(ivec3 voxel, float size) {
     if (c.w <= 0.0) return true;
     vec2 uv = c.xy / c.w * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return true;
-    float depth = texelFetch(depthNow, ivec2(uv * vec2(giFrame.size.xy)), 0).r;
+    float depth;
+    uint surface;
+    giReadInput(uvec2(uv * vec2(giFrame.size.xy)), depth, surface);
     if (giIsSky(depth)) return true;
     // Hidden: the visible surface there is nearer than the box's nearest point (half a diagonal, 0.87
     // voxel, from the centre), with half a voxel to spare.

@@ -7,7 +7,7 @@
 // Debug views of the latest dispatch, at display size (tone-mapped x / (1 + x) after exposure):
 //   0 radiance cache    primary rays through the field, the radiance cache at the hit
 //   1 irradiance cache  primary rays, the hit brick's SH for the hit normal (irradiance / π)
-//   2 probes            the screen probes' 8×8 texels, each probe over its own tile
+//   2 probes            the screen probes' 8×8 texels, each probe stretched over its own tile
 //   3 probe SH          the pixel's probe SH for the pixel's normal
 //   4 disocclusion      white = history kept
 //   5 sample count      the diffuse history's length (white = the cap)
@@ -53,9 +53,11 @@ void main() {
             }
         }
     } else if (mode == 2u) {
-        colour = texelFetch(probes, ivec2(internalPixel), 0).rgb;
+        uvec2 tile = min(internalPixel / giProbeTile(), giFrame.tiles.xy - 1u);
+        uvec2 local = min((internalPixel - tile * giProbeTile()) * 8u / giProbeTile(), uvec2(7u));
+        colour = texelFetch(probes, ivec2(tile * 8u + local), 0).rgb;
     } else if (mode == 3u) {
-        uvec2 tile = min(internalPixel / 8u, giFrame.tiles.xy - 1u);
+        uvec2 tile = min(internalPixel / giProbeTile(), giFrame.tiles.xy - 1u);
         uint index = tile.y * giFrame.tiles.x + tile.x;
         if ((probeInfo[index].w & GI_PROBE_VALID) != 0u && !giIsSky(texelFetch(depthNow, ivec2(internalPixel), 0).r)) {
             GiSH s;

@@ -14,7 +14,7 @@ BL_CONSTANTS(0) uniform GiCamera {
 
 BL_CONSTANTS(1) uniform GiFrame {
     uvec4 size;          // xy internal size, zw display size
-    uvec4 tiles;         // xy probe tiles (8×8 internal pixels each), z frame index, w flags (GI_FLAG_*)
+    uvec4 tiles;         // xy probe tiles (giProbeTile()² internal pixels each), z frame index, w flags (GI_FLAG_*)
     vec4 camera;         // xyz camera position, w finest traced voxel size
     vec4 normalScale;    // xyz normal unpack scale, w roughness threshold (perceptual)
     vec4 normalOffset;   // xyz normal unpack offset, w environment intensity
@@ -25,6 +25,7 @@ BL_CONSTANTS(1) uniform GiFrame {
     vec4 epsilon;        // x diffuse epsilon scale, y specular epsilon scale
     uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
     vec4 traceLimits;    // x iterations per cascade of every GI ray, y diffuse rays' coarsen-after voxels
+    uvec4 probes;        // x probe tile side in internal pixels (8 or 16; ContextDesc::probeTile)
 } giFrame;
 
 #define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)
@@ -65,6 +66,7 @@ ivec3 giCacheSlotBase(uint slot) { return ivec3(slot % 64u, (slot / 64u) % 64u, 
 
 bool giHasFlag(uint flag) { return (giFrame.tiles.w & flag) != 0u; }
 uint giFrameIndex() { return giFrame.tiles.z; }
+uint giProbeTile() { return giFrame.probes.x; }
 
 // Depth: the application's convention (1 = far, or 0 with reversed depth); sky where nothing was drawn.
 float giSkyDepth() { return giHasFlag(GI_FLAG_REVERSED_DEPTH) ? 0.0 : 1.0; }

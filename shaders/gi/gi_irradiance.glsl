@@ -27,7 +27,7 @@ void giShRead(GiShReads reads, int i, vec3 coefficient, float w, inout vec3 diff
 float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
     diffuse = vec3(0.0);
     lobe = vec3(0.0);
-    vec2 f = (vec2(pixel) + 0.5) / 8.0 - 0.5;
+    vec2 f = (vec2(pixel) + 0.5) / float(giProbeTile()) - 0.5;
     ivec2 t0 = ivec2(floor(f));
     vec2 w2 = f - vec2(t0);
     float distance = length(p - giFrame.camera.xyz);
