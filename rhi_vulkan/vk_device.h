@@ -346,6 +346,11 @@ private:
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT endLabel_ = nullptr;
+    // BRICKLIGHT_VK_SHADER_STATISTICS=1 with VK_KHR_pipeline_executable_properties: each compute pipeline's
+    // driver statistics (registers, ...) are reported as Info messages when it is created.
+    PFN_vkGetPipelineExecutablePropertiesKHR executableProperties_ = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR executableStatistics_ = nullptr;
+    void reportShaderStatistics(VkPipeline pipeline, const std::string& name);
 
     // Resources. Ids per kind start at 1 and are never reused.
     std::unordered_map<uint32_t, std::unique_ptr<Texture>> textures_;

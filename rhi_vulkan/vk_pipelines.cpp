@@ -4,6 +4,8 @@
 // that defines them (viewport and scissor are dynamic).
 #include <algorithm>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include "vk_device.h"
 #include "vk_formats.h"
@@ -136,10 +138,12 @@ VkPipeline VulkanDevice::getComputePipeline(const Program& program, Shader& shad
     cpci.stage.module = shader.module;
     cpci.stage.pName = "main";
     cpci.layout = program.layout->pipelineLayout;
+    if (executableStatistics_) cpci.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     VkPipeline pipeline;
     if (vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &cpci, nullptr, &pipeline) != VK_SUCCESS)
         return fail(call + ": cannot create the compute pipeline of '" + shader.name + "'"), VK_NULL_HANDLE;
     setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), shader.name);
+    if (executableStatistics_) reportShaderStatistics(pipeline, shader.name);
     pipelines_[key] = {pipeline, {shader.id}};
     return pipeline;
 }
@@ -291,6 +295,38 @@ void VulkanDevice::forgetShader(uint32_t shaderId) {
             it = programs_.erase(it);
         else
             ++it;
+    }
+}
+
+// One Info message per executable: "shader statistics 'NAME' (EXECUTABLE): Register Count 64, ...". The
+// statistics' names and meanings are the driver's own.
+void VulkanDevice::reportShaderStatistics(VkPipeline pipeline, const std::string& name) {
+    VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+    info.pipeline = pipeline;
+    uint32_t executables = 0;
+    if (executableProperties_(device_, &info, &executables, nullptr) != VK_SUCCESS) return;
+    std::vector<VkPipelineExecutablePropertiesKHR> properties(executables, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+    if (executableProperties_(device_, &info, &executables, properties.data()) != VK_SUCCESS) return;
+    for (uint32_t e = 0; e < executables; ++e) {
+        VkPipelineExecutableInfoKHR which{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+        which.pipeline = pipeline;
+        which.executableIndex = e;
+        uint32_t count = 0;
+        if (executableStatistics_(device_, &which, &count, nullptr) != VK_SUCCESS) continue;
+        std::vector<VkPipelineExecutableStatisticKHR> statistics(count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+        if (executableStatistics_(device_, &which, &count, statistics.data()) != VK_SUCCESS) continue;
+        std::string line = "shader statistics '" + name + "' (" + properties[e].name + "):";
+        for (uint32_t k = 0; k < count; ++k) {
+            const VkPipelineExecutableStatisticKHR& st = statistics[k];
+            line += std::string(k ? ", " : " ") + st.name + " ";
+            switch (st.format) {
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: line += st.value.b32 ? "true" : "false"; break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: line += std::to_string(st.value.i64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: line += std::to_string(st.value.u64); break;
+                default: line += std::to_string(st.value.f64); break;
+            }
+        }
+        reporter_->report(rhi::Severity::Info, line);
     }
 }
 

@@ -224,6 +224,16 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
     f2.features = en;
 
     std::vector<const char*> devExt;
+    // Shader statistics for tuning (a diagnostic: the driver's register counts and the like per pipeline).
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableInfo{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    const bool statistics = envFlag("BRICKLIGHT_VK_SHADER_STATISTICS") &&
+                            hasDeviceExtension(dev->physical_, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    if (statistics) {
+        executableInfo.pipelineExecutableInfo = VK_TRUE;
+        f13.pNext = &executableInfo;
+        devExt.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    }
     dev->barrierReuse_ = !(options.disableBarrierReuse || envFlag("BRICKLIGHT_VK_NO_BARRIER_REUSE"));
     const bool noPush = options.disablePushDescriptors || envFlag("BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS");
     dev->pushDescriptors_ = !noPush && hasDeviceExtension(dev->physical_, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
@@ -245,6 +255,12 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
         return nullptr;
     }
     vkGetDeviceQueue(dev->device_, dev->queueFamily_, 0, &dev->queue_);
+    if (statistics) {
+        dev->executableProperties_ = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            vkGetDeviceProcAddr(dev->device_, "vkGetPipelineExecutablePropertiesKHR"));
+        dev->executableStatistics_ = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            vkGetDeviceProcAddr(dev->device_, "vkGetPipelineExecutableStatisticsKHR"));
+    }
     if (!dev->initDevice()) return nullptr;
     return dev;
 }
