@@ -105,9 +105,9 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.epsilon = glm::vec4(d.trace.epsilonScale, d.trace.specularEpsilonScale, 0.0f, 0.0f);
     frame_.traceLimits = glm::vec4(float(d.trace.maxIterationsPerCascade), d.trace.coarsenAfterVoxels, 0.0f, 0.0f);
     frame_.relight[0] = d.lightCount;
-    frame_.probes[0] = probeTile_;
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
                         (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
+    frame_.probes[0] = probeTile_;
 }
 
 void GiContextImpl::uploadLights(const DispatchDesc& d) {

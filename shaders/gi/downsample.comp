@@ -26,7 +26,7 @@ bool giHistoryValid(uvec2 pixel, float depth, uint surface, vec2 motion) {
     if (giIsSky(depth) || !giHasFlag(GI_FLAG_HISTORY_VALID) || giHasFlag(GI_FLAG_RESET_HISTORY)) return false;
     vec2 uv = giPixelUv(pixel);
     vec2 previousUv = uv - motion;
-    if (any(lessThan(previousUv, vec2(0.0))) || any(greaterThanEqual(previousUv, vec2(1.0)))) return false;
+    if (!(all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThan(previousUv, vec2(1.0))))) return false;  // NaN too
     ivec2 previousPixel = ivec2(previousUv * vec2(giFrame.size.xy));
     float previousDepth = texelFetch(depthBefore, previousPixel, 0).r;
     if (giIsSky(previousDepth)) return false;
