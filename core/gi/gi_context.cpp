@@ -163,7 +163,12 @@ bool GiContextImpl::init(std::string* error) {
     const std::vector<uint32_t> noOwner(capacity, 0xFFFFFFFFu);
     cacheOwners_ = buffer("cacheOwners", uint64_t(capacity) * 4, noOwner.data());
     brickMaterial_ = buffer("brickMaterial", uint64_t(capacity) * kBrickMaterialWords * 4);
-    relightList_ = buffer("relightList", 16 + uint64_t(kRelightBudget) * 4, nullptr, rhi::BufferUsage::IndirectArgs);
+    // Two relight lists: a frame appends to one (clear_freed_bricks.comp, which also empties the other for the
+    // next frame) while the relight pass reads it; no upload per frame.
+    std::vector<uint32_t> list(4 + kRelightBudget, 0);
+    list[1] = list[2] = 1;  // empty: dispatch arguments (0, 1, 1), no candidates
+    relightList_[0] = buffer("relightList0", 16 + uint64_t(kRelightBudget) * 4, list.data(), rhi::BufferUsage::IndirectArgs);
+    relightList_[1] = buffer("relightList1", 16 + uint64_t(kRelightBudget) * 4, list.data(), rhi::BufferUsage::IndirectArgs);
     lights_ = buffer("lights", uint64_t(kMaxLights) * sizeof(GpuLight));
     slotOfBrick_ = buffer("cacheSlotOfBrick", uint64_t(capacity) * 4);
     freeSlots_ = buffer("cacheFreeSlots", 4 + uint64_t(cacheSlots_) * 4);
@@ -185,7 +190,7 @@ bool GiContextImpl::init(std::string* error) {
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
         if (!h) return bad("the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_ && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_[0] && relightList_[1] && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
@@ -204,7 +209,7 @@ GiContextImpl::~GiContextImpl() {
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[0], relightList_[1], lights_, slotOfBrick_, freeSlots_})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -230,6 +235,8 @@ void GiContextImpl::reset() {
     device_.clearBuffer(probeSH_, {}, 0);
     device_.clearBuffer(probeIrradianceSH_, {}, 0);
     device_.clearBuffer(probeWorldSH_, {}, 0);
+    const uint32_t emptyHeader[4] = {0, 1, 1, 0};
+    for (rhi::BufferHandle b : relightList_) device_.writeBuffer(b, 0, emptyHeader, sizeof(emptyHeader));
     historyValid_ = false;
 }
 
@@ -253,7 +260,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("cacheOwners", buf(cacheOwners_));
     add("cacheSlots", buf(slotOfBrick_) + buf(freeSlots_));
     add("brickMaterial", buf(brickMaterial_));
-    add("relightList, lights", buf(relightList_) + buf(lights_));
+    add("relightList (2), lights", buf(relightList_[0]) + buf(relightList_[1]) + buf(lights_));
     add("depth (2)", tex(depth_[0]) + tex(depth_[1]));
     add("surface (2)", tex(surface_[0]) + tex(surface_[1]));
     add("motion", tex(motion_));

@@ -73,6 +73,7 @@ private:
     std::string lastError_;
     uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
     uint32_t injectTile_ = 2;  // ContextDesc::injectTile, resolved
+    std::vector<GpuLight> uploadedLights_;  // what the lights buffer holds (uploaded again only on change)
     uint32_t probeTile_ = 8;   // ContextDesc::probeTile, resolved
     uint32_t cacheSlots_ = 0;  // radiance cache slots (bricks it can hold)
     uint32_t cacheDepth_ = 0;  // radiance cache image depth (texels); the image is 256 × 256 × cacheDepth_
@@ -85,7 +86,7 @@ private:
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], resolvedDiffuse_, resolvedSpecular_;
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
-    rhi::BufferHandle probeInfo_[2], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_, lights_, slotOfBrick_, freeSlots_;
+    rhi::BufferHandle probeInfo_[2], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[2], lights_, slotOfBrick_, freeSlots_;
     rhi::SamplerHandle point_, linear_, environment_;
 
     GpuCamera camera_{};

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "gi_context_impl.h"
@@ -121,7 +122,12 @@ void GiContextImpl::uploadLights(const DispatchDesc& d) {
         lights[i].direction = glm::vec4(direction, spot ? std::cos(l.spotInnerAngle) : -2.0f);
         lights[i].color = glm::vec4(l.color, spot ? std::cos(l.spotOuterAngle) : -2.0f);
     }
-    device_.writeBuffer(lights_, 0, lights.data(), lights.size() * sizeof(GpuLight));
+    // Uploaded only when they change: an upload waits for the last frame's readers of the buffer, and
+    // the frame's passes for the upload.
+    const size_t bytes = lights.size() * sizeof(GpuLight);
+    if (lights.size() == uploadedLights_.size() && std::memcmp(lights.data(), uploadedLights_.data(), bytes) == 0) return;
+    device_.writeBuffer(lights_, 0, lights.data(), bytes);
+    uploadedLights_ = std::move(lights);
 }
 
 bool GiContextImpl::dispatch(const DispatchDesc& d) {
@@ -136,10 +142,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     device_.beginMarker(desc_.debugName.c_str());
 
     const bool relight = bool(d.diffuseAlbedo);
-    if (relight) {  // the relight list's dispatch arguments and count start at (0, 1, 1), 0
-        const uint32_t start[4] = {0, 1, 1, 0};
-        device_.writeBuffer(relightList_, 0, start, sizeof(start));
-    }
     // Passes 3 and 6 read the application's G-buffer as pass 1 stores it (gi_input.glsl), so that the three
     // run side by side.
     auto addInputs = [&](rhi::Bindings& b) {
@@ -165,7 +167,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 0, cacheOwners_, Access::ReadWrite);
         storageBuffer(s.bindings, 1, brickSH_, Access::Write);
         storageBuffer(s.bindings, 2, brickMaterial_, Access::ReadWrite);
-        storageBuffer(s.bindings, 3, relightList_, Access::ReadWrite);
+        storageBuffer(s.bindings, 3, relightList_[cur], Access::ReadWrite);
+        storageBuffer(s.bindings, 6, relightList_[prev], Access::Write);  // emptied for the next frame
         storageBuffer(s.bindings, 4, slotOfBrick_, Access::ReadWrite);
         storageBuffer(s.bindings, 5, freeSlots_, Access::ReadWrite);
         image(s.bindings, 0, radianceCache_, Access::Write);
@@ -221,7 +224,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     }
     if (relight) {  // 4b. re-light the cache texels of bricks the camera has not seen lately
         rhi::DispatchState s;
-        readBuffer(s.bindings, 0, relightList_);
+        readBuffer(s.bindings, 0, relightList_[cur]);
         readBuffer(s.bindings, 1, owners);
         readBuffer(s.bindings, 2, brickMaterial_);
         readBuffer(s.bindings, 3, lights_);
@@ -229,7 +232,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         addTrace(s.bindings);
         addEnvironment(s.bindings, d);
-        runIndirect("relight cache", shaders_.relight, s, relightList_);
+        runIndirect("relight cache", shaders_.relight, s, relightList_[cur]);
     }
     {  // 5. propagate brick SH in one cascade (the finest every other frame, the next every fourth, ...)
         const uint32_t start = frame_.cascades[0], end = frame_.cascades[1];

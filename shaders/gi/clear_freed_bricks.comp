@@ -10,9 +10,10 @@
 // updates between two GI frames.
 // With relighting on, a brick whose albedo is known, that the camera has not seen for GI_RELIGHT_AFTER
 // frames and that is out of view (giBrickInView) — or that it has not seen for GI_RELIGHT_STALE frames —
-// is appended, every GI_RELIGHT_PERIOD-th frame, to the relight list: words 0..2 are the
-// indirect dispatch's arguments (x = bricks listed, one group each; the host resets them to 0, 1, 1),
-// word 3 counts the candidates, the bricks follow.
+// is appended, every GI_RELIGHT_PERIOD-th frame, to this frame's relight list: words 0..2 are the
+// indirect dispatch's arguments (x = bricks listed, one group each), word 3 counts the candidates, the
+// bricks follow. The frames alternate between two lists; this pass also empties the other one (0, 1, 1,
+// 0) for the next frame, so that the host uploads nothing per frame.
 layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) BrickOwners { uint brickOwners[]; };
 BL_STORAGE_BUFFER(0) CacheOwners { uint cacheOwners[]; };
@@ -21,6 +22,7 @@ BL_STORAGE_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
 BL_STORAGE_BUFFER(3) RelightList { uint relightList[]; };
 BL_STORAGE_BUFFER(4) CacheSlots { uint giCacheSlots[]; };
 BL_STORAGE_BUFFER(5) FreeSlots { int freeSlotCount; uint freeSlots[]; };
+BL_STORAGE_BUFFER(6) NextRelightList { uint nextRelightList[]; };
 BL_IMAGE(0, r32ui) uniform writeonly uimage3D radianceCache;
 // The application's G-buffer (gi_input.glsl), as the downsample stores it: the two run side by side.
 BL_TEXTURE(0) uniform sampler2D inputDepth;
@@ -62,6 +64,12 @@ bool giBrickInView(ivec3 voxel, float size) {
 
 void main() {
     uint brick = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;
+    if (brick == 0u) {
+        nextRelightList[0] = 0u;
+        nextRelightList[1] = 1u;
+        nextRelightList[2] = 1u;
+        nextRelightList[3] = 0u;
+    }
     if (brick >= giFrame.cascades.w) return;
     uint owner = brickOwners[brick];
     uint m = brick * GI_MATERIAL_WORDS;
