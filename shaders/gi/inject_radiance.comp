@@ -94,10 +94,8 @@ void main() {
             uint level = min(c - giFrame.cascades.x, 4u);
             if (c > giFrame.cascades.y || (hash & ((1u << level) - 1u)) != 0u) continue;
             vec3 uvw;
-            if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, bricks[k], uvw) && !giBrickAt(p, c, bricks[k], uvw)) {
-                bricks[k] = BL_SDF_UNBUILT;
-                continue;
-            }
+            // (giBrickAt leaves BL_SDF_UNBUILT where it finds no brick.)
+            if (!giBrickAt(p + n * (0.125 * giVoxelSize(c)), c, bricks[k], uvw) && !giBrickAt(p, c, bricks[k], uvw)) continue;
             uvec3 t = uvec3(min(ivec3(uvw * 4.0), ivec3(3)));
             texels[k] = t.x | t.y << 2 | t.z << 4;
         }

@@ -34,7 +34,8 @@ void main() {
         if (valid && giHasFlag(GI_FLAG_HISTORY_VALID) && !giHasFlag(GI_FLAG_RESET_HISTORY)) {
             uvec2 pixel = giProbePixel(info);
             vec2 previousUv = giPixelUv(pixel) - texelFetch(motionNow, ivec2(pixel), 0).xy;
-            ivec2 previousTile = ivec2(floor(previousUv * vec2(giFrame.size.xy) / float(giProbeTile()))) + ivec2(int(t % 3u) - 1, int(t / 3u) - 1);
+            ivec2 previousTile = ivec2(floor(previousUv * vec2(giFrame.size.xy) / float(giProbeTile()))) +
+                                 ivec2(int(t % 3u) - 1, int(t / 3u) - 1);
             if (all(greaterThanEqual(previousTile, ivec2(0))) && all(lessThan(previousTile, ivec2(giFrame.tiles.xy)))) {
                 uint c = uint(previousTile.y) * giFrame.tiles.x + uint(previousTile.x);
                 uvec4 old = previousProbeInfo[c];
