@@ -15,6 +15,11 @@ constexpr uint32_t kEmpty = 0xFFFFFFFEu;
 constexpr uint32_t kUnbuilt = 0xFFFFFFFFu;
 constexpr uint32_t kFirstState = 0xFFFFFFF0u;
 constexpr uint32_t kAabbNone = 0xFFFFFFFFu;
+// Brick owner entries: cascade << 24 | allocation generation << 18 | physical voxel index.
+constexpr uint32_t kNoOwner = 0xFFFFFFFFu;
+constexpr uint32_t kOwnerGenerationShift = 18;
+constexpr uint32_t kOwnerVoxelMask = 0x3FFFFu;
+static_assert(kCascadeVoxels - 1 <= kOwnerVoxelMask, "a physical voxel index fits below the generation bits");
 
 constexpr uint32_t kTreeStride = 4616;  // uints per cascade
 constexpr uint32_t kTreeMid = 4096;

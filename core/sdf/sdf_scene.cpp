@@ -178,6 +178,7 @@ bool SdfSceneImpl::init(std::string* error) {
     trees_ = makeBuffer("trees", emptyTrees.size() * 4, rw, emptyTrees.data());
     std::vector<uint32_t> none(capacity, layout::kAabbNone);
     brickAabbs_ = makeBuffer("brickAabbs", uint64_t(capacity) * 4, rw, none.data());
+    static_assert(layout::kNoOwner == layout::kAabbNone, "one fill serves both");
     brickOwners_ = makeBuffer("brickOwners", uint64_t(capacity) * 4, rw, none.data());
     std::vector<uint32_t> stack(capacity);
     std::iota(stack.begin(), stack.end(), 0u);

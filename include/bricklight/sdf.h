@@ -206,9 +206,11 @@ public:
     // constants a caller needs none of: everything is in the bound buffers.
     virtual void traceBindings(rhi::Bindings& bindings, TraceSlots slots = {}) const = 0;
     virtual bool debugView(const DebugViewDesc& desc) = 0;
-    // Per brick (uint32 each, brick capacity entries): the voxel that owns it, as cascade << 24 | physical
-    // voxel index, or 0xFFFFFFFF for a brick never allocated. A brick whose owner changes was freed and
-    // reused: caches keyed by brick id (the GI's) compare owners to know what to forget.
+    // Per brick (uint32 each, brick capacity entries): the voxel that owns it, as cascade << 24 | allocation
+    // generation << 18 | physical voxel index, or 0xFFFFFFFF for a brick never allocated. The generation
+    // counts the brick's allocations (mod 64): a brick whose entry changes was freed and reallocated, even
+    // where it went back to the same voxel (a rebuilt region's bricks are handed out again in any order),
+    // and caches keyed by brick id (the GI's) compare entries to know what to forget.
     virtual rhi::BufferHandle brickOwnerBuffer() const = 0;
     virtual uint32_t brickCapacity() const = 0;
 

@@ -4,10 +4,15 @@
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
 // Pass 3: forget the cache entries of bricks the SDF freed, and pick this frame's bricks to re-light.
-// Every brick remembers the owner (voxel) its cache was written for; where the SDF's owner differs, the
-// brick was freed and reused elsewhere (or never written): its radiance cache slot is cleared and pushed
-// back on the free stack, its SH and its material are cleared. A full pass over the brick pool, so it also catches bricks freed by several SDF
-// updates between two GI frames.
+// Every brick remembers the owner entry (voxel and allocation generation) its cache was written for;
+// where the SDF's entry differs, the brick was freed and reallocated — elsewhere, or to the same voxel
+// with new geometry (or it was never written): its radiance cache slot is cleared and pushed back on the
+// free stack, its SH and its material are cleared. A full pass over the brick pool, so it also catches
+// bricks freed by several SDF updates between two GI frames. (Before the owner entries carried the
+// generation, a brick handed back to its own voxel by the builder kept its cache, with the light of
+// geometry that may have moved away. How often that happens depends on the order of the builder's
+// atomics: a full rebuild of the Cornell box gave 1 of 10710 bricks back to its voxel on the CPU drivers
+// and 0–3 on an H100.)
 // With relighting on, a brick whose albedo is known, that the camera has not seen for GI_RELIGHT_AFTER
 // frames and that is out of view (giBrickInView) — or that it has not seen for GI_RELIGHT_STALE frames —
 // is appended, every GI_RELIGHT_PERIOD-th frame, to this frame's relight list: words 0..2 are the
@@ -86,7 +91,7 @@ void main() {
         }
         return;
     }
-    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == 0xFFFFFFFFu) return;
+    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == BL_SDF_NO_OWNER) return;
     uint seen = brickMaterial[m + 2u];
     if (seen == 0u || (brickMaterial[m] >> 24) == 0u) return;  // never seen, or no albedo learnt
     // Coarser cascades are injected by every 2^k-th pixel only (inject_radiance.comp), so a brick there

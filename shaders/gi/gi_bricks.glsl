@@ -35,11 +35,11 @@ uint giBrickOfVoxel(ivec3 voxel, uint cascade) {
     return state >= BL_SDF_FIRST_STATE ? BL_SDF_UNBUILT : state;
 }
 
-// World voxel of a brick from its owner entry (cascade << 24 | physical index): the cascade's window
-// holds exactly one world voxel with that physical index.
+// World voxel of a brick from its owner entry (cascade << 24 | generation << 18 | physical index,
+// bricklight/sdf_layout.glsl): the cascade's window holds exactly one world voxel with that physical index.
 ivec3 giOwnerVoxel(uint owner, out uint cascade) {
     cascade = owner >> 24;
-    uint physical = owner & 0xFFFFFFu;
+    uint physical = owner & BL_SDF_OWNER_VOXEL_MASK;
     ivec3 p = ivec3(physical % 64u, (physical / 64u) % 64u, physical / 4096u);
     ivec3 origin = blSdfTable.cascades[cascade].origin.xyz;
     return origin + ((p - origin) & ivec3(63));

@@ -38,23 +38,16 @@ bool giSurfaceRadiance(vec3 p, vec3 n, out vec3 radiance) {
     return false;
 }
 
-// [value][thread]: a thread's neighbours in a reduction step are neighbours in memory (no bank conflicts;
-// [thread][value] had a stride of 28 words, four threads per bank).
-shared float partial[28][64];
+// [value][thread]: a thread's values lie 65 words apart, so that the writes (neighbouring threads,
+// neighbouring words) and the sums (lanes 0..8 of a probe reading rows 3i.. at the same column: rows 195
+// words apart, a different bank each) are free of bank conflicts.
+const uint kRow = 65u;
+shared float partial[28 * kRow];
+shared float knownPartial[4 * kRow];  // the first reduction's own rows: no barrier before the second's writes
 shared vec4 ownRadiance[4];  // each probe's own surface (giSurfaceRadiance); w 1 where a cache knows it
 
 const uint kLanes = 16u;        // threads per probe
 const uint kTexelsPerLane = 4u;  // 64 / kLanes
-
-// Sums the first `count` rows of `partial` over the 16 lanes of this thread's probe into its lane 0.
-void reduceLanes(uint t, uint lane, int count) {
-    barrier();
-    for (uint stride = kLanes / 2u; stride > 0u; stride >>= 1) {
-        if (lane < stride)
-            for (int k = 0; k < count; ++k) partial[k][t] += partial[k][t + stride];
-        barrier();
-    }
-}
 
 void main() {
     uint t = gl_LocalInvocationIndex;
@@ -83,10 +76,15 @@ void main() {
         if (!probeValid || !giFinite(radiance[j].rgb)) radiance[j] = vec4(0.0);  // alpha 0: no data
         if (radiance[j].a > GI_TEXEL_MISS + 0.1) known += vec4(radiance[j].rgb, 1.0);
     }
-    for (int k = 0; k < 4; ++k) partial[k][t] = known[k];
-    reduceLanes(t, lane, 4);
-    vec4 hits = vec4(partial[0][first], partial[1][first], partial[2][first], partial[3][first]);
+    // The reductions: one barrier each, after which every thread that needs a sum reads the probe's 16
+    // lanes itself (the loads are independent, so they overlap). A tree of four halving steps took a
+    // barrier per step, eleven a group in all.
+    for (uint k = 0u; k < 4u; ++k) knownPartial[k * kRow + t] = known[k];
     barrier();
+    vec4 hits = vec4(0.0);
+    for (uint l = 0u; l < kLanes; ++l)
+        hits += vec4(knownPartial[first + l], knownPartial[kRow + first + l], knownPartial[2u * kRow + first + l],
+                     knownPartial[3u * kRow + first + l]);
     float sh[28];
     for (int i = 0; i < 28; ++i) sh[i] = 0.0;
     for (uint j = 0u; j < kTexelsPerLane; ++j) {
@@ -104,10 +102,14 @@ void main() {
         }
         sh[27] += 1.0;
     }
-    for (int i = 0; i < 28; ++i) partial[i][t] = sh[i];
-    reduceLanes(t, lane, 28);
+    for (uint i = 0u; i < 28u; ++i) partial[i * kRow + t] = sh[i];
+    barrier();
     if (exists && lane < 9u) {
         uint i = lane;
+        vec4 sum = vec4(0.0);  // coefficient i's rgb and the covered texels
+        for (uint l = 0u; l < kLanes; ++l)
+            sum += vec4(partial[3u * i * kRow + first + l], partial[(3u * i + 1u) * kRow + first + l],
+                        partial[(3u * i + 2u) * kRow + first + l], partial[27u * kRow + first + l]);
         // The lower hemisphere is what a point just off the surface sees below it: the surface itself.
         // Filling it with the surface's own radiance (not zero) makes the SH a whole-sphere estimate, so a
         // pixel or a world-cache brick with another normal reads it correctly; for the probe's own normal
@@ -116,9 +118,9 @@ void main() {
         // rotated to n, i.e. c·Y-weights evaluated analytically below.
         vec4 ownSurface = ownRadiance[slot];
         vec3 self = ownSurface.w > 0.0 ? ownSurface.rgb : (hits.w > 0.0 ? hits.rgb / hits.w : vec3(0.0));
-        float covered = partial[27][first];
+        float covered = sum.w;
         float scale = covered > 0.0 ? 64.0 / covered : 0.0;
-        vec3 c = vec3(partial[3 * i][first], partial[3 * i + 1][first], partial[3 * i + 2][first]) * scale;
+        vec3 c = sum.rgb * scale;
         if (covered > 0.0) {
             // ∫ over the lower hemisphere of Y_lm: zonal coefficients (l0: 2π·0.282095, l1: -π·0.488603,
             // l2: 0) along n.

@@ -35,7 +35,7 @@ void main() {
     uint brick = gl_GlobalInvocationID.y * 65535u * 64u + gl_GlobalInvocationID.x;
     if (brick >= giFrame.cascades.w) return;
     uint owner = brickOwners[brick];
-    if (owner == 0xFFFFFFFFu || (owner >> 24) != pass.cascade.x) return;
+    if (owner == BL_SDF_NO_OWNER || (owner >> 24) != pass.cascade.x) return;
     uint cascade;
     ivec3 voxel = giOwnerVoxel(owner, cascade);
     if (giBrickOfVoxel(voxel, cascade) != brick) return;  // freed (its voxel holds another brick or none)

@@ -99,7 +99,7 @@ void main() {
     if (slot >= min(relightList[3], GI_RELIGHT_BUDGET)) return;
     uint brick = relightList[4u + slot];
     uint owner = brickOwners[brick];
-    if (owner == 0xFFFFFFFFu) return;
+    if (owner == BL_SDF_NO_OWNER) return;
     uint cacheSlot = giCacheSlots[brick];
     if (cacheSlot >= GI_SLOT_PENDING) return;
     // Every return above is the whole group's (one brick); below, threads only go idle until the barrier.

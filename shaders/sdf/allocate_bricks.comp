@@ -4,7 +4,8 @@
 #include "build_common.glsl"
 // One thread per touched voxel: takes a brick from the top of the free stack (the stack only shrinks in
 // this pass; prepare_args commits the count) and a range of the sorted reference list. A voxel that
-// lost its references to the budget, or finds the pool empty, stays UNBUILT (deferred).
+// lost its references to the budget, or finds the pool empty, stays UNBUILT (deferred). The brick's owner
+// entry gets the voxel and the brick's next allocation generation.
 layout(local_size_x = 64) in;
 BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
 BL_STORAGE_BUFFER(1) VoxelRefs { uint voxelRefs[]; };
@@ -31,6 +32,10 @@ void main() {
     uint first = atomicAdd(counters[C_SORTED_CURSOR], count);
     touched[t] = uvec4(entry.x, count, first, brick);
     brickMaps[key] = brick;
-    brickOwners[brick] = entry.x;
+    // A new generation, so that caches keyed by brick id see a new owner even where the brick comes back
+    // to the voxel it was freed from (sdf_layout.glsl).
+    uint previous = brickOwners[brick];
+    uint generation = previous == BL_SDF_NO_OWNER ? 0u : ((previous >> BL_SDF_OWNER_GENERATION_SHIFT) + 1u) % BL_SDF_OWNER_GENERATIONS;
+    brickOwners[brick] = entry.x | generation << BL_SDF_OWNER_GENERATION_SHIFT;
     atomicAdd(counters[C_BRICKS_ALLOCATED], 1u);
 }

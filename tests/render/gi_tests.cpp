@@ -1,6 +1,7 @@
 // GI (gi::GiContext through the renderer's fast path) against the path tracer, across backends, over
 // time, and on bad input. Bounds are stated where they are asserted; docs/gi.md lists the figures.
 #include <cmath>
+#include <sstream>
 
 #include "backend_test.h"
 #include "image_metrics.h"
@@ -217,17 +218,25 @@ void recoversAfterMotion(const std::string& backend) {
     frames(td, *still, 128);
     const render::Image stillAt128 = still->read(render::Aov::IndirectDiffuse);  // not converged yet: see above
     REQUIRE(moving->setScene(scene, &error));  // the same state again: no more motion vectors
+    // Each comparison also reports both images' means (moving / still), which tell a failure in the
+    // renderer that moved from one in the still renderer.
+    std::ostringstream means;
+    auto compare = [&](const render::Image& reference) {
+        const render::ImageMetrics m = render::compareImages(moving->read(render::Aov::IndirectDiffuse), reference);
+        means << " " << m.meanA << "/" << m.meanB;
+        return m.relMse;
+    };
     frames(td, *moving, 1);
-    const double atStop = render::compareImages(moving->read(render::Aov::IndirectDiffuse), stillAt128).relMse;
+    const double atStop = compare(stillAt128);
     frames(td, *moving, 23);
-    const double after = render::compareImages(moving->read(render::Aov::IndirectDiffuse), stillAt128).relMse;
+    const double after = compare(stillAt128);
     frames(td, *moving, 80);
-    const double later = render::compareImages(moving->read(render::Aov::IndirectDiffuse), stillAt128).relMse;
+    const double later = compare(stillAt128);
     frames(td, *moving, 128);
     frames(td, *still, 128);
-    const double settled = render::compareImages(moving->read(render::Aov::IndirectDiffuse), still->read(render::Aov::IndirectDiffuse)).relMse;
+    const double settled = compare(still->read(render::Aov::IndirectDiffuse));
     INFO("relMSE to the still scene's GI: " << atStop << " at the stop, " << after << " 24 frames later, " << later << " 104 frames later, "
-                                              << settled << " 232 frames later");
+                                              << settled << " 232 frames later; means (moving/still):" << means.str());
     CHECK(after < 0.009);
     CHECK(after < atStop);
     CHECK(later < 0.012);

@@ -202,7 +202,59 @@ void debugViewAndStats(const std::string& backend) {
     dev.destroy(image);
 }
 
+
+// The owner entries (SdfScene::brickOwnerBuffer) tell caches keyed by brick id which bricks were freed and
+// reallocated: after a rebuild of everything, every allocated brick's entry names the voxel that now maps
+// to it, and its allocation generation moved on by one, also where the brick went back to the voxel it
+// had (which the GPU's order of atomics decides; the GI kept such a brick's stale light before).
+void ownersCountReallocations(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    rhi::IDevice& dev = *td.device;
+    sdf::SceneDesc desc = smallDesc(td);
+    desc.finestVoxelSize = 20.0f;
+    LoadedScene loaded = loadIntoSdf(dev, scenes::cornellBox(), desc);
+    REQUIRE(loaded.scene);
+    sdf::SdfScene& scene = *loaded.scene;
+    const glm::vec3 centre(278, 274, 280);
+    const uint32_t capacity = scene.brickCapacity();
+    auto owners = [&] {
+        std::vector<uint32_t> o(capacity);
+        REQUIRE(dev.readBuffer(scene.brickOwnerBuffer(), 0, uint64_t(capacity) * 4, o.data()));
+        return o;
+    };
+    scene.update(centre);
+    dev.endFrame();
+    const sdf::FieldSnapshot before = scene.readField();
+    const std::vector<uint32_t> ownersBefore = owners();
+    scene.invalidateAll();
+    scene.update(centre);
+    dev.endFrame();
+    const sdf::FieldSnapshot after = scene.readField();
+    const std::vector<uint32_t> ownersAfter = owners();
+    REQUIRE_NO_MESSAGES(td);
+    const uint32_t kNoOwner = 0xFFFFFFFFu;
+    uint64_t bricks = 0, sameBrick = 0, wrongVoxel = 0, wrongGeneration = 0;
+    for (uint32_t c = 0; c < after.cascades.size(); ++c) {
+        for (uint32_t v = 0; v < after.cascades[c].brickMap.size(); ++v) {
+            const uint32_t brick = after.cascades[c].brickMap[v];
+            if (brick == sdf::FieldSnapshot::kEmpty || brick == sdf::FieldSnapshot::kUnbuilt) continue;
+            ++bricks;
+            sameBrick += before.cascades[c].brickMap[v] == brick;
+            const uint32_t entry = ownersAfter[brick], old = ownersBefore[brick];
+            wrongVoxel += (entry >> 24) != c || (entry & 0x3FFFFu) != v;
+            const uint32_t expected = old == kNoOwner ? 0u : (((old >> 18) & 63u) + 1u) % 64u;
+            wrongGeneration += ((entry >> 18) & 63u) != expected;
+        }
+    }
+    INFO(backend << ": " << bricks << " bricks after the rebuild, " << sameBrick << " of them back in the voxel they had; " << wrongVoxel
+                 << " entries name another voxel, " << wrongGeneration << " have the wrong generation");
+    CHECK(bricks > 100);
+    CHECK(wrongVoxel == 0);
+    CHECK(wrongGeneration == 0);
+}
 }  // namespace
 
 BACKEND_TEST("sdf meshes in the app's GPU buffers build the same field as CPU arrays", "[sdf]", gpuBufferMeshes)
 BACKEND_TEST("sdf debug view, stats without waiting, memory", "[sdf]", debugViewAndStats)
+BACKEND_TEST("sdf owner entries change whenever a brick is reallocated", "[sdf]", ownersCountReallocations)

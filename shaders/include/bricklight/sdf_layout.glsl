@@ -16,6 +16,16 @@
 #define BL_SDF_BUILDING 0xFFFFFFFDu  // being built by the current update (internal)
 #define BL_SDF_FIRST_STATE 0xFFFFFFF0u
 
+// Per-brick owner (SdfScene::brickOwnerBuffer): cascade << 24 | allocation generation << 18 | physical
+// voxel index (< 64³ = 2^18), or BL_SDF_NO_OWNER for a brick never allocated. The generation counts the
+// brick's allocations (mod 64), so that a brick freed and given back to the same voxel by one update (the
+// builder frees a rebuilt region's bricks and hands them out again in whatever order the GPU's atomics
+// take) reads as a new owner all the same.
+#define BL_SDF_NO_OWNER 0xFFFFFFFFu
+#define BL_SDF_OWNER_GENERATION_SHIFT 18u
+#define BL_SDF_OWNER_GENERATIONS 64u
+#define BL_SDF_OWNER_VOXEL_MASK 0x3FFFFu
+
 // Per-brick tight AABB: 3 bits per axis min, then max, in brixel sample indices (0..7).
 #define BL_SDF_AABB_NONE 0xFFFFFFFFu  // brick holds distances but no surface
 
