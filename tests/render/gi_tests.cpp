@@ -190,20 +190,22 @@ void noLeakThroughWall(const std::string& backend) {
 void recoversAfterMotion(const std::string& backend) {
     // dynamic: the torus and the light move for 24 frames, then stop. GI must move towards what a renderer
     // that saw only the final state reaches in as many frames: 24 frames after the stop the relMSE to it
-    // is below 0.009 and below its value at the stop; 104 frames after, below 0.012; and 232 frames after
-    // (256 frames in all, against the still renderer at 256), below 0.006 — no light left behind by the
+    // is below 0.009 and below its value at the stop; 104 frames after, below 0.015; and 232 frames after
+    // (256 frames in all, against the still renderer at 256), below 0.0075 — no light left behind by the
     // moving lamp. Measured on lavapipe / llvmpipe: ~0.019 at the stop, 0.0051–0.0071 after 24 frames,
-    // 0.0039–0.0067 after 104, 0.0018–0.0026 after 232. On an H100 (20 runs): 0.0145–0.023 at the stop,
-    // 0.0041–0.0071 after 24, 0.0060–0.0095 after 104, 0.0025–0.0041 after 232, and one run that went
-    // wrong during the motion (0.032, 0.020, 0.0091, 0.018). Two still renderers agree to ~1e-5 at equal
-    // frame counts, but the GI is still brightening at 128 frames (128 against 256 frames: relMSE 0.0105,
-    // mean +16 %: each bounce of the multi-bounce feedback takes tens of frames), so what is left at +104
-    // is mostly how far the moving renderer's bounces have come against the still one's — which is why the
-    // bound there is 0.012 (it was 0.008 and failed in a third of the H100 runs) and the tight bound is at
-    // +232. Before relighting was restricted to bricks out of view it was 0.0057 / 0.0024 at +24 / +104
-    // (single runs): re-lighting bricks in view that injection happened to miss sped this up, but made
-    // Vulkan and GL drift apart (docs/gi.md, "Relighting"). Without relighting: 0.020, 0.0062, then
-    // 0.0041 and rising.
+    // 0.0039–0.0067 after 104, 0.0017–0.0026 after 232. On an H100 (1013 runs, 2026-11-24: 165 Vulkan,
+    // 848 GL): 0.014–0.023 at the stop, 0.0037–0.0078 after 24, 0.0056–0.0132 after 104 (median 0.0099,
+    // 99th percentile 0.0119), 0.0022–0.0060 after 232 (median 0.0043, 99th percentile 0.0054). The
+    // highest of those are the runs where the still renderer's bounces came least far (its mean ~0.7 %
+    // below the median), not light left behind: two still renderers agree to ~1e-5 at equal frame counts
+    // on the CPU, but the GI is still brightening at 128 frames (128 against 256 frames: relMSE 0.0105,
+    // mean +16 %: each bounce of the multi-bounce feedback takes tens of frames), and how fast depends on
+    // the passes' races. The bounds sit above the H100's largest values with a margin (they were 0.012
+    // and 0.006, which 8 of the 1013 runs exceeded). One GL run of the 1013 was wrong at every check (0.15
+    // at the stop, 0.10 at +232), which the test still fails (docs/gi.md, *Known limitations*). Before
+    // relighting was restricted to bricks out of view it was 0.0057 / 0.0024 at +24 / +104 (single runs):
+    // re-lighting bricks in view that injection happened to miss sped this up, but made Vulkan and GL
+    // drift apart (docs/gi.md, "Relighting"). Without relighting: 0.020, 0.0062, then 0.0041 and rising.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry scene = scenes::dynamicRoom();
@@ -239,8 +241,8 @@ void recoversAfterMotion(const std::string& backend) {
                                               << settled << " 232 frames later; means (moving/still):" << means.str());
     CHECK(after < 0.009);
     CHECK(after < atStop);
-    CHECK(later < 0.012);
-    CHECK(settled < 0.006);
+    CHECK(later < 0.015);
+    CHECK(settled < 0.0075);
     REQUIRE_NO_MESSAGES(td);
 }
 
