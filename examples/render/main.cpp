@@ -3,11 +3,13 @@
 //   bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]
 //                     [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr] [--aov NAME ...] [--reference --spp N]
 //                     [--exposure E] [--gi sdf|none] [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]
+//                     [--single-bounce]
 //
 // Without --reference: a rasterized G-buffer, direct lighting and GI from the sparse brick distance field
 // (--gi sdf, the default; over --frames frames the bounces accumulate); with it, the path tracer (the
-// ground truth). AOVs go next to --out as <stem>.<aov>.exr (linear float). See
-// docs/render.md.
+// ground truth). AOVs go next to --out as <stem>.<aov>.exr (linear float). --single-bounce keeps indirect
+// light to one bounce on both paths (the path tracer stops after one; GI is fed direct light only), to
+// measure GI's gather apart from its multi-bounce feedback. See docs/render.md.
 #include <unistd.h>
 
 #include <chrono>
@@ -42,6 +44,7 @@ struct Options {
     bricklight::gi::InternalResolution giScale = bricklight::gi::InternalResolution::Native;
     bool framesGiven = false;
     std::vector<std::string> giDebug;
+    bool singleBounce = false;
 };
 
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
@@ -53,7 +56,7 @@ const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "prob
                  "                         [--frames N] [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr]\n"
                  "                         [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
                  "                         [--reference --spp N] [--exposure E] [--gi sdf|none]\n"
-                 "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]\n"
+                 "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...] [--single-bounce]\n"
                  "scenes: %s\n", scenes::builtinSceneNames());
     std::exit(2);
 }
@@ -103,6 +106,7 @@ Options parse(int argc, char** argv) {
         }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
         else if (a == "--reference") o.reference = true;
+        else if (a == "--single-bounce") o.singleBounce = true;
         else if (a == "--out") o.out = value();
         else if (a == "--exposure") {
             char* end = nullptr;
@@ -186,6 +190,7 @@ int main(int argc, char** argv) {
         render::PathTracerOptions pto;
         pto.width = o.width;
         pto.height = o.height;
+        if (o.singleBounce) pto.maxBounces = 1;
         tracer = render::PathTracer::create(*device, scene, pto, &error);
         if (!tracer) {
             std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
@@ -207,6 +212,7 @@ int main(int argc, char** argv) {
         ro.height = o.height;
         ro.gi = o.gi;
         ro.giResolution = o.giScale;
+        ro.giFeedback = !o.singleBounce;
         // GI converges over frames (each frame's light feeds the next): a still image gets 64 by default.
         const uint32_t frames = o.gi && !o.framesGiven && !scene.animate ? 64u : o.frames;
         raster = render::RasterRenderer::create(*device, scene, ro, &error);
@@ -228,6 +234,7 @@ int main(int argc, char** argv) {
         how = o.gi ? "rasterized, direct light + SDF GI over " + std::to_string(frames) + " frames"
                    : "rasterized, direct light only (" + std::to_string(ro.lightSamples) + " light samples per pixel)";
     }
+    if (o.singleBounce) how += ", one bounce of indirect light";
     auto read = [&](render::Aov aov) { return tracer ? tracer->read(aov) : raster->read(aov); };
     render::Image combined = read(render::Aov::Combined);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -304,7 +304,7 @@ void RasterRenderer::render() {
     struct {
         glm::vec4 eye;
         uint32_t size[4];
-    } c{glm::vec4(camera_.eye, 1.0f), {options_.width, options_.height, gi_ ? 1u : 0u, 0u}};
+    } c{glm::vec4(camera_.eye, 1.0f), {options_.width, options_.height, gi_ ? 1u : 0u, options_.giFeedback ? 1u : 0u}};
     rhi::DispatchState k;
     k.shader = composite_;
     k.label = "composite";

@@ -22,6 +22,9 @@ struct RasterOptions {
     bool gi = false;  // true: GI from the distance field (bricklight-render turns it on)
     gi::InternalResolution giResolution = gi::InternalResolution::Native;
     bool giRelight = true;  // give GI the albedo, emission and lights, so it re-lights what the camera does not see
+    // The lit image GI injects next frame holds GI too, so bounces accumulate over frames; false: direct
+    // light only, so GI is exactly one bounce (to compare with the path tracer's maxBounces = 1).
+    bool giFeedback = true;
     uint32_t giCacheBricks = 0;  // gi::ContextDesc::radianceCacheBricks (0: the default)
     uint32_t giInjectTile = 0;   // gi::ContextDesc::injectTile (0: automatic)
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)

@@ -11,7 +11,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_CONSTANTS(0) uniform Params {
     vec4 eye;     // xyz
-    uvec4 size;   // xy image size, z: 1 = GI on
+    uvec4 size;   // xy image size, z: 1 = GI on, w: 1 = the lit image holds GI (0: direct only, one bounce)
 } params;
 BL_TEXTURE(0) uniform sampler2D gAlbedo;    // rgb base colour, a roughness
 BL_TEXTURE(1) uniform sampler2D gNormal;    // xyz normal, w dielectric F0
@@ -36,6 +36,7 @@ void main() {
     if (any(greaterThanEqual(pixel, params.size.xy))) return;
     uint index = pixel.y * params.size.x + pixel.x;
     vec3 radiance = direct[index].rgb;
+    vec3 sent = radiance;  // what the lit image holds: radiance with GI when fed back
     vec3 emission = vec3(0.0);
     vec4 position = texelFetch(gPosition, ivec2(pixel), 0);
     if (position.w != 0.0) {
@@ -54,8 +55,9 @@ void main() {
                 gi += texelFetch(specularGI, ivec2(pixel), 0).rgb * (f0 * ab.x + ab.y);
             }
             radiance += gi;
+            if (params.size.w != 0u) sent = radiance;
         }
     }
     combined[index] = vec4(radiance, 1.0);
-    imageStore(lit, ivec2(pixel), vec4(max(radiance - emission, vec3(0.0)), 1.0));
+    imageStore(lit, ivec2(pixel), vec4(max(sent - emission, vec3(0.0)), 1.0));
 }

@@ -92,6 +92,46 @@ void cornellAgainstReference(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+void cornellSingleBounceAgainstReference(const std::string& backend) {
+    // GI's gather alone, without its multi-bounce feedback: GI fed direct light only (RasterOptions::
+    // giFeedback false) against the path tracer stopped after one bounce (maxBounces 1), the Cornell box,
+    // 128², 64 frames against 256 spp. Measured (lavapipe and llvmpipe): relMSE 0.0103, SSIM 0.76, mean
+    // 0.0201 vs 0.0240 (84 %). Where it falls short: the upper walls and the ceiling, which see surfaces
+    // the camera never saw (behind the blocks) — rays that hit them find no radiance in the cache and take
+    // the probe's mean of known hits, which carries a fifth of the light and is darker than the lit floor
+    // behind the blocks (docs/gi.md, "Quality against the reference"). The multi-bounce result compounds
+    // this loss bounce after bounce, so this test pins the first bounce on its own.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const scenes::SceneGeometry cornell = scenes::cornellBox();
+    render::RasterOptions o;
+    o.width = o.height = kCornellSize;
+    o.gi = true;
+    o.giFeedback = false;
+    std::string error;
+    auto gi = render::RasterRenderer::create(*td.device, cornell, o, &error);
+    INFO(error);
+    REQUIRE(gi);
+    frames(td, *gi, 64);
+    render::PathTracerOptions po;
+    po.width = po.height = kCornellSize;
+    po.maxBounces = 1;
+    auto reference = render::PathTracer::create(*td.device, cornell, po, &error);
+    REQUIRE(reference);
+    reference->addSamples(256);
+    const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
+    REQUIRE(allFinite(indirect.rgb));
+    const render::ImageMetrics m = render::compareImages(indirect, reference->read(render::Aov::IndirectDiffuse));
+    INFO("single bounce: indirect-diffuse relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
+    CHECK(m.relMse < 0.02);
+    CHECK(m.ssim > 0.65);
+    CHECK(m.meanA > 0.75 * m.meanB);
+    CHECK(m.meanA < 1.1 * m.meanB);
+    // Fed direct light only, GI still adds light to the composite.
+    CHECK(mean(gi->read(render::Aov::Combined)) > 1.1 * mean(gi->read(render::Aov::Direct)));
+    REQUIRE_NO_MESSAGES(td);
+}
+
 void glossyFloorAgainstReference(const std::string& backend) {
     // The specular path: the Cornell box with a glossy metal floor (metalness 1, roughness 0.3), whose
     // reflections of the lit walls and blocks come from GI's specular output (the pre-trace, the per-pixel
@@ -604,6 +644,7 @@ void followsOffscreenLight(const std::string& backend) {
 BACKEND_TEST("GI follows light that changes off screen", "[gi]", followsOffscreenLight)
 BACKEND_TEST("GI with a full radiance cache stays finite and lit", "[gi]", fullCacheDegradesGracefully)
 BACKEND_TEST("GI on the Cornell box against the path tracer", "[gi]", cornellAgainstReference)
+BACKEND_TEST("GI's single bounce on the Cornell box against the path tracer's", "[gi]", cornellSingleBounceAgainstReference)
 BACKEND_TEST("GI's specular on a glossy floor against the path tracer", "[gi]", glossyFloorAgainstReference)
 BACKEND_TEST("GI does not flicker on a static view", "[gi]", noFlickerWhenConverged)
 BACKEND_TEST("GI does not leak through a wall", "[gi]", noLeakThroughWall)
