@@ -109,6 +109,7 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
                         (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
     frame_.probes[0] = probeTile_;
+    frame_.cache[0] = cacheSlots_ / 4;  // inject_radiance.comp: the last quarter goes to bricks that receive light
 }
 
 void GiContextImpl::uploadLights(const DispatchDesc& d) {

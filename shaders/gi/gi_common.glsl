@@ -26,6 +26,7 @@ BL_CONSTANTS(1) uniform GiFrame {
     uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
     vec4 traceLimits;    // x iterations per cascade of every GI ray, y diffuse rays' coarsen-after voxels
     uvec4 probes;        // x probe tile side in internal pixels (8 or 16; ContextDesc::probeTile)
+    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp)
 } giFrame;
 
 #define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)

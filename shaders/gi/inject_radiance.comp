@@ -38,11 +38,17 @@ ivec3 giInjectTexel(uint code) {
 
 // The brick's cache slot, popped from the free stack at its first injection. False where there is none:
 // the pool is full (the brick stays uncached and retries next frame), or another thread is allocating it
-// in this dispatch (this sample is dropped).
-bool giCacheSlot(uint brick, out uint slot) {
+// in this dispatch (this sample is dropped). The last giFrame.cache.x free slots go only to injections
+// that carry light: a brick whose first light is black (in the first frames everything not lit directly
+// is, since GI starts from nothing) waits for light. Otherwise a small or full cache could be taken by
+// dark bricks for good, and GI would stay black (on an H100 a 32-slot cache on the Cornell box did; slots
+// return only when the SDF frees their bricks). The count is read before the pop: threads reading it
+// together may take a few of the kept slots, but a pop is never undone while other pops succeed.
+bool giCacheSlot(uint brick, bool carriesLight, out uint slot) {
     slot = giCacheSlots[brick];
     if (slot == GI_SLOT_PENDING) return false;
     if (slot != GI_SLOT_NONE) return true;
+    if (!carriesLight && freeSlotCount <= int(giFrame.cache.x)) return false;
     if (atomicCompSwap(giCacheSlots[brick], GI_SLOT_NONE, GI_SLOT_PENDING) != GI_SLOT_NONE) return false;
     int top = atomicAdd(freeSlotCount, -1);
     if (top <= 0) {  // empty: undo (nothing pushes during this pass, so the count never looks positive wrongly)
@@ -102,7 +108,7 @@ void main() {
         for (uint k = 0u; k < GI_INJECT_BATCH; ++k) {
             uint slot;
             if (bricks[k] == BL_SDF_UNBUILT) continue;
-            if (giCacheSlot(bricks[k], slot)) texels[k] |= slot << 6;
+            if (giCacheSlot(bricks[k], any(greaterThan(lit, vec3(0.0))), slot)) texels[k] |= slot << 6;
             else bricks[k] = BL_SDF_UNBUILT;
         }
         uint olds[GI_INJECT_BATCH];
