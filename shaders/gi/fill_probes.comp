@@ -9,8 +9,8 @@
 // traces a quarter of its texels a frame (one of each 2×2 block, rotating per frame); a reprojected probe
 // keeps the others, a new one leaves them empty until their turn. A hit with no
 // cached radiance anywhere is marked "hit, unknown" (alpha, see gi_common.glsl) for project_probes to fill
-// with the mean of the probe's known hits — not left out, which would weigh the misses (the environment)
-// too much.
+// from the known hits of its neighbouring texels or the probe's — not left out, which would weigh the
+// misses (the environment) too much.
 layout(local_size_x = 64) in;
 // Weight of a retraced texel's new sample in a reprojected probe. 1: the texel keeps one sample, the
 // newest; averaging over frames is the interpolation pass's job. (An average here, 0.35, biased probes

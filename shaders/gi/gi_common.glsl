@@ -171,11 +171,11 @@ vec2 giHemisphereToSquare(vec3 d) {
     }
     return clamp(a * 0.5 + 0.5, 0.0, 1.0);
 }
+vec3 giProbeLocalToWorld(vec3 l, vec3 n, vec3 t, vec3 b) { return normalize(t * l.x + b * l.y + n * l.z); }
 vec3 giProbeDirection(vec3 n, vec2 u) {
     vec3 t, b;
     giBasis(n, t, b);
-    vec3 l = giSquareToHemisphere(u);
-    return normalize(t * l.x + b * l.y + n * l.z);
+    return giProbeLocalToWorld(giSquareToHemisphere(u), n, t, b);
 }
 
 // Random numbers: PCG hash.

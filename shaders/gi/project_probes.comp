@@ -7,7 +7,8 @@
 // Pass 12: each probe's 64 radiance texels into L2 SH. Four probes per group, 16 threads per probe, four
 // texels per thread (texel = lane + 16 j): a thread projects its texels (centre direction, solid angle
 // 2π/64) and sums them in registers, then a reduction in shared memory over the probe's 16 threads sums
-// the lanes. Hits of unknown radiance take the mean of the probe's known hits (a first reduction); empty
+// the lanes. Hits of unknown radiance take the mean of their known neighbours in the probe's map, or of
+// the probe's known hits (a first reduction) where no neighbour is known (giUnknownHitStandIn); empty
 // texels are left out and the rest scaled up to cover the hemisphere. (One group of 64 threads per probe,
 // one texel each, spent its time in the six-step reductions and their barriers: 0.23 ms at 4K / 50 % on
 // an H100.)
@@ -45,9 +46,40 @@ const uint kRow = 65u;
 shared float partial[28 * kRow];
 shared float knownPartial[4 * kRow];  // the first reduction's own rows: no barrier before the second's writes
 shared vec4 ownRadiance[4];  // each probe's own surface (giSurfaceRadiance); w 1 where a cache knows it
+// Each probe's texels (rgb, alpha the kind): the unknown hits' neighbours, and the projection's input after
+// the barrier (read back here rather than kept in registers across it). Packed as the probe image's own
+// halves, so exactly; as vec4 (twice the bytes) the pass took 0.041 instead of 0.037 ms at 1080p on an H100.
+shared uvec2 probeTexels[4 * 64];
+vec4 giProbeTexel(uint i) {
+    uvec2 v = probeTexels[i];
+    return vec4(unpackHalf2x16(v.x), unpackHalf2x16(v.y));
+}
+// The 64 texel centres' directions around +z (giSquareToHemisphere), one computed per thread; each thread
+// turns the ones it needs to its probe's normal: one mapping a thread instead of four.
+shared vec3 texelDirections[64];
 
 const uint kLanes = 16u;        // threads per probe
 const uint kTexelsPerLane = 4u;  // 64 / kLanes
+
+// What a hit of unknown radiance (texel k of the group's probe `slot`) stands for: the mean of the known
+// hits among its four neighbours in the probe's 8×8 map (neighbouring directions), else the probe's mean
+// of known hits (`hits`: rgb sum, count). The neighbours see the surfaces next to the unknown one — a
+// floor hidden behind an object is next to the floor beside it — where the probe's mean also holds what
+// lies in other directions (the dark ceiling, seen from a wall). Cornell box, 128²: one bounce 84 → 89 %
+// of the reference's mean (relMSE 0.0103 → 0.0096), 64 frames of multi-bounce 0.0309 → 0.0326 (relMSE
+// 0.032 → 0.027). The 3×3 window did as well (90 %, 0.0099; 0.0328, 0.027) with more registers; the 5×5
+// window worse (multi-bounce 0.0324, 0.028).
+vec3 giUnknownHitStandIn(uint slot, uint k, vec4 hits) {
+    ivec2 at = ivec2(k % 8u, k / 8u);
+    vec4 near = vec4(0.0);
+    for (int i = 0; i < 4; ++i) {
+        ivec2 q = at + ivec2(i == 0 ? -1 : (i == 1 ? 1 : 0), i == 2 ? -1 : (i == 3 ? 1 : 0));
+        if (any(lessThan(q, ivec2(0))) || any(greaterThan(q, ivec2(7)))) continue;
+        vec4 v = giProbeTexel(slot * 64u + uint(q.y * 8 + q.x));
+        if (v.a > GI_TEXEL_MISS + 0.1) near += vec4(v.rgb, 1.0);
+    }
+    return near.w > 0.0 ? near.rgb / near.w : hits.rgb / hits.w;
+}
 
 void main() {
     uint t = gl_LocalInvocationIndex;
@@ -68,14 +100,15 @@ void main() {
     // The world cache at the probe (pass 8b), loaded before the reductions too.
     vec4 world = lane < 9u ? probeWorldSH[index * 9u + lane] : vec4(0.0);
     bool worldKnown = lane < 9u && probeWorldSH[index * 9u].w > 0.0;
-    vec4 radiance[kTexelsPerLane];
     vec4 known = vec4(0.0);  // first reduction: the known hits, which stand in for the hits of unknown radiance
     for (uint j = 0u; j < kTexelsPerLane; ++j) {
         uint k = lane + kLanes * j;
-        radiance[j] = texelFetch(probes, ivec2(tile * 8u + uvec2(k % 8u, k / 8u)), 0);
-        if (!probeValid || !giFinite(radiance[j].rgb)) radiance[j] = vec4(0.0);  // alpha 0: no data
-        if (radiance[j].a > GI_TEXEL_MISS + 0.1) known += vec4(radiance[j].rgb, 1.0);
+        vec4 r = texelFetch(probes, ivec2(tile * 8u + uvec2(k % 8u, k / 8u)), 0);
+        if (!probeValid || !giFinite(r.rgb)) r = vec4(0.0);  // alpha 0: no data
+        if (r.a > GI_TEXEL_MISS + 0.1) known += vec4(r.rgb, 1.0);
+        probeTexels[slot * 64u + k] = uvec2(packHalf2x16(r.rg), packHalf2x16(r.ba));
     }
+    texelDirections[t] = giSquareToHemisphere((vec2(t % 8u, t / 8u) + 0.5) / 8.0);
     // The reductions: one barrier each, after which every thread that needs a sum reads the probe's 16
     // lanes itself (the loads are independent, so they overlap). A tree of four halving steps took a
     // barrier per step, eleven a group in all.
@@ -87,13 +120,15 @@ void main() {
                      knownPartial[3u * kRow + first + l]);
     float sh[28];
     for (int i = 0; i < 28; ++i) sh[i] = 0.0;
+    vec3 tangent, bitangent;  // the probe's frame (giProbeDirection)
+    giBasis(n, tangent, bitangent);
     for (uint j = 0u; j < kTexelsPerLane; ++j) {
-        vec4 r = radiance[j];
-        if (abs(r.a - GI_TEXEL_UNKNOWN_HIT) < 0.1 && hits.w > 0.0) r = vec4(hits.rgb / hits.w, GI_TEXEL_HIT);
-        if (r.a <= GI_TEXEL_UNKNOWN_HIT + 0.1) continue;  // empty, or unknown with no known hit to stand in
         uint k = lane + kLanes * j;
+        vec4 r = giProbeTexel(slot * 64u + k);
+        if (abs(r.a - GI_TEXEL_UNKNOWN_HIT) < 0.1 && hits.w > 0.0) r = vec4(giUnknownHitStandIn(slot, k, hits), GI_TEXEL_HIT);
+        if (r.a <= GI_TEXEL_UNKNOWN_HIT + 0.1) continue;  // empty, or unknown with no known hit to stand in
         float y[9];
-        giShBasis(giProbeDirection(n, (vec2(k % 8u, k / 8u) + 0.5) / 8.0), y);
+        giShBasis(giProbeLocalToWorld(texelDirections[k], n, tangent, bitangent), y);
         for (int i = 0; i < 9; ++i) {
             vec3 c = r.rgb * (y[i] * 2.0 * GI_PI / 64.0);
             sh[3 * i] += c.r;
