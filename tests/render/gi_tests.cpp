@@ -19,11 +19,12 @@ constexpr uint32_t kCornellSize = 128;  // the Cornell comparison at the issue's
 
 std::unique_ptr<render::RasterRenderer> giRenderer(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size = kSize,
                                                    bool relight = true, uint32_t cacheBricks = 0, uint32_t injectTile = 0,
-                                                   uint32_t probeTile = 0) {
+                                                   uint32_t probeTile = 0, bool feedback = true) {
     render::RasterOptions o;
     o.width = o.height = size;
     o.gi = true;
     o.giRelight = relight;
+    o.giFeedback = feedback;
     o.giCacheBricks = cacheBricks;
     o.giInjectTile = injectTile;
     o.giProbeTile = probeTile;
@@ -105,21 +106,9 @@ void cornellSingleBounceAgainstReference(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry cornell = scenes::cornellBox();
-    render::RasterOptions o;
-    o.width = o.height = kCornellSize;
-    o.gi = true;
-    o.giFeedback = false;
-    std::string error;
-    auto gi = render::RasterRenderer::create(*td.device, cornell, o, &error);
-    INFO(error);
-    REQUIRE(gi);
+    auto gi = giRenderer(td, cornell, kCornellSize, true, 0, 0, 0, /*feedback*/ false);
     frames(td, *gi, 64);
-    render::PathTracerOptions po;
-    po.width = po.height = kCornellSize;
-    po.maxBounces = 1;
-    auto reference = render::PathTracer::create(*td.device, cornell, po, &error);
-    REQUIRE(reference);
-    reference->addSamples(256);
+    auto reference = traced(td, cornell, kCornellSize, 256, true, 1, /*maxBounces*/ 1);
     const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
     const render::ImageMetrics m = render::compareImages(indirect, reference->read(render::Aov::IndirectDiffuse));

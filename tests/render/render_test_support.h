@@ -38,11 +38,13 @@ inline Pair makePair(TestDevice& td, const scenes::SceneGeometry& scene, uint32_
 
 // The path tracer alone: `spp` samples per pixel added (not read yet).
 inline std::unique_ptr<render::PathTracer> traced(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size, uint32_t spp,
-                                                  bool jitter = true, uint32_t seed = 1) {
+                                                  bool jitter = true, uint32_t seed = 1,
+                                                  uint32_t maxBounces = render::PathTracerOptions{}.maxBounces) {
     render::PathTracerOptions o;
     o.width = o.height = size;
     o.pixelJitter = jitter;
     o.seed = seed;
+    o.maxBounces = maxBounces;
     std::string error;
     auto pt = render::PathTracer::create(*td.device, scene, o, &error);
     INFO(error);
