@@ -67,8 +67,8 @@ void cornellAgainstReference(const std::string& backend) {
     // 64 frames of GI (each frame's lit image feeds the next: multi-bounce) against 512 spp of the path
     // tracer, 128². Measured (lavapipe and llvmpipe): indirect relMSE 0.027, SSIM 0.76, mean 0.0326 vs
     // 0.0478 — GI has about two thirds of the reference's indirect light (docs/gi.md, "Known
-    // limitations"); combined relMSE 0.0128, SSIM 0.89. The bounds hold today's quality with margin to catch
-    // regressions; they are not the goal.
+    // limitations"); combined relMSE 0.0128, SSIM 0.89. The bounds hold today's quality with margin to
+    // catch regressions; they are not the goal.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry cornell = scenes::cornellBox();
@@ -98,11 +98,12 @@ void cornellSingleBounceAgainstReference(const std::string& backend) {
     // giFeedback false) against the path tracer stopped after one bounce (maxBounces 1), the Cornell box,
     // 128², 64 frames against 256 spp. Measured (lavapipe and llvmpipe): relMSE 0.0096, SSIM 0.76, mean
     // 0.0214 vs 0.0240 (89 %). Where it falls short: the upper walls and the ceiling, which see surfaces
-    // the camera never saw (behind the blocks) — rays that hit them find no radiance in the cache and take
-    // the light of their neighbouring directions (or the probe's mean), which carries about a fifth of the
-    // light and is darker than the lit floor behind the blocks (docs/gi.md, "Quality against the
-    // reference"). With the probe's mean alone it was 84 %; with such hits black, 67 % (the test fails). The multi-bounce result compounds
-    // this loss bounce after bounce, so this test pins the first bounce on its own.
+    // the camera never saw (behind the blocks). Rays that hit them find no radiance in the cache; their
+    // stand-in, the light of the neighbouring directions (else the probe's mean), carries about a fifth
+    // of the light and is darker than the lit floor behind the blocks (docs/gi.md, "Quality against the
+    // reference"). With the probe's mean alone it was 84 %; with such hits black, 67 % (the test fails).
+    // The multi-bounce result compounds this loss bounce after bounce, so this test pins the first
+    // bounce on its own.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry cornell = scenes::cornellBox();
