@@ -68,5 +68,8 @@ constexpr uint32_t kShCoefficients = 9;
 constexpr uint32_t kMaxDiffuseHistory = 16;
 constexpr uint32_t kBrickMaterialWords = 3;  // per brick: albedo (RGBA8), emission (RGB9E5), frame last seen + 1
 constexpr uint32_t kRelightBudget = 2048;    // bricks re-lit per frame at most (GI_RELIGHT_BUDGET)
+// An empty relight list's header: indirect dispatch arguments (0, 1, 1), no candidates (clear_freed_bricks.comp
+// writes the same into the next frame's list).
+constexpr uint32_t kEmptyRelightList[4] = {0, 1, 1, 0};
 
 }  // namespace bricklight::gi::detail

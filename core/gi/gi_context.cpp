@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "bricklight/half.h"
 #include "gi_context_impl.h"
@@ -166,7 +167,7 @@ bool GiContextImpl::init(std::string* error) {
     // Two relight lists: a frame appends to one (clear_freed_bricks.comp, which also empties the other for the
     // next frame) while the relight pass reads it; no upload per frame.
     std::vector<uint32_t> list(4 + kRelightBudget, 0);
-    list[1] = list[2] = 1;  // empty: dispatch arguments (0, 1, 1), no candidates
+    std::copy(std::begin(kEmptyRelightList), std::end(kEmptyRelightList), list.begin());
     relightList_[0] = buffer("relightList0", 16 + uint64_t(kRelightBudget) * 4, list.data(), rhi::BufferUsage::IndirectArgs);
     relightList_[1] = buffer("relightList1", 16 + uint64_t(kRelightBudget) * 4, list.data(), rhi::BufferUsage::IndirectArgs);
     lights_ = buffer("lights", uint64_t(kMaxLights) * sizeof(GpuLight));
@@ -235,8 +236,7 @@ void GiContextImpl::reset() {
     device_.clearBuffer(probeSH_, {}, 0);
     device_.clearBuffer(probeIrradianceSH_, {}, 0);
     device_.clearBuffer(probeWorldSH_, {}, 0);
-    const uint32_t emptyHeader[4] = {0, 1, 1, 0};
-    for (rhi::BufferHandle b : relightList_) device_.writeBuffer(b, 0, emptyHeader, sizeof(emptyHeader));
+    for (rhi::BufferHandle b : relightList_) device_.writeBuffer(b, 0, kEmptyRelightList, sizeof(kEmptyRelightList));
     historyValid_ = false;
 }
 
