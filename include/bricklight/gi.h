@@ -76,7 +76,7 @@ struct TraceParams {
     // footprint has outgrown the finer voxels. Fewer steps per ray; 0 turns it off (a ray leaves a cascade
     // only at its boundary). Specular rays of GGX roughness α coarsen after max(this, 1/α) voxels (their
     // lobe's width), shadow rays never.
-    float coarsenAfterVoxels = 8.0f;
+    float coarsenAfterVoxels = 4.0f;
 };
 constexpr uint32_t kMaxTraceIterations = 4096;
 
