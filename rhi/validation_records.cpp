@@ -15,12 +15,14 @@ namespace {
 // The union of the bindings declared by the stages of one call, keyed by (class, slot).
 struct DeclaredBindings {
     std::map<std::pair<int, int>, const ReflectedBinding*> byClassSlot;
+    uint32_t declaredInSource[5] = {};  // ShaderReflection::declaredSlots of every stage
     std::string shaderNames;
 
     void add(const ShaderInfo& s, Report& r) {
         if (!shaderNames.empty()) shaderNames += "+";
         shaderNames += s.name;
         const ShaderReflection& refl = s.blob->reflection;
+        for (int c = 0; c < 5; ++c) declaredInSource[c] |= refl.declaredSlots[c];
         for (uint32_t i = 0; i < refl.bindingCount; ++i) {
             const ReflectedBinding& b = refl.bindings[i];
             auto key = std::make_pair(int(b.bindingClass), int(b.slot));
@@ -162,6 +164,9 @@ private:
     // harmless), but it names the class the shader does declare there, which is the usual mistake.
     const ReflectedBinding* declaration(BindingClass c, size_t i, uint32_t slot, const DeclaredBindings& declared) {
         if (const ReflectedBinding* rb = declared.find(c, slot)) return rb;
+        // Declared in the source but dropped by the compiler as unused: binding it is expected (shared
+        // includes declare whole sets) and the backends skip it.
+        if (slot < 32 && (declared.declaredInSource[int(c)] >> slot & 1u)) return nullptr;
         std::string other;
         for (int k = 0; k < 5; ++k)
             if (k != int(c) && declared.find(BindingClass(k), slot))

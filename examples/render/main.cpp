@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bricklight/rhi_gl.h"
+#include "bricklight/rhi_validation.h"
 #include "bricklight/rhi_vulkan.h"
 #include "image_io.h"
 #include "path_tracer.h"
@@ -45,6 +46,7 @@ struct Options {
     bool framesGiven = false;
     std::vector<std::string> giDebug;
     bool singleBounce = false;
+    bool validate = false;  // every call through rhi::createValidationDevice
 };
 
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
@@ -57,6 +59,7 @@ const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "prob
                  "                         [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
                  "                         [--reference --spp N] [--exposure E] [--gi sdf|none]\n"
                  "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...] [--single-bounce]\n"
+                 "                         [--validate]\n"
                  "scenes: %s\n", scenes::builtinSceneNames());
     std::exit(2);
 }
@@ -107,6 +110,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
         else if (a == "--reference") o.reference = true;
         else if (a == "--single-bounce") o.singleBounce = true;
+        else if (a == "--validate") o.validate = true;
         else if (a == "--out") o.out = value();
         else if (a == "--exposure") {
             char* end = nullptr;
@@ -169,6 +173,7 @@ int main(int argc, char** argv) {
     rhi::ErrorCallback report = [](rhi::Severity s, const std::string& m) {
         if (s != rhi::Severity::Info) std::fprintf(stderr, "bricklight-render: %s\n", m.c_str());
     };
+    std::unique_ptr<rhi::IDevice> backendDevice;  // with --validate, under `device` (destroyed after it)
     std::unique_ptr<rhi::IDevice> device;
     if (o.backend == "vulkan") {
         vulkan::DeviceOptions options;
@@ -180,6 +185,13 @@ int main(int argc, char** argv) {
     if (!device) {
         std::fprintf(stderr, "bricklight-render: no %s device%s%s\n", o.backend.c_str(), error.empty() ? "" : ": ", error.c_str());
         return 1;
+    }
+    // --validate: the renderer, the SDF and GI talk to the backend through the validation wrapper, which
+    // checks every record against its shader's reflection (messages go to the same report).
+    if (o.validate) {
+        backendDevice = std::move(device);
+        device = rhi::createValidationDevice(*backendDevice);
+        device->setErrorCallback(report);
     }
     const auto start = std::chrono::steady_clock::now();
     if (o.reference && scene.animate) scene.animate(scene, o.frames - 1);  // the last frame's state

@@ -43,6 +43,10 @@ struct ShaderReflection {
     const ReflectedVertexInput* vertexInputs;  // vertex only
     uint32_t vertexInputCount;
     uint32_t colorOutputMask;              // fragment only: bit i = writes location i
+    // Per binding class (rhi::BindingClass), bit s: the source declares slot s, whether or not the compiler
+    // kept it. Shared includes (bricklight/trace.glsl) declare sets that a shader uses only in part; a record
+    // may bind such a slot (the backends skip it) but not one the source never declares.
+    uint32_t declaredSlots[5];
 };
 
 struct ShaderBlob {

@@ -14,6 +14,11 @@ BL_STORAGE_BUFFER(0) Counters {
     uint counters[];
 } countersBuf;
 BL_IMAGE(0, rgba16f) uniform image2D target;
+// Declared and never used (as a shared include declares a set that a shader uses in part): the compiler
+// drops it, and a record may still bind it.
+BL_READ_BUFFER(3) Unused {
+    float unused[];
+} unusedBuf;
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     vec4 c = texelFetch(source, p, 0) * params.scale * weightsBuf.weights[0];

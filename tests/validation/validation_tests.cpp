@@ -101,6 +101,21 @@ TEST_CASE("a complete record passes and is forwarded", "[validation]") {
     CHECK(f.warnings.empty());
 }
 
+TEST_CASE("a slot the source declares but does not use may be bound; one it never declares warns", "[validation]") {
+    Fixture f;
+    DispatchState s = f.good();
+    s.bindings.readBuffers.push(ReadBufferBinding{3, f.weights, {}});  // declared, dropped as unused
+    CHECK(f.device->dispatch(s, 1, 1, 1));
+    CHECK(f.errors.empty());
+    CHECK(f.warnings.empty());
+    s.bindings.readBuffers.push(ReadBufferBinding{5, f.weights, {}});  // never declared
+    CHECK(f.device->dispatch(s, 1, 1, 1));
+    CHECK(f.errors.empty());
+    REQUIRE(f.warnings.size() == 1);
+    CHECK(f.warnings[0].find("readBuffers[2] (slot 5): shader rhi_tests/validation_probe.comp declares no read buffer at this slot") !=
+          std::string::npos);
+}
+
 TEST_CASE("missing binding is rejected", "[validation]") {
     Fixture f;
     f.expectRejected([&] {

@@ -6,6 +6,7 @@
 //     fragment outputs), checked against the binding convention of bricklight/bindings.glsl and checked
 //     to agree between the Vulkan and the OpenGL variants.
 // Usage: bricklight-shaderc <name> <source.glsl> <out.cpp> <depfile> -I<dir>...
+#include <glslang/MachineIndependent/localintermediate.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
@@ -127,6 +128,7 @@ struct Reflection {
     };
     std::vector<Input> inputs;
     unsigned colorOutputMask = 0;
+    unsigned declaredSlots[5] = {};  // per class, bit = slot declared in the source (used or not)
 };
 
 const char* scalarOf(glslang::TBasicType t) {
@@ -233,6 +235,30 @@ bool reflect(glslang::TProgram& program, EShLanguage stage, bool vulkan, const s
             r.writeOnly = type->getQualifier().isWriteOnly();
         }
         out->bindings.push_back(r);
+    }
+    // Every resource the source declares, used or not (the linker objects keep all globals): a shared
+    // include such as bricklight/trace.glsl declares the field's whole binding set, and which of it a
+    // shader keeps is the compiler's business, so a record may bind the whole set (validation tells such
+    // slots from ones the shader never declared).
+    for (const Binding& b : out->bindings) out->declaredSlots[b.cls] |= 1u << b.slot;
+    if (TIntermAggregate* root = program.getIntermediate(stage)->getTreeRoot()->getAsAggregate()) {
+        TIntermAggregate* objects = root->getSequence().empty() ? nullptr : root->getSequence().back()->getAsAggregate();
+        if (objects && objects->getOp() == EOpLinkerObjects)
+            for (TIntermNode* node : objects->getSequence()) {
+                TIntermSymbol* symbol = node->getAsSymbolNode();
+                if (!symbol) continue;
+                const TType& type = symbol->getType();
+                const TQualifier& q = type.getQualifier();
+                if (!q.hasBinding()) continue;
+                const bool uniformBlock = type.getBasicType() == EbtBlock && q.storage == EvqUniform;
+                const bool buffer = type.getBasicType() == EbtBlock && q.storage == EvqBuffer;
+                const bool sampler = type.getBasicType() == EbtSampler;
+                if (!uniformBlock && !buffer && !sampler) continue;
+                int cls = 0, slot = 0;
+                if (classify(int(q.layoutBinding), vulkan, buffer, uniformBlock, sampler && type.getSampler().isImage(),
+                             q.isReadOnly(), &cls, &slot))
+                    out->declaredSlots[cls] |= 1u << slot;
+            }
     }
     if (stage == EShLangCompute)
         for (int d = 0; d < 3; ++d) out->localSize[d] = program.getLocalSize(d);
@@ -444,13 +470,20 @@ int main(int argc, char** argv) {
           << in.scalar << "},\n";
     if (vkRefl.inputs.empty()) o << "    {\"\", 0, 0, ResourceScalar::None},\n";
     o << "};\n";
+    o << "}  // namespace\n\n";
+    // External linkage: the library's link_<target>() function names it (see BricklightShaders.cmake).
+    o << "namespace bricklight::shaders {\nusing namespace bricklight::rhi;\n";
+    o << "extern const ShaderBlob " << id << ";\n";
     o << "const ShaderBlob " << id << " = {\n    " << cString(name) << ", ShaderStage::" << stageName << ",\n"
       << cString(glsl) << ",\n    " << id << "_spirv, " << spirv.size() << ",\n    {{" << vkRefl.localSize[0]
       << ", " << vkRefl.localSize[1] << ", " << vkRefl.localSize[2] << "}, " << id << "_bindings, "
       << vkRefl.bindings.size() << ", " << id << "_inputs, " << vkRefl.inputs.size() << ", "
-      << vkRefl.colorOutputMask << "u}};\n";
-    o << "const bricklight::rhi::detail::ShaderRegistration " << id << "_registration(&" << id << ", 1);\n";
-    o << "}  // namespace\n";
+      << vkRefl.colorOutputMask << "u, {";
+    for (int c = 0; c < 5; ++c) o << (c ? ", " : "") << vkRefl.declaredSlots[c] << "u";
+    o << "}}};\n";
+    o << "}  // namespace bricklight::shaders\n\n";
+    o << "namespace {\nconst bricklight::rhi::detail::ShaderRegistration " << id << "_registration(&bricklight::shaders::" << id
+      << ", 1);\n}  // namespace\n";
 
     std::ofstream out(outPath, std::ios::binary);
     out << o.str();
