@@ -19,6 +19,7 @@ enum GpuFlags : uint32_t {
     FlagReversedDepth = 1u,
     FlagResetHistory = 2u,
     FlagHistoryValid = 8u,
+    FlagCameraMotion = 16u,  // no motion vectors: downsample.comp derives them from depth and the cameras
 };
 
 struct GpuFrame {  // BL_CONSTANTS(1)

@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "bricklight/half.h"
+#include "../core_shaders.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi {
@@ -19,43 +20,52 @@ float internalScale(InternalResolution r) {
 }
 
 std::unique_ptr<GiContext> GiContext::create(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc,
-                                             std::string* error) {
+                                             std::string* error, ErrorCode* errorCode) {
     auto context = std::make_unique<detail::GiContextImpl>(device, scene, desc);
-    if (!context->init(error)) return nullptr;
+    if (!context->init(error, errorCode)) return nullptr;
     return context;
 }
 
 namespace detail {
 
-bool GiContextImpl::fail(const std::string& message) {
-    lastError_ = desc_.debugName + ": " + message;
-    if (desc_.errorCallback) desc_.errorCallback(rhi::Severity::Error, lastError_);
-    else std::fprintf(stderr, "%s\n", lastError_.c_str());
+bool GiContextImpl::fail(ErrorCode code, const std::string& message) {
+    log_.report(desc_.errorCallback, rhi::Severity::Error, code, message);
     return false;
 }
 
-bool GiContextImpl::init(std::string* error) {
-    auto bad = [&](const std::string& m) {
-        fail(m);
-        if (error) *error = lastError_;
+void GiContextImpl::warnOnce(ErrorCode code, const std::string& message) {
+    log_.report(desc_.errorCallback, rhi::Severity::Warning, code, message);
+}
+
+bool GiContextImpl::sceneAlive() {
+    if (!sceneToken_.expired()) return true;
+    return fail(ErrorCode::DependencyDestroyed,
+                "the sdf::SdfScene this context follows was destroyed; destroy the GiContext first (or create a new one)");
+}
+
+bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
+    auto bad = [&](ErrorCode code, const std::string& m) {
+        fail(code, m);
+        if (error) *error = lastError();
+        if (errorCode) *errorCode = code;
         return false;
     };
     if (desc_.displayWidth == 0 || desc_.displayHeight == 0 || desc_.displayWidth > 16384 || desc_.displayHeight > 16384)
-        return bad("display size " + std::to_string(desc_.displayWidth) + "x" + std::to_string(desc_.displayHeight) +
+        return bad(ErrorCode::InvalidArgument, "display size " + std::to_string(desc_.displayWidth) + "x" + std::to_string(desc_.displayHeight) +
                    " is not in 1..16384");
     if (uint32_t(desc_.internalResolution) > uint32_t(InternalResolution::Percent25))
-        return bad("internalResolution " + std::to_string(uint32_t(desc_.internalResolution)) + " is not one of the four scales");
-    if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth))
-        return bad("unknown flag bits in flags");
+        return bad(ErrorCode::InvalidArgument, "internalResolution " + std::to_string(uint32_t(desc_.internalResolution)) + " is not one of the four scales");
+    if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth | ContextFlags::NoCameraCheck))
+        return bad(ErrorCode::InvalidArgument, "unknown flag bits in flags");
     if (desc_.injectTile != 0 && desc_.injectTile != 1 && desc_.injectTile != 2 && desc_.injectTile != 4 && desc_.injectTile != 8)
-        return bad("injectTile " + std::to_string(desc_.injectTile) + " is not 0 (automatic), 1, 2, 4 or 8");
+        return bad(ErrorCode::InvalidArgument, "injectTile " + std::to_string(desc_.injectTile) + " is not 0 (automatic), 1, 2, 4 or 8");
     if (desc_.probeTile != 0 && desc_.probeTile != 8 && desc_.probeTile != 16)
-        return bad("probeTile " + std::to_string(desc_.probeTile) + " is not 0 (automatic), 8 or 16");
+        return bad(ErrorCode::InvalidArgument, "probeTile " + std::to_string(desc_.probeTile) + " is not 0 (automatic), 8 or 16");
     const rhi::Capabilities& caps = device_.capabilities();
     using F = rhi::Format;
     for (F f : {F::R32_FLOAT, F::R32_UINT, F::RG16_FLOAT, F::R8_UNORM, F::RGBA16_FLOAT})
         if (!caps.supports(f, rhi::FormatSupport::Storage | rhi::FormatSupport::Sampled))
-            return bad(std::string("the device cannot use ") + rhi::formatName(f) + " as a storage image and a texture");
+            return bad(ErrorCode::Unsupported, std::string("the device cannot use ") + rhi::formatName(f) + " as a storage image and a texture");
     const float scale = internalScale(desc_.internalResolution);
     width_ = std::max(1u, uint32_t(std::lround(desc_.displayWidth * scale)));
     height_ = std::max(1u, uint32_t(std::lround(desc_.displayHeight * scale)));
@@ -65,13 +75,14 @@ bool GiContextImpl::init(std::string* error) {
     injectTile_ = desc_.injectTile ? desc_.injectTile : injectTileFor(width_);
     const uint32_t capacity = scene_.brickCapacity();
     if (desc_.radianceCacheBricks > capacity)
-        return bad("radianceCacheBricks " + std::to_string(desc_.radianceCacheBricks) + " is more than the scene's " +
+        return bad(ErrorCode::OverBudget, "radianceCacheBricks " + std::to_string(desc_.radianceCacheBricks) + " is more than the scene's " +
                    std::to_string(capacity) + " bricks");
     cacheSlots_ = desc_.radianceCacheBricks ? desc_.radianceCacheBricks : std::min(capacity, kDefaultCacheSlots);
     cacheDepth_ = (cacheSlots_ + kCacheSlotsPerLayer - 1) / kCacheSlotsPerLayer * kCacheTexelsPerBrick;
     if (cacheDepth_ > caps.limits.maxTextureSize3D || 256 > caps.limits.maxTextureSize3D)
-        return bad("the radiance cache (256x256x" + std::to_string(cacheDepth_) + ") exceeds the device's 3D texture limit");
+        return bad(ErrorCode::Unsupported, "the radiance cache (256x256x" + std::to_string(cacheDepth_) + ") exceeds the device's 3D texture limit");
 
+    shaders::link_bricklight_core();
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
         sd.blob = rhi::findShader(name);
@@ -95,6 +106,7 @@ bool GiContextImpl::init(std::string* error) {
     shaders_.blur = shader("gi/blur.comp");
     shaders_.upsample = shader("gi/upsample.comp");
     shaders_.debug = shader("gi/debug_view.comp");
+    shaders_.cameraCheck = shader("gi/camera_check.comp");
 
     using namespace rhi::TextureUsage;
     auto texture = [&](const std::string& name, F format, uint32_t w, uint32_t h, uint32_t usage = Sampled | Storage) {
@@ -173,6 +185,7 @@ bool GiContextImpl::init(std::string* error) {
     lights_ = buffer("lights", uint64_t(kMaxLights) * sizeof(GpuLight));
     slotOfBrick_ = buffer("cacheSlotOfBrick", uint64_t(capacity) * 4);
     freeSlots_ = buffer("cacheFreeSlots", 4 + uint64_t(cacheSlots_) * 4);
+    cameraCheck_.counts = buffer("cameraCheck", 16);
 
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
@@ -188,14 +201,14 @@ bool GiContextImpl::init(std::string* error) {
 
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
-                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
-        if (!h) return bad("the device could not create the GI shaders (see its messages)");
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck})
+        if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_[0] && relightList_[1] && lights_ && slotOfBrick_ && freeSlots_ && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_[0] && relightList_[1] && lights_ && slotOfBrick_ && freeSlots_ && cameraCheck_.counts && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
-    if (!ok) return bad("the device could not create the GI resources (see its messages)");
+    if (!ok) return bad(ErrorCode::DeviceFailure, "the device could not create the GI resources (see its messages)");
     reset();
     return true;
 }
@@ -203,14 +216,14 @@ bool GiContextImpl::init(std::string* error) {
 GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
-                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
                                  dummyStorage_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[0], relightList_[1], lights_, slotOfBrick_, freeSlots_})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[0], relightList_[1], lights_, slotOfBrick_, freeSlots_, cameraCheck_.counts})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -275,6 +288,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("diffuseHistory (2)", tex(diffuseHistory_[0]) + tex(diffuseHistory_[1]));
     add("specularHistory (2)", tex(specularHistory_[0]) + tex(specularHistory_[1]));
     add("resolved (2)", tex(resolvedDiffuse_) + tex(resolvedSpecular_));
+    add("cameraCheck", buf(cameraCheck_.counts));
     add("environment/dummies", tex(blackCube_) + tex(black2D_) + tex(dummyStorage_));
     return m;
 }
@@ -290,7 +304,7 @@ void GiContextImpl::readCaches(std::vector<float>* radiance, std::vector<float>*
             for (int c = 0; c < 3; ++c) (*radiance)[3 * i + size_t(c)] = float((v >> (9 * c)) & 511u) * scale;
         }
     }
-    if (brickSH) {
+    if (brickSH && sceneAlive()) {
         const uint32_t capacity = scene_.brickCapacity();
         std::vector<uint16_t> halves(size_t(capacity) * kShCoefficients * 4);
         device_.readBuffer(brickSH_, 0, halves.size() * 2, halves.data());

@@ -5,9 +5,12 @@
 //   gi_debug_view.cpp the debug views
 #pragma once
 
+#include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "../diagnostic_log.h"
 #include "bricklight/gi.h"
 #include "gi_constants.h"
 
@@ -32,9 +35,9 @@ inline void storageBuffer(rhi::Bindings& b, uint8_t slot, rhi::BufferHandle buff
 class GiContextImpl final : public GiContext {
 public:
     GiContextImpl(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc)
-        : device_(device), scene_(scene), desc_(desc) {}
+        : device_(device), scene_(scene), sceneToken_(scene.lifetimeToken()), desc_(desc), log_(desc.debugName + ": ") {}
     ~GiContextImpl() override;
-    bool init(std::string* error);
+    bool init(std::string* error, ErrorCode* errorCode);
 
     bool dispatch(const DispatchDesc& desc) override;
     bool debugView(const DebugViewDesc& desc) override;
@@ -44,12 +47,17 @@ public:
     uint32_t internalWidth() const override { return width_; }
     uint32_t internalHeight() const override { return height_; }
     uint32_t probeTile() const override { return probeTile_; }
-    const std::string& lastError() const override { return lastError_; }
+    const std::string& lastError() const override { return log_.lastError(); }
+    ErrorCode lastErrorCode() const override { return log_.lastErrorCode(); }
+    std::vector<Diagnostic> diagnostics() const override { return log_.diagnostics(); }
     void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
     uint32_t radianceCacheBricksInUse() override;
 
 private:
-    bool fail(const std::string& message);
+    bool fail(ErrorCode code, const std::string& message);  // reports an error, returns false
+    void warnOnce(ErrorCode code, const std::string& message);
+    // False (with a DependencyDestroyed error) once the scene is gone: nothing may touch scene_ then.
+    bool sceneAlive();
     // gi_inputs.cpp
     bool checkInputs(const DispatchDesc& d);
     bool checkLights(const DispatchDesc& d);
@@ -64,13 +72,18 @@ private:
     void runIndirect(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s, rhi::BufferHandle args);
     // A pass of one thread per probe (64-thread groups) that reads the probe info and one buffer and writes
     // another, with the SDF bound: the world-cache read at the probes (8b) and the emission (13).
+    // gi_camera_check.cpp
+    void checkScene();
+    void recordCameraCheck(const DispatchDesc& d);
+    void pollCameraCheck();
     void runOverProbes(const char* label, rhi::ShaderHandle shader, rhi::BufferHandle probeInfo, rhi::BufferHandle input,
                        rhi::BufferHandle output, rhi::Access outputAccess);
 
     rhi::IDevice& device_;
     const sdf::SdfScene& scene_;
+    std::weak_ptr<const void> sceneToken_;  // expires when scene_ is destroyed
     ContextDesc desc_;
-    std::string lastError_;
+    bricklight::detail::DiagnosticLog log_;
     uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
     uint32_t injectTile_ = 2;  // ContextDesc::injectTile, resolved
     std::vector<GpuLight> uploadedLights_;  // what the lights buffer holds (uploaded again only on change)
@@ -80,7 +93,7 @@ private:
 
     struct Shaders {
         rhi::ShaderHandle downsample, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
-            relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug;
+            relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug, cameraCheck;
     } shaders_;
 
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
@@ -94,6 +107,14 @@ private:
     uint64_t frameIndex_ = 0;
     int lastFrame_ = 0;  // [cur] of the latest dispatch (for the debug views)
     bool historyValid_ = false;
+
+    struct CameraCheck {
+        rhi::BufferHandle counts;         // 4 uints (camera_check.comp)
+        std::deque<uint64_t> pending;     // read-back tickets, oldest first
+        uint32_t badInARow = 0;
+        bool warned = false;
+        float lastOffSurfaceFraction = -1.0f;  // of the latest decidable check; -1: none yet
+    } cameraCheck_;
 };
 
 }  // namespace bricklight::gi::detail

@@ -4,15 +4,16 @@
 namespace bricklight::gi::detail {
 
 bool GiContextImpl::debugView(const DebugViewDesc& desc) {
-    if (uint32_t(desc.mode) > uint32_t(DebugMode::SampleCount)) return fail("debugView: unknown mode " + std::to_string(uint32_t(desc.mode)));
+    if (!sceneAlive()) return false;
+    if (uint32_t(desc.mode) > uint32_t(DebugMode::SampleCount)) return fail(ErrorCode::InvalidArgument, "debugView: unknown mode " + std::to_string(uint32_t(desc.mode)));
     const rhi::TextureDesc* td = desc.output ? device_.describe(desc.output) : nullptr;
-    if (!td) return fail("debugView: output is missing or not a live texture");
+    if (!td) return fail(ErrorCode::InvalidHandle, "debugView: output is missing or not a live texture");
     if (td->dimension != rhi::TextureDimension::Texture2D || td->format != rhi::Format::RGBA8_UNORM || !(td->usage & rhi::TextureUsage::Storage))
-        return fail("debugView: output '" + td->debugName + "' must be a 2D RGBA8_UNORM texture with Storage usage");
+        return fail(ErrorCode::WrongFormat, "debugView: output '" + td->debugName + "' must be a 2D RGBA8_UNORM texture with Storage usage");
     if (td->width != desc_.displayWidth || td->height != desc_.displayHeight)
-        return fail("debugView: output '" + td->debugName + "' must be the display size");
-    if (!(desc.exposure > 0.0f)) return fail("debugView: exposure must be > 0");
-    if (!historyValid_) return fail("debugView: nothing to show before the first dispatch");
+        return fail(ErrorCode::WrongSize, "debugView: output '" + td->debugName + "' must be the display size");
+    if (!(desc.exposure > 0.0f)) return fail(ErrorCode::InvalidArgument, "debugView: exposure must be > 0");
+    if (!historyValid_) return fail(ErrorCode::InvalidState, "debugView: nothing to show before the first dispatch");
     const int cur = lastFrame_;
     struct {
         uint32_t mode[4];

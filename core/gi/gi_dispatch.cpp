@@ -81,6 +81,7 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     if (desc_.flags & ContextFlags::ReversedDepth) flags |= FlagReversedDepth;
     if (d.resetHistory) flags |= FlagResetHistory;
     if (historyValid_) flags |= FlagHistoryValid;
+    if (!d.motionVectors) flags |= FlagCameraMotion;
     frame_ = GpuFrame{};
     frame_.size[0] = width_;
     frame_.size[1] = height_;
@@ -132,7 +133,8 @@ void GiContextImpl::uploadLights(const DispatchDesc& d) {
 }
 
 bool GiContextImpl::dispatch(const DispatchDesc& d) {
-    if (!checkInputs(d)) return false;
+    if (!sceneAlive() || !checkInputs(d)) return false;
+    checkScene();
     fillConstants(d);
     uploadLights(d);
     const int cur = int(frameIndex_ & 1u), prev = cur ^ 1;
@@ -153,7 +155,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     {  // 1, 2. downsample; disocclusion mask
         rhi::DispatchState s;
         addInputs(s.bindings);
-        texture(s.bindings, 3, d.motionVectors, point_);
+        texture(s.bindings, 3, d.motionVectors ? d.motionVectors : black2D_, point_);  // unread without
         texture(s.bindings, 4, depth_[prev], point_);
         texture(s.bindings, 5, surface_[prev], point_);
         image(s.bindings, 0, depth_[cur], Access::Write);
@@ -355,6 +357,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 1, d.outputSpecular ? d.outputSpecular : dummyStorage_, Access::Write);
         run("upsample", shaders_.upsample, s, groups(desc_.displayWidth, 8), groups(desc_.displayHeight, 8));
     }
+    recordCameraCheck(d);
     device_.endMarker();
     lastFrame_ = cur;
     ++frameIndex_;

@@ -1,6 +1,7 @@
 // Checks of one frame's inputs before anything is recorded: every message names the input (and its debug
 // name) and the problem, and a failed check records nothing.
 #include <cmath>
+#include <utility>
 
 #include "gi_context_impl.h"
 
@@ -29,115 +30,128 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     // A texture input: live, sampled, 2D, display-sized when `display`, with at least `channels` float
     // (or unorm/depth) channels.
     auto input = [&](const char* what, rhi::TextureHandle t, uint32_t channels, bool display) -> bool {
-        if (!t) return fail(std::string("dispatch: input '") + what + "' is missing");
+        if (!t) return fail(ErrorCode::MissingInput, std::string("dispatch: input '") + what + "' is missing");
         const rhi::TextureDesc* td = device_.describe(t);
-        if (!td) return fail(std::string("dispatch: input '") + what + "' is not a live texture");
+        if (!td) return fail(ErrorCode::InvalidHandle, std::string("dispatch: input '") + what + "' is not a live texture");
         const std::string name = std::string("dispatch: input '") + what + "' (texture '" + td->debugName + "')";
-        if (td->dimension != rhi::TextureDimension::Texture2D) return fail(name + " must be a 2D texture");
-        if (!(td->usage & rhi::TextureUsage::Sampled)) return fail(name + " was not created with Sampled usage");
+        if (td->dimension != rhi::TextureDimension::Texture2D) return fail(ErrorCode::WrongFormat, name + " must be a 2D texture");
+        if (!(td->usage & rhi::TextureUsage::Sampled)) return fail(ErrorCode::WrongFormat, name + " was not created with Sampled usage");
         const rhi::FormatInfo& fi = rhi::formatInfo(td->format);
         if (fi.kind == K::Uint || fi.kind == K::Sint || fi.kind == K::None)
-            return fail(name + " has format " + fi.name + "; it must be a float, unorm or depth format");
+            return fail(ErrorCode::WrongFormat, name + " has format " + fi.name + "; it must be a float, unorm or depth format");
         if (fi.channels < channels)
-            return fail(name + " has format " + fi.name + " with " + std::to_string(fi.channels) + " channel(s); it needs " +
+            return fail(ErrorCode::WrongFormat, name + " has format " + fi.name + " with " + std::to_string(fi.channels) + " channel(s); it needs " +
                         std::to_string(channels));
         if (display && (td->width != dw || td->height != dh))
-            return fail(name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) +
+            return fail(ErrorCode::WrongSize, name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) +
                         "; it must be the display size " + displaySize);
         return true;
     };
     auto output = [&](const char* what, rhi::TextureHandle t) -> bool {
-        if (!t) return fail(std::string("dispatch: output '") + what + "' is missing");
+        if (!t) return fail(ErrorCode::MissingInput, std::string("dispatch: output '") + what + "' is missing");
         const rhi::TextureDesc* td = device_.describe(t);
-        if (!td) return fail(std::string("dispatch: output '") + what + "' is not a live texture");
+        if (!td) return fail(ErrorCode::InvalidHandle, std::string("dispatch: output '") + what + "' is not a live texture");
         const std::string name = std::string("dispatch: output '") + what + "' (texture '" + td->debugName + "')";
         if (td->dimension != rhi::TextureDimension::Texture2D || td->format != rhi::Format::RGBA16_FLOAT)
-            return fail(name + " must be a 2D RGBA16_FLOAT texture, not " + rhi::formatName(td->format));
-        if (!(td->usage & rhi::TextureUsage::Storage)) return fail(name + " was not created with Storage usage");
+            return fail(ErrorCode::WrongFormat, name + " must be a 2D RGBA16_FLOAT texture, not " + rhi::formatName(td->format));
+        if (!(td->usage & rhi::TextureUsage::Storage)) return fail(ErrorCode::WrongFormat, name + " was not created with Storage usage");
         if (td->width != dw || td->height != dh)
-            return fail(name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + "; it must be " + displaySize);
+            return fail(ErrorCode::WrongSize, name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + "; it must be " + displaySize);
         return true;
     };
     if (!input("depth", d.depth, 1, true) || !input("normals", d.normals, 3, true) || !input("roughness", d.roughness, 1, true) ||
-        !input("motionVectors", d.motionVectors, 2, true) || !input("previousLitOutput", d.previousLitOutput, 3, false))
+        !input("previousLitOutput", d.previousLitOutput, 3, false))
         return false;
+    if (d.motionVectors && !input("motionVectors", d.motionVectors, 2, true)) return false;
+    {  // depth is one channel of device depth: a colour texture here is a G-buffer target bound by mistake
+        const rhi::TextureDesc* td = device_.describe(d.depth);
+        const rhi::FormatInfo& fi = rhi::formatInfo(td->format);
+        if (fi.channels != 1 || (fi.kind != K::Float && fi.kind != K::Depth))
+            return fail(ErrorCode::WrongFormat, "dispatch: input 'depth' (texture '" + td->debugName + "') has format " + fi.name +
+                                                    "; it must hold one channel of device depth (D32_FLOAT, R32_FLOAT or R16_FLOAT)");
+    }
     if (d.diffuseAlbedo && !input("diffuseAlbedo", d.diffuseAlbedo, 3, true)) return false;
-    if (d.emission && !d.diffuseAlbedo) return fail("dispatch: input 'emission' is given without 'diffuseAlbedo': relighting needs the albedo");
+    if (d.emission && !d.diffuseAlbedo) return fail(ErrorCode::MissingInput, "dispatch: input 'emission' is given without 'diffuseAlbedo': relighting needs the albedo");
     if (d.emission && !input("emission", d.emission, 3, true)) return false;
     if (!checkLights(d)) return false;
     const rhi::FormatInfo& roughness = rhi::formatInfo(device_.describe(d.roughness)->format);
     if (d.roughnessChannel >= roughness.channels)
-        return fail("dispatch: roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture (" +
+        return fail(ErrorCode::WrongFormat, "dispatch: roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture (" +
                     roughness.name + ")");
     if (!output("outputDiffuse", d.outputDiffuse)) return false;
     if (!(desc_.flags & ContextFlags::NoSpecular) || d.outputSpecular)
         if (!output("outputSpecular", d.outputSpecular)) return false;
-    if (d.outputSpecular && d.outputSpecular == d.outputDiffuse) return fail("dispatch: outputDiffuse and outputSpecular are the same texture");
-    for (rhi::TextureHandle in : {d.depth, d.normals, d.roughness, d.motionVectors, d.previousLitOutput, d.diffuseAlbedo, d.emission})
-        if (in && (in == d.outputDiffuse || (d.outputSpecular && in == d.outputSpecular)))
-            return fail("dispatch: an output is also bound as an input");
+    if (d.outputSpecular && d.outputSpecular == d.outputDiffuse) return fail(ErrorCode::Aliasing, "dispatch: outputDiffuse and outputSpecular are the same texture");
+    const std::pair<rhi::TextureHandle, const char*> inputs[] = {
+        {d.depth, "depth"}, {d.normals, "normals"}, {d.roughness, "roughness"}, {d.motionVectors, "motionVectors"},
+        {d.previousLitOutput, "previousLitOutput"}, {d.diffuseAlbedo, "diffuseAlbedo"}, {d.emission, "emission"}};
+    for (const auto& [in, inName] : inputs)
+        for (const auto& [out, outName] : {std::pair{d.outputDiffuse, "outputDiffuse"}, std::pair{d.outputSpecular, "outputSpecular"}})
+            if (in && in == out)
+                return fail(ErrorCode::Aliasing, std::string("dispatch: texture '") + device_.describe(in)->debugName + "' is bound as output '" +
+                                                     outName + "' and as input '" + inName + "'");
     if (d.environmentKind != EnvironmentKind::None) {
-        if (!d.environmentMap) return fail("dispatch: environmentKind is set but environmentMap is missing");
+        if (!d.environmentMap) return fail(ErrorCode::MissingInput, "dispatch: environmentKind is set but environmentMap is missing");
         const rhi::TextureDesc* td = device_.describe(d.environmentMap);
-        if (!td) return fail("dispatch: environmentMap is not a live texture");
+        if (!td) return fail(ErrorCode::InvalidHandle, "dispatch: environmentMap is not a live texture");
         const std::string name = "dispatch: environmentMap (texture '" + td->debugName + "')";
         const bool cube = d.environmentKind == EnvironmentKind::Cube;
-        if (cube && td->dimension != rhi::TextureDimension::TextureCube) return fail(name + " must be a cube texture (environmentKind Cube)");
+        if (cube && td->dimension != rhi::TextureDimension::TextureCube) return fail(ErrorCode::WrongFormat, name + " must be a cube texture (environmentKind Cube)");
         if (!cube && td->dimension != rhi::TextureDimension::Texture2D)
-            return fail(name + " must be a 2D texture (environmentKind Equirectangular)");
-        if (!(td->usage & rhi::TextureUsage::Sampled)) return fail(name + " was not created with Sampled usage");
+            return fail(ErrorCode::WrongFormat, name + " must be a 2D texture (environmentKind Equirectangular)");
+        if (!(td->usage & rhi::TextureUsage::Sampled)) return fail(ErrorCode::WrongFormat, name + " was not created with Sampled usage");
         const rhi::FormatInfo& fi = rhi::formatInfo(td->format);
         if (fi.kind == K::Uint || fi.kind == K::Sint || fi.kind == K::Depth || fi.channels < 3)
-            return fail(name + " has format " + fi.name + "; it needs an RGB float, unorm or sRGB format");
+            return fail(ErrorCode::WrongFormat, name + " has format " + fi.name + "; it needs an RGB float, unorm or sRGB format");
         if (!(d.environmentIntensity >= 0.0f) || !std::isfinite(d.environmentIntensity))
-            return fail("dispatch: environmentIntensity must be finite and >= 0");
+            return fail(ErrorCode::InvalidArgument, "dispatch: environmentIntensity must be finite and >= 0");
     }
-    if (uint32_t(d.environmentKind) > uint32_t(EnvironmentKind::Equirectangular)) return fail("dispatch: unknown environmentKind");
+    if (uint32_t(d.environmentKind) > uint32_t(EnvironmentKind::Equirectangular)) return fail(ErrorCode::InvalidArgument, "dispatch: unknown environmentKind");
     for (const auto& [m, what] : {std::pair{&d.view, "view"}, std::pair{&d.projection, "projection"},
                                   std::pair{&d.previousView, "previousView"}, std::pair{&d.previousProjection, "previousProjection"}})
-        if (!finite(*m) || !invertible(*m)) return fail(std::string("dispatch: matrix '") + what + "' is not finite and invertible");
+        if (!finite(*m) || !invertible(*m)) return fail(ErrorCode::InvalidArgument, std::string("dispatch: matrix '") + what + "' is not finite and invertible");
     if (!std::isfinite(d.cameraPosition.x) || !std::isfinite(d.cameraPosition.y) || !std::isfinite(d.cameraPosition.z))
-        return fail("dispatch: cameraPosition is not finite");
+        return fail(ErrorCode::InvalidArgument, "dispatch: cameraPosition is not finite");
     for (float v : {d.normalsUnpackScale.x, d.normalsUnpackScale.y, d.normalsUnpackScale.z, d.normalsUnpackOffset.x,
                     d.normalsUnpackOffset.y, d.normalsUnpackOffset.z, d.motionVectorScale.x, d.motionVectorScale.y, d.roughnessThreshold})
-        if (!std::isfinite(v)) return fail("dispatch: normal unpack, motion vector scale and roughnessThreshold must be finite");
+        if (!std::isfinite(v)) return fail(ErrorCode::InvalidArgument, "dispatch: normal unpack, motion vector scale and roughnessThreshold must be finite");
     const TraceParams& t = d.trace;
     const uint32_t cascades = scene_.desc().cascadeCount;
-    if (t.startCascade >= cascades) return fail("dispatch: trace.startCascade " + std::to_string(t.startCascade) +
+    if (t.startCascade >= cascades) return fail(ErrorCode::InvalidArgument, "dispatch: trace.startCascade " + std::to_string(t.startCascade) +
                                                 " is beyond the scene's " + std::to_string(cascades) + " cascades");
-    if (t.endCascade < t.startCascade) return fail("dispatch: trace.endCascade is below trace.startCascade");
+    if (t.endCascade < t.startCascade) return fail(ErrorCode::InvalidArgument, "dispatch: trace.endCascade is below trace.startCascade");
     for (float v : {t.rayPushOff, t.specularRayPushOff, t.tMin})
-        if (!(v >= 0.0f) || !std::isfinite(v)) return fail("dispatch: trace push-offs and tMin must be finite and >= 0");
-    if (!(t.tMax > t.tMin)) return fail("dispatch: trace.tMax must be greater than trace.tMin");
+        if (!(v >= 0.0f) || !std::isfinite(v)) return fail(ErrorCode::InvalidArgument, "dispatch: trace push-offs and tMin must be finite and >= 0");
+    if (!(t.tMax > t.tMin)) return fail(ErrorCode::InvalidArgument, "dispatch: trace.tMax must be greater than trace.tMin");
     if (!(t.epsilonScale > 0.0f) || !(t.specularEpsilonScale > 0.0f) || !std::isfinite(t.epsilonScale) ||
         !std::isfinite(t.specularEpsilonScale))
-        return fail("dispatch: trace epsilon scales must be finite and > 0");
+        return fail(ErrorCode::InvalidArgument, "dispatch: trace epsilon scales must be finite and > 0");
     if (!(t.coarsenAfterVoxels >= 0.0f) || !std::isfinite(t.coarsenAfterVoxels))
-        return fail("dispatch: trace.coarsenAfterVoxels must be finite and >= 0");
+        return fail(ErrorCode::InvalidArgument, "dispatch: trace.coarsenAfterVoxels must be finite and >= 0");
     if (t.maxIterationsPerCascade == 0 || t.maxIterationsPerCascade > kMaxTraceIterations)
-        return fail("dispatch: trace.maxIterationsPerCascade " + std::to_string(t.maxIterationsPerCascade) + " is outside 1.." +
+        return fail(ErrorCode::InvalidArgument, "dispatch: trace.maxIterationsPerCascade " + std::to_string(t.maxIterationsPerCascade) + " is outside 1.." +
                     std::to_string(kMaxTraceIterations));
     return true;
 }
 
 bool GiContextImpl::checkLights(const DispatchDesc& d) {
     if (d.lightCount == 0) return true;
-    if (!d.lights) return fail("dispatch: lightCount is " + std::to_string(d.lightCount) + " but lights is null");
+    if (!d.lights) return fail(ErrorCode::MissingInput, "dispatch: lightCount is " + std::to_string(d.lightCount) + " but lights is null");
     if (d.lightCount > kMaxLights)
-        return fail("dispatch: lightCount " + std::to_string(d.lightCount) + " is above kMaxLights (" + std::to_string(kMaxLights) + ")");
-    if (!d.diffuseAlbedo) return fail("dispatch: lights are given without 'diffuseAlbedo': relighting needs the albedo");
+        return fail(ErrorCode::OverBudget, "dispatch: lightCount " + std::to_string(d.lightCount) + " is above kMaxLights (" + std::to_string(kMaxLights) + ")");
+    if (!d.diffuseAlbedo) return fail(ErrorCode::MissingInput, "dispatch: lights are given without 'diffuseAlbedo': relighting needs the albedo");
     auto finite3 = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
     for (uint32_t i = 0; i < d.lightCount; ++i) {
         const Light& l = d.lights[i];
         const std::string name = "dispatch: lights[" + std::to_string(i) + "]";
-        if (uint32_t(l.type) > uint32_t(LightType::Spot)) return fail(name + " has an unknown type");
+        if (uint32_t(l.type) > uint32_t(LightType::Spot)) return fail(ErrorCode::InvalidArgument, name + " has an unknown type");
         if (!finite3(l.position) || !finite3(l.direction) || !finite3(l.color) || !std::isfinite(l.spotInnerAngle) ||
             !std::isfinite(l.spotOuterAngle))
-            return fail(name + " has a value that is not finite");
-        if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f) return fail(name + " has a negative color");
-        if (l.type != LightType::Point && glm::length(l.direction) < 1e-6f) return fail(name + " has a zero direction");
+            return fail(ErrorCode::InvalidArgument, name + " has a value that is not finite");
+        if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f) return fail(ErrorCode::InvalidArgument, name + " has a negative color");
+        if (l.type != LightType::Point && glm::length(l.direction) < 1e-6f) return fail(ErrorCode::InvalidArgument, name + " has a zero direction");
         if (l.type == LightType::Spot && !(l.spotInnerAngle >= 0.0f && l.spotInnerAngle <= l.spotOuterAngle && l.spotOuterAngle <= 3.1416f))
-            return fail(name + " needs 0 <= spotInnerAngle <= spotOuterAngle <= pi");
+            return fail(ErrorCode::InvalidArgument, name + " needs 0 <= spotInnerAngle <= spotOuterAngle <= pi");
     }
     return true;
 }

@@ -15,16 +15,16 @@ void SdfSceneImpl::traceBindings(rhi::Bindings& b, TraceSlots slots) const {
 
 bool SdfSceneImpl::debugView(const DebugViewDesc& d) {
     const rhi::TextureDesc* out = device_.describe(d.output);
-    if (!out) return fail("debugView: output is not a live texture");
+    if (!out) return fail(ErrorCode::InvalidHandle, "debugView: output is not a live texture");
     if (out->dimension != rhi::TextureDimension::Texture2D || out->format != rhi::Format::RGBA8_UNORM ||
         !(out->usage & rhi::TextureUsage::Storage))
-        return fail("debugView: output '" + out->debugName + "' must be a 2D RGBA8_UNORM texture with Storage usage");
-    if (uint32_t(d.mode) > uint32_t(DebugMode::Uvw)) return fail("debugView: unknown mode " + std::to_string(uint32_t(d.mode)));
+        return fail(ErrorCode::WrongFormat, "debugView: output '" + out->debugName + "' must be a 2D RGBA8_UNORM texture with Storage usage");
+    if (uint32_t(d.mode) > uint32_t(DebugMode::Uvw)) return fail(ErrorCode::InvalidArgument, "debugView: unknown mode " + std::to_string(uint32_t(d.mode)));
     const glm::mat4 viewProjection = d.projection * d.view;
     const glm::mat4 inverse = glm::inverse(viewProjection);
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(inverse[c][r])) return fail("debugView: view * projection is not invertible");
+            if (!std::isfinite(inverse[c][r])) return fail(ErrorCode::InvalidArgument, "debugView: view * projection is not invertible");
 
     // Overlay boxes: cascades (colour index = cascade), then instances.
     std::vector<glm::vec4> boxes;

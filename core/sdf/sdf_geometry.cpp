@@ -14,9 +14,9 @@ std::string quoted(const std::string& name) { return name.empty() ? std::string(
 bool SdfSceneImpl::checkTransform(const glm::mat4& m, const std::string& what) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return fail(what + ": transform has a non-finite element");
+            if (!std::isfinite(m[c][r])) return fail(ErrorCode::InvalidArgument, what + ": transform has a non-finite element");
     if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
-        return fail(what + ": transform is not affine (its last row must be 0, 0, 0, 1)");
+        return fail(ErrorCode::InvalidArgument, what + ": transform is not affine (its last row must be 0, 0, 0, 1)");
     return true;
 }
 
@@ -39,22 +39,22 @@ void SdfSceneImpl::markDirty(const WorldBox& box, uint32_t maxCascade) {
 
 MeshHandle SdfSceneImpl::createMesh(const MeshArrays& in) {
     const std::string what = "createMesh " + quoted(in.name);
-    if (!in.positions || !in.vertexCount) return fail(what + ": no vertices"), MeshHandle{};
-    if (!in.indices || !in.indexCount) return fail(what + ": no triangles (empty mesh)"), MeshHandle{};
-    if (in.indexCount % 3) return fail(what + ": indexCount " + std::to_string(in.indexCount) + " is not a multiple of 3"), MeshHandle{};
+    if (!in.positions || !in.vertexCount) return fail(ErrorCode::InvalidGeometry, what + ": no vertices"), MeshHandle{};
+    if (!in.indices || !in.indexCount) return fail(ErrorCode::InvalidGeometry, what + ": no triangles (empty mesh)"), MeshHandle{};
+    if (in.indexCount % 3) return fail(ErrorCode::InvalidGeometry, what + ": indexCount " + std::to_string(in.indexCount) + " is not a multiple of 3"), MeshHandle{};
     Mesh m;
     m.name = in.name;
     m.boundsMin = glm::vec3(INFINITY);
     m.boundsMax = glm::vec3(-INFINITY);
     for (uint32_t v = 0; v < in.vertexCount; ++v) {
         glm::vec3 p(in.positions[3 * v], in.positions[3 * v + 1], in.positions[3 * v + 2]);
-        if (!finite(p)) return fail(what + ": vertex " + std::to_string(v) + " has a non-finite position"), MeshHandle{};
+        if (!finite(p)) return fail(ErrorCode::InvalidGeometry, what + ": vertex " + std::to_string(v) + " has a non-finite position"), MeshHandle{};
         m.boundsMin = glm::min(m.boundsMin, p);
         m.boundsMax = glm::max(m.boundsMax, p);
     }
     for (uint32_t i = 0; i < in.indexCount; ++i)
         if (in.indices[i] >= in.vertexCount)
-            return fail(what + ": index " + std::to_string(i) + " (= " + std::to_string(in.indices[i]) +
+            return fail(ErrorCode::InvalidGeometry, what + ": index " + std::to_string(i) + " (= " + std::to_string(in.indices[i]) +
                         ") is out of range (" + std::to_string(in.vertexCount) + " vertices)"),
                    MeshHandle{};
     m.owned = true;
@@ -67,7 +67,7 @@ MeshHandle SdfSceneImpl::createMesh(const MeshArrays& in) {
     if (!m.vertexBuffer || !m.indexBuffer) {
         if (m.vertexBuffer) device_.destroy(m.vertexBuffer);
         if (m.indexBuffer) device_.destroy(m.indexBuffer);
-        return fail(what + ": the device could not create its buffers"), MeshHandle{};
+        return fail(ErrorCode::DeviceFailure, what + ": the device could not create its buffers"), MeshHandle{};
     }
     const uint32_t id = nextMesh_++;
     meshes_[id] = std::move(m);
@@ -78,35 +78,35 @@ MeshHandle SdfSceneImpl::createMesh(const MeshBuffers& in) {
     const std::string what = "createMesh " + quoted(in.name);
     const rhi::BufferDesc* vb = device_.describe(in.vertexBuffer);
     const rhi::BufferDesc* ib = device_.describe(in.indexBuffer);
-    if (!vb) return fail(what + ": vertexBuffer is not a live buffer of this device"), MeshHandle{};
-    if (!ib) return fail(what + ": indexBuffer is not a live buffer of this device"), MeshHandle{};
-    if (!(vb->usage & rhi::BufferUsage::ShaderRead)) return fail(what + ": vertexBuffer lacks BufferUsage::ShaderRead"), MeshHandle{};
-    if (!(ib->usage & rhi::BufferUsage::ShaderRead)) return fail(what + ": indexBuffer lacks BufferUsage::ShaderRead"), MeshHandle{};
-    if (!in.vertexCount || !in.triangleCount) return fail(what + ": no vertices or no triangles (empty mesh)"), MeshHandle{};
+    if (!vb) return fail(ErrorCode::InvalidHandle, what + ": vertexBuffer is not a live buffer of this device"), MeshHandle{};
+    if (!ib) return fail(ErrorCode::InvalidHandle, what + ": indexBuffer is not a live buffer of this device"), MeshHandle{};
+    if (!(vb->usage & rhi::BufferUsage::ShaderRead)) return fail(ErrorCode::WrongFormat, what + ": vertexBuffer lacks BufferUsage::ShaderRead"), MeshHandle{};
+    if (!(ib->usage & rhi::BufferUsage::ShaderRead)) return fail(ErrorCode::WrongFormat, what + ": indexBuffer lacks BufferUsage::ShaderRead"), MeshHandle{};
+    if (!in.vertexCount || !in.triangleCount) return fail(ErrorCode::InvalidGeometry, what + ": no vertices or no triangles (empty mesh)"), MeshHandle{};
     const uint32_t positionBytes = in.positionFormat == PositionFormat::Float3 ? 12 : 8;
     if (in.vertexStride < positionBytes || in.vertexStride % 4 || in.vertexOffset % 4)
-        return fail(what + ": vertexStride " + std::to_string(in.vertexStride) + " / vertexOffset " +
+        return fail(ErrorCode::InvalidArgument, what + ": vertexStride " + std::to_string(in.vertexStride) + " / vertexOffset " +
                     std::to_string(in.vertexOffset) + " must be multiples of 4 and the stride at least " +
                     std::to_string(positionBytes) + " bytes"),
                MeshHandle{};
     const uint64_t vertexEnd = in.vertexOffset + uint64_t(in.vertexCount - 1) * in.vertexStride + positionBytes;
     if (vertexEnd > vb->size)
-        return fail(what + ": " + std::to_string(in.vertexCount) + " vertices end at byte " + std::to_string(vertexEnd) +
+        return fail(ErrorCode::InvalidArgument, what + ": " + std::to_string(in.vertexCount) + " vertices end at byte " + std::to_string(vertexEnd) +
                     ", beyond the vertex buffer (" + std::to_string(vb->size) + " bytes)"),
                MeshHandle{};
     const uint32_t indexBytes = in.indexFormat == rhi::IndexFormat::U16 ? 2 : 4;
     if (in.indexOffset % indexBytes)
-        return fail(what + ": indexOffset " + std::to_string(in.indexOffset) + " is not a multiple of " +
+        return fail(ErrorCode::InvalidArgument, what + ": indexOffset " + std::to_string(in.indexOffset) + " is not a multiple of " +
                     std::to_string(indexBytes)),
                MeshHandle{};
     const uint64_t indexEnd = in.indexOffset + uint64_t(in.triangleCount) * 3 * indexBytes;
     // 16-bit indices are read as 32-bit words: the word holding the last index must lie in the buffer.
     if (((indexEnd + 3) & ~3ull) > ib->size)
-        return fail(what + ": " + std::to_string(in.triangleCount) + " triangles of indices end at byte " +
+        return fail(ErrorCode::InvalidArgument, what + ": " + std::to_string(in.triangleCount) + " triangles of indices end at byte " +
                     std::to_string(indexEnd) + ", beyond the index buffer (" + std::to_string(ib->size) + " bytes)"),
                MeshHandle{};
     if (!finite(in.boundsMin) || !finite(in.boundsMax) || glm::any(glm::greaterThan(in.boundsMin, in.boundsMax)))
-        return fail(what + ": bounds must be finite with min <= max"), MeshHandle{};
+        return fail(ErrorCode::InvalidArgument, what + ": bounds must be finite with min <= max"), MeshHandle{};
     Mesh m;
     m.name = in.name;
     m.vertexBuffer = in.vertexBuffer;
@@ -127,9 +127,9 @@ MeshHandle SdfSceneImpl::createMesh(const MeshBuffers& in) {
 
 bool SdfSceneImpl::destroyMesh(MeshHandle h) {
     auto it = meshes_.find(h.id);
-    if (it == meshes_.end()) return fail("destroyMesh: " + std::to_string(h.id) + " is not a live mesh");
+    if (it == meshes_.end()) return fail(ErrorCode::InvalidHandle, "destroyMesh: " + std::to_string(h.id) + " is not a live mesh");
     if (it->second.users)
-        return fail("destroyMesh " + quoted(it->second.name) + ": still used by " + std::to_string(it->second.users) +
+        return fail(ErrorCode::InUse, "destroyMesh " + quoted(it->second.name) + ": still used by " + std::to_string(it->second.users) +
                     " instance(s)");
     if (it->second.owned) {
         device_.destroy(it->second.vertexBuffer);
@@ -141,10 +141,10 @@ bool SdfSceneImpl::destroyMesh(MeshHandle h) {
 
 InstanceHandle SdfSceneImpl::addInstance(const InstanceDesc& in) {
     auto mesh = meshes_.find(in.mesh.id);
-    if (mesh == meshes_.end()) return fail("addInstance: mesh " + std::to_string(in.mesh.id) + " is not a live mesh"), InstanceHandle{};
+    if (mesh == meshes_.end()) return fail(ErrorCode::InvalidHandle, "addInstance: mesh " + std::to_string(in.mesh.id) + " is not a live mesh"), InstanceHandle{};
     const std::string what = "addInstance of mesh " + quoted(mesh->second.name);
     if (instances_.size() >= desc_.maxInstances)
-        return fail(what + ": the scene already holds maxInstances (" + std::to_string(desc_.maxInstances) + ") instances"),
+        return fail(ErrorCode::OverBudget, what + ": the scene already holds maxInstances (" + std::to_string(desc_.maxInstances) + ") instances"),
                InstanceHandle{};
     if (!checkTransform(in.transform, what)) return {};
     Instance inst;
@@ -153,7 +153,7 @@ InstanceHandle SdfSceneImpl::addInstance(const InstanceDesc& in) {
     inst.dynamic = in.dynamic;
     inst.maxCascade = std::min(in.maxCascade, desc_.cascadeCount - 1);
     inst.bounds = worldBounds(mesh->second, in.transform);
-    if (!finite(inst.bounds.min) || !finite(inst.bounds.max)) return fail(what + ": world bounds overflow"), InstanceHandle{};
+    if (!finite(inst.bounds.min) || !finite(inst.bounds.max)) return fail(ErrorCode::InvalidArgument, what + ": world bounds overflow"), InstanceHandle{};
     if (!inst.dynamic) markDirty(inst.bounds, inst.maxCascade);
     inst.builtBounds = inst.bounds;
     inst.built = !inst.dynamic;
@@ -165,12 +165,12 @@ InstanceHandle SdfSceneImpl::addInstance(const InstanceDesc& in) {
 
 bool SdfSceneImpl::setTransform(InstanceHandle h, const glm::mat4& transform) {
     auto it = instances_.find(h.id);
-    if (it == instances_.end()) return fail("setTransform: " + std::to_string(h.id) + " is not a live instance");
+    if (it == instances_.end()) return fail(ErrorCode::InvalidHandle, "setTransform: " + std::to_string(h.id) + " is not a live instance");
     Instance& inst = it->second;
     const std::string what = "setTransform of instance " + std::to_string(h.id);
     if (!checkTransform(transform, what)) return false;
     WorldBox next = worldBounds(meshes_.at(inst.mesh.id), transform);
-    if (!finite(next.min) || !finite(next.max)) return fail(what + ": world bounds overflow");
+    if (!finite(next.min) || !finite(next.max)) return fail(ErrorCode::InvalidArgument, what + ": world bounds overflow");
     if (!inst.dynamic) {
         // The bricks of the old and the new bounds are rebuilt, nothing else.
         markDirty(inst.bounds, inst.maxCascade);
@@ -184,7 +184,7 @@ bool SdfSceneImpl::setTransform(InstanceHandle h, const glm::mat4& transform) {
 
 bool SdfSceneImpl::removeInstance(InstanceHandle h) {
     auto it = instances_.find(h.id);
-    if (it == instances_.end()) return fail("removeInstance: " + std::to_string(h.id) + " is not a live instance");
+    if (it == instances_.end()) return fail(ErrorCode::InvalidHandle, "removeInstance: " + std::to_string(h.id) + " is not a live instance");
     const Instance& inst = it->second;
     if (inst.built) markDirty(inst.builtBounds, inst.maxCascade);
     meshes_.at(inst.mesh.id).users--;

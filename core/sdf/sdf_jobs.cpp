@@ -164,7 +164,7 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
             }
             if (alone) {
                 if (!oversizeReported_)
-                    fail("one voxel of cascade " + std::to_string(job.cascade) + " needs " + std::to_string(extra) +
+                    fail(ErrorCode::OverBudget, "one voxel of cascade " + std::to_string(job.cascade) + " needs " + std::to_string(extra) +
                          " triangles, more than maxTrianglesPerUpdate (" + std::to_string(budgets.maxTrianglesPerUpdate) +
                          "): it stays unbuilt (traced through the next cascade); raise the budget");
                 oversizeReported_ = true;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "../core_shaders.h"
 #include "sdf_scene_impl.h"
 
 namespace bricklight::sdf {
@@ -15,9 +16,10 @@ float suggestVoxelSize(float extent, uint32_t cascadeCount) {
     return 2.0f * extent / (float(kCascadeResolution) * float(1u << (n - 1)));
 }
 
-std::unique_ptr<SdfScene> SdfScene::create(rhi::IDevice& device, const SceneDesc& desc, std::string* error) {
+std::unique_ptr<SdfScene> SdfScene::create(rhi::IDevice& device, const SceneDesc& desc, std::string* error,
+                                           ErrorCode* errorCode) {
     auto scene = std::make_unique<detail::SdfSceneImpl>(device, desc);
-    if (!scene->init(error)) return nullptr;
+    if (!scene->init(error, errorCode)) return nullptr;
     return scene;
 }
 
@@ -62,12 +64,8 @@ SdfSceneImpl::~SdfSceneImpl() {
         if (s) device_.destroy(s);
 }
 
-bool SdfSceneImpl::fail(const std::string& message) {
-    lastError_ = "sdf '" + desc_.debugName + "': " + message;
-    if (desc_.errorCallback)
-        desc_.errorCallback(rhi::Severity::Error, lastError_);
-    else
-        std::fprintf(stderr, "bricklight: %s\n", lastError_.c_str());
+bool SdfSceneImpl::fail(ErrorCode code, const std::string& message) {
+    log_.report(desc_.errorCallback, rhi::Severity::Error, code, message);
     return false;
 }
 
@@ -90,45 +88,46 @@ rhi::BufferHandle SdfSceneImpl::makeBuffer(const char* name, uint64_t size, uint
     return device_.createBuffer(d, data);
 }
 
-bool SdfSceneImpl::init(std::string* error) {
-    auto bad = [&](const std::string& m) {
-        fail(m);
-        if (error) *error = lastError_;
+bool SdfSceneImpl::init(std::string* error, ErrorCode* errorCode) {
+    auto bad = [&](ErrorCode code, const std::string& m) {
+        fail(code, m);
+        if (error) *error = lastError();
+        if (errorCode) *errorCode = code;
         return false;
     };
     const SceneDesc& d = desc_;
     if (d.cascadeCount < 1 || d.cascadeCount > kMaxCascades)
-        return bad("cascadeCount " + std::to_string(d.cascadeCount) + " is outside 1.." + std::to_string(kMaxCascades));
+        return bad(ErrorCode::InvalidArgument, "cascadeCount " + std::to_string(d.cascadeCount) + " is outside 1.." + std::to_string(kMaxCascades));
     if (!(d.finestVoxelSize > 0.0f) || !std::isfinite(d.finestVoxelSize))
-        return bad("finestVoxelSize must be a positive finite number (got " + std::to_string(d.finestVoxelSize) + ")");
+        return bad(ErrorCode::InvalidArgument, "finestVoxelSize must be a positive finite number (got " + std::to_string(d.finestVoxelSize) + ")");
     if (!std::isfinite(d.finestVoxelSize * float(1u << (d.cascadeCount - 1)) * 64.0f * 1e3f))
-        return bad("finestVoxelSize is too large for " + std::to_string(d.cascadeCount) + " cascades");
+        return bad(ErrorCode::InvalidArgument, "finestVoxelSize is too large for " + std::to_string(d.cascadeCount) + " cascades");
     if (d.atlasBricksPerAxis < 1 || d.atlasBricksPerAxis > 128)
-        return bad("atlasBricksPerAxis " + std::to_string(d.atlasBricksPerAxis) + " is outside 1..128");
+        return bad(ErrorCode::InvalidArgument, "atlasBricksPerAxis " + std::to_string(d.atlasBricksPerAxis) + " is outside 1..128");
     const Budgets& b = d.budgets;
     if (!b.maxTrianglesPerUpdate || !b.maxReferencesPerUpdate || !b.maxVoxelsPerUpdate || !b.maxJobsPerUpdate)
-        return bad("every budget must be at least 1");
+        return bad(ErrorCode::InvalidArgument, "every budget must be at least 1");
     if (b.maxReferencesPerUpdate > (1u << 28) || b.maxTrianglesPerUpdate > (1u << 26))
-        return bad("budgets too large (at most 2^28 references, 2^26 triangles per update)");
-    if (d.maxInstances < 1) return bad("maxInstances must be at least 1");
+        return bad(ErrorCode::InvalidArgument, "budgets too large (at most 2^28 references, 2^26 triangles per update)");
+    if (d.maxInstances < 1) return bad(ErrorCode::InvalidArgument, "maxInstances must be at least 1");
 
     const rhi::Capabilities& caps = device_.capabilities();
     using FS = uint32_t;
     const FS atlasNeeds = rhi::FormatSupport::Sampled | rhi::FormatSupport::Filterable | rhi::FormatSupport::Storage;
     if (!caps.supports(rhi::Format::R8_UNORM, atlasNeeds))
-        return bad("device '" + caps.deviceName + "' cannot sample, filter and store R8_UNORM (the brick atlas format)");
+        return bad(ErrorCode::Unsupported, "device '" + caps.deviceName + "' cannot sample, filter and store R8_UNORM (the brick atlas format)");
     const uint32_t atlasSide = d.atlasBricksPerAxis * kBrickResolution;
     if (caps.limits.maxTextureSize3D && atlasSide > caps.limits.maxTextureSize3D)
-        return bad("atlas side " + std::to_string(atlasSide) + " exceeds the device's 3D texture limit " +
+        return bad(ErrorCode::Unsupported, "atlas side " + std::to_string(atlasSide) + " exceeds the device's 3D texture limit " +
                    std::to_string(caps.limits.maxTextureSize3D));
     if (caps.limits.maxComputeGroupInvocations && caps.limits.maxComputeGroupInvocations < 512)
-        return bad("the device allows fewer than 512 invocations per group (the brick pass needs 512)");
+        return bad(ErrorCode::Unsupported, "the device allows fewer than 512 invocations per group (the brick pass needs 512)");
 
     // Every buffer is bound whole: each must fit the device's storage-buffer range.
     const uint64_t range = caps.limits.maxStorageBufferRange;
     auto fits = [&](const char* what, uint64_t bytes, const char* budget) {
         if (!range || bytes <= range) return true;
-        return bad(std::string(what) + " needs " + std::to_string(bytes) + " bytes, more than the device's maxStorageBufferRange (" +
+        return bad(ErrorCode::Unsupported, std::string(what) + " needs " + std::to_string(bytes) + " bytes, more than the device's maxStorageBufferRange (" +
                    std::to_string(range) + "): lower " + budget);
     };
     const uint64_t cascadeEntries = uint64_t(d.cascadeCount) * layout::kCascadeVoxels;
@@ -138,13 +137,14 @@ bool SdfSceneImpl::init(std::string* error) {
         !fits("the touched-voxel list", std::min<uint64_t>(b.maxVoxelsPerUpdate, cascadeEntries) * 16, "budgets.maxVoxelsPerUpdate"))
         return false;
 
+    shaders::link_bricklight_core();
     auto shader = [&](const char* name, rhi::ShaderHandle* out) {
         const rhi::ShaderBlob* blob = rhi::findShader(name);
-        if (!blob) return bad(std::string("shader '") + name + "' is not linked into this program");
+        if (!blob) return bad(ErrorCode::Unsupported, std::string("shader '") + name + "' is not linked into this program");
         rhi::ShaderDesc sd;
         sd.blob = blob;
         *out = device_.createShader(sd);
-        return *out ? true : bad(std::string("the device could not create shader '") + name + "'");
+        return *out ? true : bad(ErrorCode::DeviceFailure, std::string("the device could not create shader '") + name + "'");
     };
     if (!shader("sdf/invalidate_jobs.comp", &shaders_.invalidate) || !shader("sdf/gather_triangles.comp", &shaders_.gather) ||
         !shader("sdf/count_references.comp", &shaders_.count) || !shader("sdf/prepare_args.comp", &shaders_.prepare) ||
@@ -201,8 +201,8 @@ bool SdfSceneImpl::init(std::string* error) {
 
     for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
                                 voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, overlays_})
-        if (!h) return bad("the device could not create the field's buffers (see the device's messages)");
-    if (!atlas_ || !atlasSampler_) return bad("the device could not create the brick atlas (see the device's messages)");
+        if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the field's buffers (see the device's messages)");
+    if (!atlas_ || !atlasSampler_) return bad(ErrorCode::DeviceFailure, "the device could not create the brick atlas (see the device's messages)");
 
     cascades_.resize(d.cascadeCount);
     adaptiveVoxelLimit_ = b.maxVoxelsPerUpdate;

@@ -8,9 +8,11 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "../diagnostic_log.h"
 #include "bricklight/sdf.h"
 #include "sdf_layout.h"
 
@@ -74,9 +76,10 @@ struct InFlightStats {
 
 class SdfSceneImpl final : public SdfScene {
 public:
-    SdfSceneImpl(rhi::IDevice& device, const SceneDesc& desc) : device_(device), desc_(desc) {}
+    SdfSceneImpl(rhi::IDevice& device, const SceneDesc& desc)
+        : device_(device), desc_(desc), log_("sdf '" + desc.debugName + "': ") {}
     ~SdfSceneImpl() override;
-    bool init(std::string* error);
+    bool init(std::string* error, ErrorCode* errorCode);
 
     MeshHandle createMesh(const MeshArrays& mesh) override;
     MeshHandle createMesh(const MeshBuffers& mesh) override;
@@ -99,10 +102,14 @@ public:
     glm::ivec3 cascadeOrigin(uint32_t cascade) const override;
     float cascadeVoxelSize(uint32_t cascade) const override;
     FieldSnapshot readField() override;
-    const std::string& lastError() const override { return lastError_; }
+    const std::string& lastError() const override { return log_.lastError(); }
+    ErrorCode lastErrorCode() const override { return log_.lastErrorCode(); }
+    std::vector<Diagnostic> diagnostics() const override { return log_.diagnostics(); }
+    std::weak_ptr<const void> lifetimeToken() const override { return alive_; }
+    uint64_t updateCount() const override { return updateIndex_; }
 
 private:
-    bool fail(const std::string& message);  // reports, returns false
+    bool fail(ErrorCode code, const std::string& message);  // reports, returns false
     float voxelSize(uint32_t cascade) const;
     float band(uint32_t cascade) const;
     rhi::BufferHandle makeBuffer(const char* name, uint64_t size, uint32_t usage, const void* data = nullptr);
@@ -126,7 +133,8 @@ private:
 
     rhi::IDevice& device_;
     SceneDesc desc_;
-    std::string lastError_;
+    bricklight::detail::DiagnosticLog log_;
+    std::shared_ptr<const bool> alive_ = std::make_shared<const bool>(true);  // expires with the scene
 
     struct Shaders {
         rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, resolve, treeBottom, treeTop, debug;

@@ -54,7 +54,7 @@ UpdateReport SdfSceneImpl::update(const glm::vec3& center) {
     report.update = ++updateIndex_;
     pollStats();
     if (!std::isfinite(center.x) || !std::isfinite(center.y) || !std::isfinite(center.z)) {
-        fail("update: the centre is not finite; nothing done");
+        fail(ErrorCode::InvalidArgument, "update: the centre is not finite; nothing done");
         return report;
     }
     std::vector<glm::ivec3> before;

@@ -25,6 +25,7 @@ struct Options {
     uint32_t giIterations = 0;   // gi: TraceParams::maxIterationsPerCascade (0: GI's default)
     float giCoarsen = -1.0f;     // gi: TraceParams::coarsenAfterVoxels (< 0: GI's default)
     uint32_t giProbeTile = 0;    // gi: ContextDesc::probeTile (0: automatic)
+    bool giNoCameraCheck = false;  // gi: ContextFlags::NoCameraCheck
     bool giTotalOnly = false;    // gi: time only the whole GI (passes may overlap; no per-pass figures)
 };
 

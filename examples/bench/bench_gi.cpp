@@ -71,6 +71,7 @@ int runGi(const Options& o) {
     cd.displayHeight = o.height;
     cd.internalResolution = resolutionOf(o.scalePercent);
     cd.probeTile = o.giProbeTile;
+    if (o.giNoCameraCheck) cd.flags |= gi::ContextFlags::NoCameraCheck;
     std::string error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
     if (!context) {

@@ -44,6 +44,7 @@ namespace {
                  "                            [--iterations N]  (GI rays' steps per cascade; default GI's)\n"
                  "                            [--coarsen N]  (diffuse GI rays' voxels per cascade; 0 off; default GI's)\n"
                  "                            [--probe-tile 0|8|16]  (internal pixels per probe tile side; 0 automatic)\n"
+                 "                            [--no-camera-check]  (ContextFlags::NoCameraCheck: its cost measured apart)\n"
                  "                            [--timing passes|total]  (total: time only the whole GI, so that its passes\n"
                  "                             may overlap as they do untimed; default passes)\n");
     std::exit(2);
@@ -79,7 +80,8 @@ Options parse(int argc, char** argv) {
         else if (a == "--probe-tile") {
             o.giProbeTile = number(value(), "--probe-tile", 0, 16);
             if (o.giProbeTile != 0 && o.giProbeTile != 8 && o.giProbeTile != 16) usage("--probe-tile must be 0, 8 or 16");
-        } else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
+        } else if (a == "--no-camera-check") o.giNoCameraCheck = true;
+        else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
         else if (a == "--timing") {
             const std::string t = value();
             if (t != "passes" && t != "total") usage("--timing expects passes or total");
@@ -137,8 +139,9 @@ std::unique_ptr<rhi::IDevice> bricklight::bench::makeDevice(const Options& o) {
 }
 
 bricklight::bench::BarrierCounts bricklight::bench::barriersSoFar(const Options& o, rhi::IDevice& device) {
-    if (o.backend == "vulkan") return {vulkan::pipelineBarrierCount(device), vulkan::barrierCount(device)};
-    return {gl::barrierCount(device), gl::barrierCount(device)};
+    // makeDevice's devices are the backends' own, so the counts are always there (value() throws otherwise).
+    if (o.backend == "vulkan") return {vulkan::pipelineBarrierCount(device).value(), vulkan::barrierCount(device).value()};
+    return {gl::barrierCount(device).value(), gl::barrierCount(device).value()};
 }
 
 std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry,

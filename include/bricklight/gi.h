@@ -26,6 +26,9 @@ enum : uint32_t {
     NoSpecular = 1u << 0,    // no specular rays: the specular output is the irradiance cache's lobe estimate
     NoDenoiser = 1u << 1,    // skip the bilateral blur
     ReversedDepth = 1u << 2, // the depth buffer has 1 at the near plane and 0 at the far plane (sky)
+    // No camera self-check (docs/gi.md, "Camera conventions"): for a G-buffer that holds much geometry the
+    // scene does not (the check would warn that positions rebuilt from depth lie off the field's surfaces).
+    NoCameraCheck = 1u << 3,
 };
 }
 
@@ -95,13 +98,27 @@ constexpr uint32_t kMaxLights = 64;
 
 // One frame's inputs. Textures are the application's (Sampled usage); the G-buffer inputs are display
 // sized. Matrices are GLM column-major; projections map to depth [0, 1] (reversed with
-// ContextFlags::ReversedDepth) and NDC y = -1 at the image's top row (the RHI contract's top-left origin).
+// ContextFlags::ReversedDepth) and NDC y = -1 at the image's top row (the RHI contract's top-left origin):
+// glm::perspectiveRH_ZO(...) then projection[1][1] = -projection[1][1]. docs/gi.md, "Input conventions".
+//
+//   input                        required  channels  size
+//   depth                        yes       exactly 1 display   (D32_FLOAT, R32_FLOAT, R16_FLOAT)
+//   normals                      yes       >= 3      display
+//   roughness                    yes       >= 1      display   (roughnessChannel selects)
+//   previousLitOutput            yes       >= 3      any
+//   outputDiffuse                yes       RGBA16_FLOAT, display, Storage
+//   motionVectors                no        >= 2      display   (none: a still world, motion from the cameras)
+//   outputSpecular               no with NoSpecular, else yes
+//   diffuseAlbedo                no        >= 3      display   (turns relighting on)
+//   emission                     no        >= 3      display   (needs diffuseAlbedo)
+//   lights                       no        lightCount <= kMaxLights (needs diffuseAlbedo)
+//   environmentMap               with environmentKind != None
 struct DispatchDesc {
     glm::mat4 view{1.0f}, projection{1.0f};
     glm::mat4 previousView{1.0f}, previousProjection{1.0f};
     glm::vec3 cameraPosition{0.0f};
 
-    rhi::TextureHandle depth;             // single channel float (D32_FLOAT, R32_FLOAT or R16_FLOAT)
+    rhi::TextureHandle depth;             // one channel of device depth (D32_FLOAT, R32_FLOAT or R16_FLOAT)
     rhi::TextureHandle normals;           // world normal in xyz = stored * normalsUnpackScale + normalsUnpackOffset
     glm::vec3 normalsUnpackScale{2.0f};
     glm::vec3 normalsUnpackOffset{-1.0f};
@@ -109,7 +126,9 @@ struct DispatchDesc {
     uint32_t roughnessChannel = 0;
     bool roughnessPerceptual = true;      // false: the channel holds perceptual roughness squared
     float roughnessThreshold = 0.75f;     // perceptual roughness above which no specular rays are traced
-    rhi::TextureHandle motionVectors;     // UV-space motion (current - previous) in xy, times motionVectorScale
+    // Optional: UV-space motion (current - previous) in xy, times motionVectorScale. Without them GI takes
+    // the world as still and derives the motion from depth and the two cameras.
+    rhi::TextureHandle motionVectors;
     glm::vec2 motionVectorScale{1.0f};
     // The previous frame's lit image (the light that surfaces send into the scene): feeds the radiance
     // cache. Any size; sampled by UV.
@@ -161,11 +180,12 @@ using MemoryUse = sdf::MemoryUse;  // named resources and their bytes
 
 class GiContext {
 public:
-    // Null (with a message through the error callback and `error`) on a bad description or a device that
-    // lacks a format the passes need. The context follows `scene`, which must outlive it: its caches are
-    // sized by the scene's brick capacity.
+    // Null (with a message through the error callback, `error` and `errorCode`) on a bad description or a
+    // device that lacks a format the passes need. The context follows `scene` (its caches are sized by the
+    // scene's brick capacity): destroy the context first. A context whose scene is gone refuses every call
+    // with ErrorCode::DependencyDestroyed.
     static std::unique_ptr<GiContext> create(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc,
-                                             std::string* error = nullptr);
+                                             std::string* error = nullptr, ErrorCode* errorCode = nullptr);
     virtual ~GiContext() = default;
 
     // Records one frame of GI. False (changing nothing, recording nothing) on missing or mismatched inputs,
@@ -182,7 +202,11 @@ public:
     virtual uint32_t internalHeight() const = 0;
     // Internal pixels per probe tile side (ContextDesc::probeTile, resolved).
     virtual uint32_t probeTile() const = 0;
-    virtual const std::string& lastError() const = 0;
+    virtual const std::string& lastError() const = 0;  // the latest error ("" if none)
+    virtual ErrorCode lastErrorCode() const = 0;       // its code (None if none)
+    // Every distinct message so far (errors, and the warnings of the camera self-check), with how often it
+    // was reported: a message repeated every frame reaches the callback once.
+    virtual std::vector<Diagnostic> diagnostics() const = 0;
 
     // For tests and tools (blocking read-backs): the world caches as floats. `radiance` gets 3 floats per
     // cache texel (64 per slot, in the cache image's layout); `brickSH` gets 27 floats (9 RGB coefficients)

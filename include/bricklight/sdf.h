@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bricklight/errors.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::sdf {
@@ -183,9 +184,10 @@ struct FieldSnapshot {
 
 class SdfScene {
 public:
-    // Null (and a message through the device's error callback and `error`) if the description is invalid
-    // or the device lacks what the builder needs.
-    static std::unique_ptr<SdfScene> create(rhi::IDevice& device, const SceneDesc& desc, std::string* error = nullptr);
+    // Null (and a message through the device's error callback, `error` and `errorCode`) if the description is
+    // invalid or the device lacks what the builder needs.
+    static std::unique_ptr<SdfScene> create(rhi::IDevice& device, const SceneDesc& desc, std::string* error = nullptr,
+                                            ErrorCode* errorCode = nullptr);
     virtual ~SdfScene() = default;
 
     // Geometry. Errors name the object and the problem, and change nothing.
@@ -220,7 +222,15 @@ public:
     virtual glm::ivec3 cascadeOrigin(uint32_t cascade) const = 0;  // world voxel coordinates
     virtual float cascadeVoxelSize(uint32_t cascade) const = 0;
     virtual FieldSnapshot readField() = 0;  // blocking; for tests and tools
-    virtual const std::string& lastError() const = 0;  // the latest message of this scene ("" if none)
+    virtual const std::string& lastError() const = 0;  // the latest error of this scene ("" if none)
+    virtual ErrorCode lastErrorCode() const = 0;       // its code (None if none)
+    // Every distinct message so far, with how often it was reported (each reaches the callback once).
+    virtual std::vector<Diagnostic> diagnostics() const = 0;
+    // update() calls so far (GI warns when it is dispatched on a scene never updated).
+    virtual uint64_t updateCount() const = 0;
+    // Expires when the scene is destroyed: objects that follow the scene (a gi::GiContext) check it, so that
+    // destroying the scene first is a clear error on their next call, never a crash.
+    virtual std::weak_ptr<const void> lifetimeToken() const = 0;
 };
 
 }  // namespace bricklight::sdf

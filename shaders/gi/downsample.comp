@@ -48,7 +48,15 @@ void main() {
     float depth;
     uint surface;
     giReadInput(pixel, depth, surface);
-    vec2 motion = texelFetch(inputMotion, giInputPixel(pixel), 0).xy * giFrame.motion.xy;
+    vec2 motion;
+    if (giHasFlag(GI_FLAG_CAMERA_MOTION)) {
+        // No motion vectors: where this point of a still world was on last frame's screen.
+        vec2 uv = giPixelUv(pixel);
+        vec4 before = giCamera.previousViewProjection * vec4(giWorldPosition(uv, depth, giCamera.inverseViewProjection), 1.0);
+        motion = giIsSky(depth) || !(before.w > 0.0) ? vec2(0.0) : uv - (before.xy / before.w * 0.5 + 0.5);
+    } else {
+        motion = texelFetch(inputMotion, giInputPixel(pixel), 0).xy * giFrame.motion.xy;
+    }
     if (!(giFinite(motion.x) && giFinite(motion.y))) motion = vec2(0.0);
     // The stored motion is what the reprojections read: rg16f rounds it, and the mask must agree with them.
     motion = unpackHalf2x16(packHalf2x16(motion));

@@ -60,6 +60,7 @@ ivec3 giCacheSlotBase(uint slot) { return ivec3(slot % 64u, (slot / 64u) % 64u, 
 #define GI_FLAG_REVERSED_DEPTH 1u
 #define GI_FLAG_RESET_HISTORY 2u
 #define GI_FLAG_HISTORY_VALID 8u   // a previous frame exists (not the first dispatch)
+#define GI_FLAG_CAMERA_MOTION 16u  // no motion vectors given: the motion of a still world under the camera
 
 #define GI_ENV_NONE 0u
 #define GI_ENV_CUBE 1u

@@ -301,22 +301,7 @@ void badInputChangesNothing(const std::string& backend) {
     od.format = rhi::Format::RGBA8_UNORM;
     od.debugName = "rgba8 output";
     rhi::TextureHandle wrongFormat = td.device->createTexture(od);
-    gi::DispatchDesc good;
-    good.view = g.view;
-    good.projection = g.projection;
-    good.previousView = g.previousView;
-    good.previousProjection = g.previousProjection;
-    good.cameraPosition = g.eye;
-    good.depth = g.depth;
-    good.normals = g.normal;
-    good.normalsUnpackScale = glm::vec3(1.0f);
-    good.normalsUnpackOffset = glm::vec3(0.0f);
-    good.roughness = g.albedo;
-    good.roughnessChannel = 3;
-    good.motionVectors = g.motion;
-    good.previousLitOutput = g.lit;
-    good.outputDiffuse = out;
-    good.outputSpecular = outSpecular;
+    const gi::DispatchDesc good = giInputsOf(g, out, outSpecular);
     gi::Light light, negative;
     light.color = glm::vec3(1.0f);
     negative.color = glm::vec3(1.0f, -1.0f, 1.0f);
@@ -335,7 +320,7 @@ void badInputChangesNothing(const std::string& backend) {
         {"trace.maxIterationsPerCascade 0 is outside", [](gi::DispatchDesc& d) { d.trace.maxIterationsPerCascade = 0; }},
         {"trace.coarsenAfterVoxels must be finite", [](gi::DispatchDesc& d) { d.trace.coarsenAfterVoxels = NAN; }},
         {"environmentMap is missing", [](gi::DispatchDesc& d) { d.environmentKind = gi::EnvironmentKind::Cube; }},
-        {"an output is also bound as an input", [&](gi::DispatchDesc& d) { d.outputDiffuse = g.lit; }},
+        {"texture 'gbuffer lit' is bound as output 'outputDiffuse' and as input 'previousLitOutput'", [&](gi::DispatchDesc& d) { d.outputDiffuse = g.lit; }},
         {"lights are given without 'diffuseAlbedo'", [&](gi::DispatchDesc& d) {
              d.lights = &light;
              d.lightCount = 1;

@@ -53,6 +53,27 @@ inline std::unique_ptr<render::PathTracer> traced(TestDevice& td, const scenes::
     return pt;
 }
 
+// GI's inputs from the renderer's G-buffer (the renderer's own GI takes the same), into the given outputs.
+inline gi::DispatchDesc giInputsOf(const render::GBufferView& g, rhi::TextureHandle outputDiffuse, rhi::TextureHandle outputSpecular) {
+    gi::DispatchDesc d;
+    d.view = g.view;
+    d.projection = g.projection;
+    d.previousView = g.previousView;
+    d.previousProjection = g.previousProjection;
+    d.cameraPosition = g.eye;
+    d.depth = g.depth;
+    d.normals = g.normal;
+    d.normalsUnpackScale = glm::vec3(1.0f);
+    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.roughness = g.albedo;
+    d.roughnessChannel = 3;
+    d.motionVectors = g.motion;
+    d.previousLitOutput = g.lit;
+    d.outputDiffuse = outputDiffuse;
+    d.outputSpecular = outputSpecular;
+    return d;
+}
+
 // A square in the y = 0 plane, `half` wide each way, facing +y (counter-clockwise seen from above).
 inline scenes::TriangleMesh groundPlane(float half, glm::vec3 albedo) {
     scenes::TriangleMesh plane;
