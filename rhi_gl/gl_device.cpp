@@ -273,9 +273,9 @@ std::unique_ptr<rhi::IDevice> createHeadlessDevice(HeadlessApi api, rhi::ErrorCa
     return device;
 }
 
-uint64_t barrierCount(rhi::IDevice& device) {
+std::optional<uint64_t> barrierCount(rhi::IDevice& device) {
     auto* gl = dynamic_cast<detail::Device*>(&device);
-    return gl ? gl->barrierCount() : 0;
+    return gl ? std::optional(gl->barrierCount()) : std::nullopt;
 }
 
 }  // namespace bricklight::gl

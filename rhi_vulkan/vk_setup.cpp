@@ -453,21 +453,21 @@ VkBuffer nativeBuffer(rhi::IDevice& device, rhi::BufferHandle buffer) {
     auto* d = asVulkan(device);
     return d ? d->nativeBuffer(buffer) : VK_NULL_HANDLE;
 }
-uint64_t barrierCount(rhi::IDevice& device) {
+std::optional<uint64_t> barrierCount(rhi::IDevice& device) {
     auto* d = asVulkan(device);
-    return d ? d->barrierCount() : 0;
+    return d ? std::optional(d->barrierCount()) : std::nullopt;
 }
-uint64_t pipelineBarrierCount(rhi::IDevice& device) {
+std::optional<uint64_t> pipelineBarrierCount(rhi::IDevice& device) {
     auto* d = asVulkan(device);
-    return d ? d->pipelineBarrierCount() : 0;
+    return d ? std::optional(d->pipelineBarrierCount()) : std::nullopt;
 }
-uint64_t validationMessageCount(rhi::IDevice& device) {
+std::optional<uint64_t> validationMessageCount(rhi::IDevice& device) {
     auto* d = asVulkan(device);
-    return d ? d->validationMessages() : 0;
+    return d ? std::optional(d->validationMessages()) : std::nullopt;
 }
-bool usesPushDescriptors(rhi::IDevice& device) {
+std::optional<bool> usesPushDescriptors(rhi::IDevice& device) {
     auto* d = asVulkan(device);
-    return d && d->pushDescriptors();
+    return d ? std::optional(d->pushDescriptors()) : std::nullopt;
 }
 
 }  // namespace bricklight::vulkan

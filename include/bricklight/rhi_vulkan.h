@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "bricklight/rhi.h"
@@ -67,15 +68,19 @@ uint32_t nativeQueueFamily(rhi::IDevice& device);
 VkImage nativeImage(rhi::IDevice& device, rhi::TextureHandle texture);
 VkBuffer nativeBuffer(rhi::IDevice& device, rhi::BufferHandle buffer);
 
+// Counters and state for tests and tools. Each one is empty for a device that is not this backend's own
+// (e.g. one under the validation wrapper, or an application's device that forwards to ours): ask the
+// backend's device itself. Empty means "this device cannot tell", never "none".
+//
 // Number of barrier structures (buffer + image + memory) recorded so far; tests use it to check that
 // read-after-read and similar sequences emit none.
-uint64_t barrierCount(rhi::IDevice& device);
+std::optional<uint64_t> barrierCount(rhi::IDevice& device);
 // Number of vkCmdPipelineBarrier2 calls the device's own calls recorded (each waits for the work before it
 // in its source stages, so this is how many times the GPU may drain between calls).
-uint64_t pipelineBarrierCount(rhi::IDevice& device);
+std::optional<uint64_t> pipelineBarrierCount(rhi::IDevice& device);
 // Number of validation-layer messages received so far (all severities reported).
-uint64_t validationMessageCount(rhi::IDevice& device);
+std::optional<uint64_t> validationMessageCount(rhi::IDevice& device);
 // True when descriptors are pushed (VK_KHR_push_descriptor), false when per-frame pools are used.
-bool usesPushDescriptors(rhi::IDevice& device);
+std::optional<bool> usesPushDescriptors(rhi::IDevice& device);
 
 }  // namespace bricklight::vulkan

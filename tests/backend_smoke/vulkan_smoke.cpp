@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bricklight/rhi.h"
+#include "bricklight/rhi_validation.h"
 #include "bricklight/rhi_vulkan.h"
 
 using namespace bricklight;
@@ -91,6 +92,14 @@ TEST_CASE("vulkan: capabilities are reported", "[vulkan][smoke]") {
     CHECK(!c.supports(Format::R11G11B10_FLOAT, FormatSupport::Storage));
     CHECK(!c.supports(Format::RGBA8_SRGB, FormatSupport::Storage));
     CHECK(vulkan::nativeDevice(*f.device) != VK_NULL_HANDLE);
+    CHECK(vulkan::barrierCount(*f.device).has_value());
+    // A device that is not the backend's own (a wrapper around one, or here the null device) cannot tell:
+    // the hooks say so instead of answering 0.
+    std::unique_ptr<IDevice> foreign = createNullDevice();
+    CHECK_FALSE(vulkan::barrierCount(*foreign).has_value());
+    CHECK_FALSE(vulkan::pipelineBarrierCount(*foreign).has_value());
+    CHECK_FALSE(vulkan::validationMessageCount(*foreign).has_value());
+    CHECK_FALSE(vulkan::usesPushDescriptors(*foreign).has_value());
 }
 
 TEST_CASE("vulkan: compute fill and read-back", "[vulkan][smoke]") {
@@ -286,13 +295,13 @@ TEST_CASE("vulkan: indirect dispatch with GPU-written args, atomics, barrier cou
     // Read-after-read: a second reader of `addend` and `args` needs no barrier for them; the counter
     // (atomic, read-write) still needs one against the previous dispatch unless the flag says otherwise.
     REQUIRE(d.dispatchIndirect(count, args, 0));
-    uint64_t before = vulkan::barrierCount(d);
+    uint64_t before = vulkan::barrierCount(d).value();
     REQUIRE(d.dispatchIndirect(count, args, 0));
-    CHECK(vulkan::barrierCount(d) - before == 1);  // counter only (write after write)
+    CHECK(vulkan::barrierCount(d).value() - before == 1);  // counter only (write after write)
     count.flags = DispatchFlags::NoBarrierWithPreviousWriter;
-    before = vulkan::barrierCount(d);
+    before = vulkan::barrierCount(d).value();
     REQUIRE(d.dispatchIndirect(count, args, 0));
-    CHECK(vulkan::barrierCount(d) - before == 0);
+    CHECK(vulkan::barrierCount(d).value() - before == 0);
     CHECK(readU32(d, counter, 1)[0] == 4 * 5 * 64);
 
     // Pure read-after-read on a buffer that was last written long ago: zero barriers.
@@ -303,9 +312,9 @@ TEST_CASE("vulkan: indirect dispatch with GPU-written args, atomics, barrier cou
     fill.bindings.storageBuffers.push({0, sink1, {}, Access::Atomic});
     REQUIRE(d.dispatch(fill, 1, 1, 1));
     fill.flags = DispatchFlags::NoBarrierWithPreviousWriter;
-    before = vulkan::barrierCount(d);
+    before = vulkan::barrierCount(d).value();
     REQUIRE(d.dispatch(fill, 1, 1, 1));
-    CHECK(vulkan::barrierCount(d) - before == 0);
+    CHECK(vulkan::barrierCount(d).value() - before == 0);
     CHECK(readU32(d, sink1, 1)[0] == 128);
 }
 
@@ -344,16 +353,16 @@ TEST_CASE("vulkan: a hazard an earlier barrier already ordered needs no barrier"
             s.bindings.storageBuffers.push({0, total, {}, Access::Atomic});
             REQUIRE(d.dispatch(s, 1, 1, 1));
         };
-        const uint64_t start = vulkan::pipelineBarrierCount(d);
+        const uint64_t start = vulkan::pipelineBarrierCount(d).value();
         write(x, 7);
         write(y, 5);
-        CHECK(vulkan::pipelineBarrierCount(d) - start == (reuse ? 1u : 2u));
+        CHECK(vulkan::pipelineBarrierCount(d).value() - start == (reuse ? 1u : 2u));
         sum(x, sumX);
-        CHECK(vulkan::pipelineBarrierCount(d) - start == (reuse ? 2u : 3u));
+        CHECK(vulkan::pipelineBarrierCount(d).value() - start == (reuse ? 2u : 3u));
         sum(y, sumY);
-        CHECK(vulkan::pipelineBarrierCount(d) - start == (reuse ? 2u : 4u));
+        CHECK(vulkan::pipelineBarrierCount(d).value() - start == (reuse ? 2u : 4u));
         write(x, 1);  // write after the readers: one execution dependency
-        CHECK(vulkan::pipelineBarrierCount(d) - start == (reuse ? 3u : 5u));
+        CHECK(vulkan::pipelineBarrierCount(d).value() - start == (reuse ? 3u : 5u));
         CHECK(readU32(d, sumX, 1)[0] == 64 * 7);
         CHECK(readU32(d, sumY, 1)[0] == 64 * 5);
         CHECK(readU32(d, x, 1)[0] == 1);
@@ -491,7 +500,7 @@ TEST_CASE("vulkan: embedded mode records into the application's command buffer",
     e.errorCallback = [messages](Severity, const std::string& m) { messages->errors.push_back(m); };
     auto dev = vulkan::createEmbeddedDevice(e);  // no push descriptors: exercises the descriptor-pool path
     REQUIRE(dev);
-    CHECK(!vulkan::usesPushDescriptors(*dev));
+    CHECK_FALSE(vulkan::usesPushDescriptors(*dev).value());
     IDevice& d = *dev;
 
     VkDevice vk = e.device;
@@ -607,7 +616,7 @@ TEST_CASE("vulkan: wrapped native buffer and image", "[vulkan][smoke]") {
 TEST_CASE("vulkan: descriptor-pool fallback path", "[vulkan][smoke]") {
     Fixture f(/*disablePush=*/true);
     IDevice& d = *f.device;
-    CHECK(!vulkan::usesPushDescriptors(d));
+    CHECK_FALSE(vulkan::usesPushDescriptors(d).value());
     BufferHandle buf = d.createBuffer({64 * 4, 0, BufferUsage::ShaderWrite, "fill"});
     struct {
         uint32_t count, scale, offset;

@@ -1,4 +1,5 @@
-// Small helpers shared by the conformance cases: CPU decoding of formats, byte views, record shortcuts.
+// Small helpers shared by the conformance cases: CPU decoding of formats, byte views, record shortcuts, and
+// the case lists (case_lists.h).
 #pragma once
 
 #include <cstring>
@@ -6,6 +7,7 @@
 
 #include "bricklight/conformance.h"
 #include "bricklight/half.h"
+#include "case_lists.h"
 
 namespace bricklight::conformance {
 

@@ -6,7 +6,7 @@
 namespace bricklight::conformance {
 using rhi::Format;
 
-BL_CONFORMANCE_CASE(storage_buffer_fill, "storageBuffers (write), constants, dispatch group counts") {
+static void storage_buffer_fill(CaseContext& ctx) {
     const uint32_t n = 1000;
     rhi::BufferHandle out = ctx.buffer(n * 4, kStorageUsage, nullptr, "values");
     struct { uint32_t count, scale, offset; } p{n, 3, 7};
@@ -22,7 +22,7 @@ BL_CONFORMANCE_CASE(storage_buffer_fill, "storageBuffers (write), constants, dis
     ctx.output("values", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(storage_buffer_ranges, "BufferRange offset/size on read and storage buffers (views into one buffer)") {
+static void storage_buffer_ranges(CaseContext& ctx) {
     const uint32_t n = 64;
     std::vector<uint32_t> src(n * 4);
     for (uint32_t i = 0; i < src.size(); ++i) src[i] = i;
@@ -46,7 +46,7 @@ BL_CONFORMANCE_CASE(storage_buffer_ranges, "BufferRange offset/size on read and 
     ctx.output("buffer", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(storage_image_write_rgba8, "storageImages (write) of an RGBA8 2D image, readTexture") {
+static void storage_image_write_rgba8(CaseContext& ctx) {
     rhi::TextureHandle img = ctx.texture(texture2D(Format::RGBA8_UNORM, 20, 12, rhi::TextureUsage::Storage, "image"));
     struct { int32_t w, h; uint32_t seed; } p{20, 12, 3};
     rhi::DispatchState s;
@@ -67,7 +67,7 @@ BL_CONFORMANCE_CASE(storage_image_write_rgba8, "storageImages (write) of an RGBA
     ctx.output("image", bytes);
 }
 
-BL_CONFORMANCE_CASE(storage_image_read_write, "storageImages (read-write) load-modify-store on R32_UINT, clearTexture uint") {
+static void storage_image_read_write(CaseContext& ctx) {
     rhi::TextureHandle img = ctx.texture(texture2D(Format::R32_UINT, 16, 16, rhi::TextureUsage::Storage, "counter image"));
     rhi::ClearValue c{};
     c.u[0] = 2;
@@ -93,7 +93,7 @@ BL_CONFORMANCE_CASE(storage_image_read_write, "storageImages (read-write) load-m
     ctx.output("image", bytes);
 }
 
-BL_CONFORMANCE_CASE(atomics_buffer, "storageBuffers with Access::Atomic: add, max, min, xor, compare-swap") {
+static void atomics_buffer(CaseContext& ctx) {
     const uint32_t n = 4096;
     std::vector<uint32_t> init(5 + 16, 0);
     init[2] = 0xFFFFFFFFu;
@@ -116,7 +116,7 @@ BL_CONFORMANCE_CASE(atomics_buffer, "storageBuffers with Access::Atomic: add, ma
     ctx.output("counters", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(atomics_image, "storageImages with Access::Atomic on R32_UINT: add, max, min, or") {
+static void atomics_image(CaseContext& ctx) {
     const uint32_t n = 2048, bins = 8;
     rhi::TextureHandle img = ctx.texture(texture2D(Format::R32_UINT, bins, 4, rhi::TextureUsage::Storage, "bins"));
     std::vector<uint32_t> init(bins * 4, 0);
@@ -141,7 +141,7 @@ BL_CONFORMANCE_CASE(atomics_image, "storageImages with Access::Atomic on R32_UIN
     ctx.output("bins", bytes);
 }
 
-BL_CONFORMANCE_CASE(constants_std140_two_blocks, "constants: two blocks in one record, std140 padding (vec3+float, scalar arrays, mat4)") {
+static void constants_std140_two_blocks(CaseContext& ctx) {
     // std140: a vec3 + float share 16 bytes; uvec2 at 16; int at 24; float e[3] has a 16-byte stride at 32;
     // mat4 at 80.
     struct First {
@@ -181,7 +181,7 @@ BL_CONFORMANCE_CASE(constants_std140_two_blocks, "constants: two blocks in one r
     ctx.output("values", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(constants_copied_at_call_time, "constants: the bytes are copied when the call is made (the caller's memory may change after)") {
+static void constants_copied_at_call_time(CaseContext& ctx) {
     const uint32_t n = 64, calls = 24;
     rhi::BufferHandle out = ctx.buffer(n * 4 * calls, kStorageUsage, nullptr, "out");
     rhi::ShaderHandle sh = ctx.shader("rhi_tests/fill_buffer.comp");
@@ -200,6 +200,19 @@ BL_CONFORMANCE_CASE(constants_copied_at_call_time, "constants: the bytes are cop
     for (uint32_t c = 0; c < calls; ++c)
         ctx.check(v[c * n + 5] == 5 * (c + 1) + c * 1000, "call " + std::to_string(c) + " saw another call's constants");
     ctx.output("values", bytesOf(v));
+}
+
+void appendComputeCases(std::vector<Case>& out) {
+    out.insert(out.end(), {
+        BL_CASE(storage_buffer_fill, "storageBuffers (write), constants, dispatch group counts"),
+        BL_CASE(storage_buffer_ranges, "BufferRange offset/size on read and storage buffers (views into one buffer)"),
+        BL_CASE(storage_image_write_rgba8, "storageImages (write) of an RGBA8 2D image, readTexture"),
+        BL_CASE(storage_image_read_write, "storageImages (read-write) load-modify-store on R32_UINT, clearTexture uint"),
+        BL_CASE(atomics_buffer, "storageBuffers with Access::Atomic: add, max, min, xor, compare-swap"),
+        BL_CASE(atomics_image, "storageImages with Access::Atomic on R32_UINT: add, max, min, or"),
+        BL_CASE(constants_std140_two_blocks, "constants: two blocks in one record, std140 padding (vec3+float, scalar arrays, mat4)"),
+        BL_CASE(constants_copied_at_call_time, "constants: the bytes are copied when the call is made (the caller's memory may change after)"),
+    });
 }
 
 }  // namespace bricklight::conformance

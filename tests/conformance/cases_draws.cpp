@@ -54,7 +54,7 @@ void colorInputs(rhi::DrawCallState& s, rhi::BufferHandle vb) {
 }
 }  // namespace
 
-BL_CONFORMANCE_CASE(draw_depth_test, "DepthTarget load Clear, DepthState test/write/compare, D32_FLOAT readback") {
+static void draw_depth_test(CaseContext& ctx) {
     rhi::TextureHandle color = colorTarget(ctx);
     rhi::TextureHandle depth = ctx.texture(texture2D(Format::D32_FLOAT, kSize, kSize, rhi::TextureUsage::DepthTarget, "depth"));
     Fullscreen near{{0, 1, 0, 1}, 0.25f, {}}, far{{1, 0, 0, 1}, 0.75f, {}};
@@ -88,7 +88,7 @@ BL_CONFORMANCE_CASE(draw_depth_test, "DepthTarget load Clear, DepthState test/wr
     ctx.output("depth", ctx.readTexture(depth));
 }
 
-BL_CONFORMANCE_CASE(draw_blending, "BlendState: additive, alpha blending, min/max ops, write mask") {
+static void draw_blending(CaseContext& ctx) {
     rhi::TextureHandle color = colorTarget(ctx);
     Fullscreen p{{0.5f, 0.25f, 0.0f, 0.5f}, 0.5f, {}};
     rhi::DrawCallState s = fullscreenState(ctx, p);
@@ -125,7 +125,7 @@ BL_CONFORMANCE_CASE(draw_blending, "BlendState: additive, alpha blending, min/ma
     ctx.output("ops", img, {Tolerance::Kind::Unorm8, 1});
 }
 
-BL_CONFORMANCE_CASE(draw_multiple_render_targets, "three colour targets of different formats (RGBA8, R32_FLOAT, R32_UINT) in one draw") {
+static void draw_multiple_render_targets(CaseContext& ctx) {
     rhi::TextureHandle c0 = colorTarget(ctx, Format::RGBA8_UNORM, "albedo");
     rhi::TextureHandle c1 = colorTarget(ctx, Format::R32_FLOAT, "x");
     rhi::TextureHandle c2 = colorTarget(ctx, Format::R32_UINT, "y");
@@ -149,7 +149,7 @@ BL_CONFORMANCE_CASE(draw_multiple_render_targets, "three colour targets of diffe
     ctx.output("y", y);
 }
 
-BL_CONFORMANCE_CASE(draw_geometry_shader, "geometryShader: points expanded to quads, PointList topology") {
+static void draw_geometry_shader(CaseContext& ctx) {
     if (!ctx.device.capabilities().geometryShader) return ctx.fail("device reports no geometry shader support");
     rhi::TextureHandle color = colorTarget(ctx);
     const float pts[2][7] = {{-0.5f, -0.5f, 0.5f, 1, 0, 0, 1}, {0.5f, 0.5f, 0.5f, 0, 1, 0, 1}};
@@ -173,7 +173,7 @@ BL_CONFORMANCE_CASE(draw_geometry_shader, "geometryShader: points expanded to qu
     ctx.output("image", img);
 }
 
-BL_CONFORMANCE_CASE(draw_culling_and_origin, "RasterState cull/frontFace (Vulkan rule), image origin: clip y -1 is memory row 0") {
+static void draw_culling_and_origin(CaseContext& ctx) {
     rhi::TextureHandle color = colorTarget(ctx);
     // Triangle a, in framebuffer coordinates (x right, y down, row 0 first): (0,0) -> (8,0) -> (0,8), which
     // turns clockwise on screen. Vulkan's rule: area a = -1/2 sum(x_i y_i+1 - x_i+1 y_i) = -32 < 0, so it is
@@ -211,7 +211,7 @@ BL_CONFORMANCE_CASE(draw_culling_and_origin, "RasterState cull/frontFace (Vulkan
     ctx.output("image", img);
 }
 
-BL_CONFORMANCE_CASE(draw_instancing, "per-instance vertex buffers (perInstance), instanceCount, firstInstance, Float2 inputs") {
+static void draw_instancing(CaseContext& ctx) {
     rhi::TextureHandle color = colorTarget(ctx);
     const float quad[6][2] = {{0, 0}, {0.25f, 0}, {0, 0.25f}, {0, 0.25f}, {0.25f, 0}, {0.25f, 0.25f}};
     // offset x, y, colour rgba for 4 instances; instance 0 is skipped through firstInstance 1.
@@ -236,7 +236,7 @@ BL_CONFORMANCE_CASE(draw_instancing, "per-instance vertex buffers (perInstance),
     ctx.output("image", img);
 }
 
-BL_CONFORMANCE_CASE(draw_viewport_scissor, "Viewport (offset, size, depth range) and ScissorRect") {
+static void draw_viewport_scissor(CaseContext& ctx) {
     rhi::TextureHandle color = colorTarget(ctx);
     Fullscreen p{{1, 1, 0, 1}, 0.5f, {}};
     rhi::DrawCallState s = fullscreenState(ctx, p);
@@ -251,7 +251,7 @@ BL_CONFORMANCE_CASE(draw_viewport_scissor, "Viewport (offset, size, depth range)
     ctx.output("image", img);
 }
 
-BL_CONFORMANCE_CASE(draw_into_mip_and_layer, "ColorTarget view selecting mip 1 of layer 2 of a 2D array") {
+static void draw_into_mip_and_layer(CaseContext& ctx) {
     rhi::TextureDesc d = texture2D(Format::RGBA8_UNORM, kSize, kSize, rhi::TextureUsage::RenderTarget, "array target", 2);
     d.dimension = rhi::TextureDimension::Texture2DArray;
     d.depthOrLayers = 3;
@@ -276,7 +276,7 @@ BL_CONFORMANCE_CASE(draw_into_mip_and_layer, "ColorTarget view selecting mip 1 o
     ctx.output("mip1layer2", l2, {Tolerance::Kind::Unorm8, 1});
 }
 
-BL_CONFORMANCE_CASE(draw_srgb_target, "RGBA8_SRGB colour target: linear shader output is encoded to sRGB on write") {
+static void draw_srgb_target(CaseContext& ctx) {
     rhi::TextureHandle color = colorTarget(ctx, Format::RGBA8_SRGB, "srgb");
     Fullscreen p{{0.5f, 0.2140f, 1.0f, 0.5f}, 0.5f, {}};
     rhi::DrawCallState s = fullscreenState(ctx, p);
@@ -290,7 +290,7 @@ BL_CONFORMANCE_CASE(draw_srgb_target, "RGBA8_SRGB colour target: linear shader o
     ctx.output("image", img, {Tolerance::Kind::Unorm8, 1});
 }
 
-BL_CONFORMANCE_CASE(draw_samples_texture_written_by_compute, "a draw's bindings (textures + constants in vertex and fragment stages) reading a compute result") {
+static void draw_samples_texture_written_by_compute(CaseContext& ctx) {
     rhi::TextureHandle src = ctx.texture(texture2D(Format::RGBA8_UNORM, kSize, kSize,
                                                    rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled, "computed"));
     struct { int32_t w, h; uint32_t seed; } wp{int32_t(kSize), int32_t(kSize), 11};
@@ -316,6 +316,21 @@ BL_CONFORMANCE_CASE(draw_samples_texture_written_by_compute, "a draw's bindings 
     auto ref = ctx.readTexture(src);
     ctx.check(img == ref, "the draw copied the computed texture texel for texel");
     ctx.output("image", img);
+}
+
+void appendDrawCases(std::vector<Case>& out) {
+    out.insert(out.end(), {
+        BL_CASE(draw_depth_test, "DepthTarget load Clear, DepthState test/write/compare, D32_FLOAT readback"),
+        BL_CASE(draw_blending, "BlendState: additive, alpha blending, min/max ops, write mask"),
+        BL_CASE(draw_multiple_render_targets, "three colour targets of different formats (RGBA8, R32_FLOAT, R32_UINT) in one draw"),
+        BL_CASE(draw_geometry_shader, "geometryShader: points expanded to quads, PointList topology"),
+        BL_CASE(draw_culling_and_origin, "RasterState cull/frontFace (Vulkan rule), image origin: clip y -1 is memory row 0"),
+        BL_CASE(draw_instancing, "per-instance vertex buffers (perInstance), instanceCount, firstInstance, Float2 inputs"),
+        BL_CASE(draw_viewport_scissor, "Viewport (offset, size, depth range) and ScissorRect"),
+        BL_CASE(draw_into_mip_and_layer, "ColorTarget view selecting mip 1 of layer 2 of a 2D array"),
+        BL_CASE(draw_srgb_target, "RGBA8_SRGB colour target: linear shader output is encoded to sRGB on write"),
+        BL_CASE(draw_samples_texture_written_by_compute, "a draw's bindings (textures + constants in vertex and fragment stages) reading a compute result"),
+    });
 }
 
 }  // namespace bricklight::conformance

@@ -4,7 +4,7 @@
 namespace bricklight::conformance {
 using rhi::Format;
 
-BL_CONFORMANCE_CASE(indirect_dispatch_from_gpu_args, "dispatchIndirect with arguments written by a dispatch, at a non-zero offset") {
+static void indirect_dispatch_from_gpu_args(CaseContext& ctx) {
     rhi::BufferHandle args = ctx.buffer(64, kStorageUsage | rhi::BufferUsage::IndirectArgs, nullptr, "args");
     struct { uint32_t x, y, z, offset; } p{3, 2, 5, 4};
     rhi::DispatchState w;
@@ -67,7 +67,7 @@ struct QuadScene {
 };
 }  // namespace
 
-BL_CONFORMANCE_CASE(indirect_draw_from_gpu_args, "drawIndirect (non-indexed and indexed) with arguments written by a dispatch") {
+static void indirect_draw_from_gpu_args(CaseContext& ctx) {
     QuadScene scene(ctx);
     rhi::BufferHandle args = ctx.buffer(64, kStorageUsage | rhi::BufferUsage::IndirectArgs, nullptr, "draw args");
     struct { uint32_t vertexCount, instanceCount, indexCount, firstIndex; } p{3, 1, 6, 0};
@@ -90,7 +90,7 @@ BL_CONFORMANCE_CASE(indirect_draw_from_gpu_args, "drawIndirect (non-indexed and 
     ctx.output("triangle", image);
 }
 
-BL_CONFORMANCE_CASE(draw_indexed_u16_u32, "drawIndexed with U16 and U32 index buffers, index buffer offset, vertexOffset") {
+static void draw_indexed_u16_u32(CaseContext& ctx) {
     QuadScene scene(ctx);
     std::vector<uint8_t> image;
     ctx.check(ctx.device.drawIndexed(scene.state, {6, 1, 0, 0, 0}), "drawIndexed u32");
@@ -103,6 +103,14 @@ BL_CONFORMANCE_CASE(draw_indexed_u16_u32, "drawIndexed with U16 and U32 index bu
     ctx.check(ctx.device.drawIndexed(scene.state, {6, 1, 0, -1, 0}), "drawIndexed u16");
     ctx.check(scene.leftHalfRed(ctx, &image), "u16 indices with offset and vertexOffset");
     ctx.output("u16", image);
+}
+
+void appendIndirectCases(std::vector<Case>& out) {
+    out.insert(out.end(), {
+        BL_CASE(indirect_dispatch_from_gpu_args, "dispatchIndirect with arguments written by a dispatch, at a non-zero offset"),
+        BL_CASE(indirect_draw_from_gpu_args, "drawIndirect (non-indexed and indexed) with arguments written by a dispatch"),
+        BL_CASE(draw_indexed_u16_u32, "drawIndexed with U16 and U32 index buffers, index buffer offset, vertexOffset"),
+    });
 }
 
 }  // namespace bricklight::conformance

@@ -27,7 +27,7 @@ std::vector<float> sampleAt(CaseContext& ctx, rhi::TextureHandle tex, rhi::Sampl
 bool near(float a, float b, float tol = 1.0f / 256.0f) { return std::fabs(a - b) <= tol; }
 }  // namespace
 
-BL_CONFORMANCE_CASE(sampler_filters, "SamplerDesc min/mag filter: nearest vs linear between two texels") {
+static void sampler_filters(CaseContext& ctx) {
     // 2x1 R32_FLOAT: 0 and 1. At u = 0.5 (between texel centres 0.25 and 0.75) linear gives 0.5.
     const float texels[2] = {0.0f, 1.0f};
     rhi::TextureHandle tex = ctx.texture(texture2D(Format::R32_FLOAT, 2, 1, rhi::TextureUsage::Sampled, "ramp"), texels);
@@ -53,7 +53,7 @@ BL_CONFORMANCE_CASE(sampler_filters, "SamplerDesc min/mag filter: nearest vs lin
     ctx.output("samples", bytesOf(both), {Tolerance::Kind::Float32, 1.0 / 256});
 }
 
-BL_CONFORMANCE_CASE(sampler_address_modes, "SamplerDesc address modes: repeat, mirrored repeat, clamp to edge, clamp to border (black/white)") {
+static void sampler_address_modes(CaseContext& ctx) {
     // 4x1 RGBA8: red = 10, 20, 30, 40.
     const uint8_t px[16] = {10, 0, 0, 255, 20, 0, 0, 255, 30, 0, 0, 255, 40, 0, 0, 255};
     rhi::TextureHandle tex = ctx.texture(texture2D(Format::RGBA8_UNORM, 4, 1, rhi::TextureUsage::Sampled, "row"), px);
@@ -89,7 +89,7 @@ BL_CONFORMANCE_CASE(sampler_address_modes, "SamplerDesc address modes: repeat, m
     ctx.output("samples", bytesOf(all), {Tolerance::Kind::Float32, 1e-5});
 }
 
-BL_CONFORMANCE_CASE(sampler_mip_filter_and_lod, "SamplerDesc mip filter (nearest/linear), minLod/maxLod clamp, mip chain sampling") {
+static void sampler_mip_filter_and_lod(CaseContext& ctx) {
     // 4x4 with 3 mips of constant values 0, 0.5, 1 (R8_UNORM: 0, 128, 255).
     std::vector<uint8_t> data(16, 0);
     data.insert(data.end(), 4, 128);
@@ -119,7 +119,7 @@ BL_CONFORMANCE_CASE(sampler_mip_filter_and_lod, "SamplerDesc mip filter (nearest
     ctx.output("samples", bytesOf(all), {Tolerance::Kind::Float32, 0.01});
 }
 
-BL_CONFORMANCE_CASE(sampler_depth_compare, "SamplerDesc compareEnable/compareOp with a D32_FLOAT texture and sampler2DShadow") {
+static void sampler_depth_compare(CaseContext& ctx) {
     // 2x1 depth: 0.25 and 0.75.
     const float depth[2] = {0.25f, 0.75f};
     rhi::TextureHandle tex = ctx.texture(texture2D(Format::D32_FLOAT, 2, 1, rhi::TextureUsage::Sampled, "depth"), depth);
@@ -145,6 +145,15 @@ BL_CONFORMANCE_CASE(sampler_depth_compare, "SamplerDesc compareEnable/compareOp 
     ctx.check(v[0] == 1.0f && v[1] == 0.0f && v[2] == 1.0f && v[3] == 0.0f,
               "comparison results " + std::to_string(v[0]) + std::to_string(v[1]) + std::to_string(v[2]) + std::to_string(v[3]));
     ctx.output("results", bytesOf(v));
+}
+
+void appendSamplerCases(std::vector<Case>& out) {
+    out.insert(out.end(), {
+        BL_CASE(sampler_filters, "SamplerDesc min/mag filter: nearest vs linear between two texels"),
+        BL_CASE(sampler_address_modes, "SamplerDesc address modes: repeat, mirrored repeat, clamp to edge, clamp to border (black/white)"),
+        BL_CASE(sampler_mip_filter_and_lod, "SamplerDesc mip filter (nearest/linear), minLod/maxLod clamp, mip chain sampling"),
+        BL_CASE(sampler_depth_compare, "SamplerDesc compareEnable/compareOp with a D32_FLOAT texture and sampler2DShadow"),
+    });
 }
 
 }  // namespace bricklight::conformance

@@ -5,7 +5,7 @@
 namespace bricklight::conformance {
 using rhi::Format;
 
-BL_CONFORMANCE_CASE(transfer_buffer_write_copy_clear, "writeBuffer at offsets, copyBuffer between buffers, clearBuffer ranges, readBuffer subranges") {
+static void transfer_buffer_write_copy_clear(CaseContext& ctx) {
     std::vector<uint32_t> init(256);
     for (uint32_t i = 0; i < 256; ++i) init[i] = i;
     rhi::BufferHandle a = ctx.buffer(1024, kStorageUsage, init.data(), "a");
@@ -25,7 +25,7 @@ BL_CONFORMANCE_CASE(transfer_buffer_write_copy_clear, "writeBuffer at offsets, c
     ctx.output("b", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(transfer_large_write_then_dispatch, "a writeBuffer of 256 KiB is seen in full by the next dispatch") {
+static void transfer_large_write_then_dispatch(CaseContext& ctx) {
     // 65 537 values: past 64 KiB, where one driver (NVIDIA 580, GL) lost a single large glBufferSubData for the
     // dispatches that followed.
     const uint32_t n = 65537;
@@ -41,7 +41,7 @@ BL_CONFORMANCE_CASE(transfer_large_write_then_dispatch, "a writeBuffer of 256 Ki
     ctx.output("doubled", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(readback_without_waiting, "requestReadback/pollReadback: sees the writes before it, not after; Ready within the frames in flight; a ticket is taken once") {
+static void readback_without_waiting(CaseContext& ctx) {
     const uint32_t n = 256;
     rhi::BufferHandle out = ctx.buffer(n * 4, kStorageUsage, nullptr, "values");
     struct { uint32_t count, scale, offset; } p{n, 5, 1};
@@ -74,7 +74,7 @@ BL_CONFORMANCE_CASE(readback_without_waiting, "requestReadback/pollReadback: see
     ctx.output("values", bytesOf(v));
 }
 
-BL_CONFORMANCE_CASE(new_buffer_reads_zero, "createBuffer without initial data: the contents read as zero") {
+static void new_buffer_reads_zero(CaseContext& ctx) {
     // Several sizes, created after others were destroyed, so that reused memory would show.
     for (uint64_t size : {4ull, 1000ull, 65536ull}) {
         std::vector<uint32_t> junk(size / 4 + 1, 0xDEADBEEFu);
@@ -91,7 +91,7 @@ BL_CONFORMANCE_CASE(new_buffer_reads_zero, "createBuffer without initial data: t
     }
 }
 
-BL_CONFORMANCE_CASE(transfer_texture_copy_clear, "copyTexture between mips/layers, clearTexture float per mip, writeTexture of one array layer") {
+static void transfer_texture_copy_clear(CaseContext& ctx) {
     rhi::TextureDesc d = texture2D(Format::RGBA16_FLOAT, 8, 8, rhi::TextureUsage::Sampled, "src", 2);
     d.dimension = rhi::TextureDimension::Texture2DArray;
     d.depthOrLayers = 2;
@@ -121,7 +121,7 @@ BL_CONFORMANCE_CASE(transfer_texture_copy_clear, "copyTexture between mips/layer
     ctx.output("mip0", mip0);
 }
 
-BL_CONFORMANCE_CASE(markers_and_timestamps, "beginMarker/endMarker nesting, setTimingEnabled, takeTimings after endFrame/waitIdle") {
+static void markers_and_timestamps(CaseContext& ctx) {
     const uint32_t n = 65536;
     rhi::BufferHandle out = ctx.buffer(n * 4, kStorageUsage, nullptr, "values");
     rhi::ShaderHandle sh = ctx.shader("rhi_tests/fill_buffer.comp");
@@ -165,6 +165,17 @@ BL_CONFORMANCE_CASE(markers_and_timestamps, "beginMarker/endMarker nesting, setT
     auto v = ctx.read<uint32_t>(out, 4);
     ctx.check(v[3] == 3 * 2 + 1, "the timed work ran");
     ctx.output("values", bytesOf(v));
+}
+
+void appendTransferCases(std::vector<Case>& out) {
+    out.insert(out.end(), {
+        BL_CASE(transfer_buffer_write_copy_clear, "writeBuffer at offsets, copyBuffer between buffers, clearBuffer ranges, readBuffer subranges"),
+        BL_CASE(transfer_large_write_then_dispatch, "a writeBuffer of 256 KiB is seen in full by the next dispatch"),
+        BL_CASE(readback_without_waiting, "requestReadback/pollReadback: sees the writes before it, not after; Ready within the frames in flight; a ticket is taken once"),
+        BL_CASE(new_buffer_reads_zero, "createBuffer without initial data: the contents read as zero"),
+        BL_CASE(transfer_texture_copy_clear, "copyTexture between mips/layers, clearTexture float per mip, writeTexture of one array layer"),
+        BL_CASE(markers_and_timestamps, "beginMarker/endMarker nesting, setTimingEnabled, takeTimings after endFrame/waitIdle"),
+    });
 }
 
 }  // namespace bricklight::conformance

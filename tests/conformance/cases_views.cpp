@@ -20,7 +20,7 @@ float texelName(uint32_t x, uint32_t y, uint32_t mip, uint32_t layer) {
 }
 }  // namespace
 
-BL_CONFORMANCE_CASE(view_mip_range, "TextureView.baseMip/mipCount on a sampled 2D texture; readTexture of each mip") {
+static void view_mip_range(CaseContext& ctx) {
     rhi::TextureDesc d = texture2D(Format::R32_FLOAT, 8, 8, rhi::TextureUsage::Sampled, "mipped", 4);
     std::vector<float> init;
     for (uint32_t m = 0; m < 4; ++m)
@@ -62,7 +62,7 @@ BL_CONFORMANCE_CASE(view_mip_range, "TextureView.baseMip/mipCount on a sampled 2
     ctx.output("mip2", bytesOf(got));
 }
 
-BL_CONFORMANCE_CASE(view_array_layers, "2D array textures: layer views (2D of one layer, 2D array of a range), layered storage writes") {
+static void view_array_layers(CaseContext& ctx) {
     rhi::TextureDesc d = texture2D(Format::R32_FLOAT, 4, 4, rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage, "layers");
     d.dimension = rhi::TextureDimension::Texture2DArray;
     d.depthOrLayers = 4;
@@ -114,7 +114,7 @@ BL_CONFORMANCE_CASE(view_array_layers, "2D array textures: layer views (2D of on
     ctx.check(got[(3 * 4 + 3) * 4] == 3.0f + 3000.0f + 3e6f + 0.5f, "2D view of layer 3 returned another layer");
 }
 
-BL_CONFORMANCE_CASE(view_3d_storage_and_sampled, "3D textures: storage image of one mip (all slices), texelFetch of a 3D mip, readTexture of all slices") {
+static void view_3d_storage_and_sampled(CaseContext& ctx) {
     rhi::TextureDesc d;
     d.dimension = rhi::TextureDimension::Texture3D;
     d.format = Format::R32_UINT;
@@ -151,7 +151,7 @@ BL_CONFORMANCE_CASE(view_3d_storage_and_sampled, "3D textures: storage image of 
     }
 }
 
-BL_CONFORMANCE_CASE(view_cube_faces, "cube textures: initial data per face, samplerCube along the six axes") {
+static void view_cube_faces(CaseContext& ctx) {
     rhi::TextureDesc d = texture2D(Format::RGBA8_UNORM, 4, 4, rhi::TextureUsage::Sampled, "cube");
     d.dimension = rhi::TextureDimension::TextureCube;
     d.depthOrLayers = 6;
@@ -179,6 +179,15 @@ BL_CONFORMANCE_CASE(view_cube_faces, "cube textures: initial data per face, samp
                       std::fabs(got[face * 4 + 1] * 255.0f - float(face)) < 0.01f,
                   "cube face " + std::to_string(face) + " sampled wrong value " + std::to_string(got[face * 4] * 255));
     ctx.output("faces", bytesOf(got), {Tolerance::Kind::Float32, 1e-5});
+}
+
+void appendViewCases(std::vector<Case>& out) {
+    out.insert(out.end(), {
+        BL_CASE(view_mip_range, "TextureView.baseMip/mipCount on a sampled 2D texture; readTexture of each mip"),
+        BL_CASE(view_array_layers, "2D array textures: layer views (2D of one layer, 2D array of a range), layered storage writes"),
+        BL_CASE(view_3d_storage_and_sampled, "3D textures: storage image of one mip (all slices), texelFetch of a 3D mip, readTexture of all slices"),
+        BL_CASE(view_cube_faces, "cube textures: initial data per face, samplerCube along the six axes"),
+    });
 }
 
 }  // namespace bricklight::conformance

@@ -1,39 +1,23 @@
-// The kit's machinery: case registry, running a case on a backend under the validation wrapper, and
-// comparing two backends' outputs.
+// The kit's machinery: what a case can do (CaseContext) and running a case on a backend under the
+// validation wrapper.
 #include <algorithm>
-#include <cmath>
-#include <cstring>
-#include <sstream>
 
 #include "bricklight/conformance.h"
 #include "bricklight/rhi_validation.h"
 
+namespace bricklight::shaders {
+void link_bricklight_rhi_test_shaders();  // the kit's shaders (shaders/CMakeLists.txt)
+}
+
 namespace bricklight::conformance {
-
-namespace {
-std::vector<Case>& registry() {
-    static std::vector<Case> all;
-    return all;
-}
-
-}  // namespace
-
-detail::CaseRegistration::CaseRegistration(const char* name, const char* covers, void (*run)(CaseContext&)) {
-    registry().push_back(Case{name, covers, run});
-}
-
-const std::vector<Case>& cases() {
-    static const std::vector<Case> sorted = [] {
-        std::vector<Case> c = registry();
-        std::sort(c.begin(), c.end(), [](const Case& a, const Case& b) { return std::strcmp(a.name, b.name) < 0; });
-        return c;
-    }();
-    return sorted;
-}
 
 bool CaseContext::check(bool condition, const std::string& what) {
     if (!condition) failures.push_back(what);
     return condition;
+}
+
+void CaseContext::note(const std::string& what) {
+    if (std::find(notes.begin(), notes.end(), what) == notes.end()) notes.push_back(what);
 }
 
 void CaseContext::output(const std::string& name, std::vector<uint8_t> bytes, Tolerance tolerance) {
@@ -84,13 +68,19 @@ std::vector<uint8_t> CaseContext::readTexture(rhi::TextureHandle texture, rhi::T
     return out;
 }
 
-int64_t CaseContext::barriers() const {
-    if (!backend.barrierCount) return -1;
-    return int64_t(backend.barrierCount(device) - barrierBase);
+std::optional<uint64_t> CaseContext::barriers() {
+    std::optional<uint64_t> count = barrierCounter ? barrierCounter() : std::nullopt;
+    if (!count) note("barrier count unsupported by this backend: check skipped");
+    return count;
 }
 
 CaseResult runCase(const Case& c, const Backend& backend) {
+    shaders::link_bricklight_rhi_test_shaders();
     CaseResult result;
+    if (!backend.createDevice) {
+        result.failures.push_back("backend '" + backend.name + "' has no createDevice function");
+        return result;
+    }
     std::unique_ptr<rhi::IDevice> inner = backend.createDevice();
     if (!inner) {
         result.failures.push_back("backend '" + backend.name + "' could not create a device");
@@ -102,72 +92,20 @@ CaseResult runCase(const Case& c, const Backend& backend) {
         device->setErrorCallback([&](rhi::Severity s, const std::string& m) {
             if (s != rhi::Severity::Info) reported.push_back((s == rhi::Severity::Error ? "error: " : "warning: ") + m);
         });
-        // Barriers are counted on the inner device: the wrapper issues none of its own.
-        Backend view = backend;
-        rhi::IDevice* innerPtr = inner.get();
-        if (backend.barrierCount)
-            view.barrierCount = [&backend, innerPtr](rhi::IDevice&) { return backend.barrierCount(*innerPtr); };
-        CaseContext run(*device, view);
-        run.barrierBase = backend.barrierCount ? backend.barrierCount(*inner) : 0;
+        CaseContext run(*device, backend);
+        // Barriers are counted on the backend's own device: the wrapper issues none of its own.
+        rhi::IDevice* created = inner.get();
+        if (backend.barrierCount) run.barrierCounter = [&backend, created] { return backend.barrierCount(*created); };
         c.run(run);
         device->waitIdle();
         result.failures = std::move(run.failures);
+        result.notes = std::move(run.notes);
         result.outputs = std::move(run.outputs);
     }
     inner.reset();
     for (auto& m : reported) result.failures.push_back("device reported " + m);
     result.passed = result.failures.empty();
     return result;
-}
-
-std::vector<std::string> compareOutputs(const CaseResult& a, const CaseResult& b) {
-    std::vector<std::string> diffs;
-    if (a.outputs.size() != b.outputs.size()) {
-        diffs.push_back("different number of outputs: " + std::to_string(a.outputs.size()) + " vs " +
-                        std::to_string(b.outputs.size()));
-        return diffs;
-    }
-    for (size_t i = 0; i < a.outputs.size(); ++i) {
-        const Output& x = a.outputs[i];
-        const Output& y = b.outputs[i];
-        if (x.name != y.name || x.bytes.size() != y.bytes.size()) {
-            diffs.push_back("output " + x.name + ": size or name differs");
-            continue;
-        }
-        size_t bad = 0, first = SIZE_MAX;
-        double worst = 0.0;
-        switch (x.tolerance.kind) {
-            case Tolerance::Kind::Exact:
-                for (size_t k = 0; k < x.bytes.size(); ++k)
-                    if (x.bytes[k] != y.bytes[k]) ++bad, first = std::min(first, k);
-                break;
-            case Tolerance::Kind::Unorm8:
-                for (size_t k = 0; k < x.bytes.size(); ++k) {
-                    double d = std::abs(int(x.bytes[k]) - int(y.bytes[k]));
-                    worst = std::max(worst, d);
-                    if (d > x.tolerance.absolute) ++bad, first = std::min(first, k);
-                }
-                break;
-            case Tolerance::Kind::Float32:
-                for (size_t k = 0; k + 4 <= x.bytes.size(); k += 4) {
-                    float fa, fb;
-                    std::memcpy(&fa, &x.bytes[k], 4);
-                    std::memcpy(&fb, &y.bytes[k], 4);
-                    double d = std::isnan(fa) != std::isnan(fb) ? INFINITY : std::abs(double(fa) - fb);
-                    if (std::isnan(fa) && std::isnan(fb)) d = 0;
-                    worst = std::max(worst, d);
-                    if (d > x.tolerance.absolute) ++bad, first = std::min(first, k);
-                }
-                break;
-        }
-        if (bad) {
-            std::ostringstream m;
-            m << "output " << x.name << ": " << bad << " element(s) differ beyond tolerance " << x.tolerance.absolute
-              << " (first at byte " << first << ", largest difference " << worst << ")";
-            diffs.push_back(m.str());
-        }
-    }
-    return diffs;
 }
 
 }  // namespace bricklight::conformance

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "bricklight/conformance.h"
+#include "bricklight/conformance_catch2.h"
 #ifdef BRICKLIGHT_HAS_VULKAN
 #include "bricklight/rhi_vulkan.h"
 #endif

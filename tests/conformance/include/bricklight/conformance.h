@@ -1,15 +1,21 @@
 // The RHI conformance kit: test cases that take any IDevice, so an integrator runs the same suite against
 // their own RHI that our Vulkan and GL backends pass. Each case checks its results against expected values
-// and also registers its outputs so that two backends can be compared with each other.
+// and also keeps its outputs so that two backends can be compared with each other.
 //
 //   bricklight::conformance::Backend mine{"my-engine", [] { return makeMyDevice(); }};
-//   auto result = bricklight::conformance::runCase(bricklight::conformance::cases()[0], mine);
+//   return bricklight::conformance::runAll({mine});      // every case, one line each; the exit code
 //
-// or, with Catch2, registerCatchTests({mine}) before running the session (see tests/conformance/main.cpp).
+// Link bricklight::conformance (CMake) or, by hand, libbricklight_conformance.a, then
+// libbricklight_rhi_test_shaders.a (the cases' shaders) and libbricklight_rhi.a (docs/rhi.md, "Running the
+// conformance kit on your RHI"). Catch2 is not needed; tests/conformance/catch2 registers the cases as
+// Catch2 tests for those who want that.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,10 +25,13 @@ namespace bricklight::conformance {
 
 struct Backend {
     std::string name;
+    // A new device for each case (the kit wraps it in the validation wrapper and destroys it afterwards).
     std::function<std::unique_ptr<rhi::IDevice>()> createDevice;
-    // Optional: how many barriers the device has issued so far (lets hazard cases check that a
-    // dependency got a barrier and that read-after-read got none). Leave empty if the RHI cannot tell.
-    std::function<uint64_t(rhi::IDevice&)> barrierCount;
+    // Optional: how many barriers the device has issued so far, called with the device that createDevice
+    // returned. It lets the hazard cases check that every dependency got a barrier and that read-after-read
+    // got none. Leave it empty, or return std::nullopt, when the RHI cannot tell: the hazard cases then skip
+    // those checks and say so in CaseResult::notes.
+    std::function<std::optional<uint64_t>(rhi::IDevice&)> barrierCount;
 };
 
 // How two backends' outputs are compared.
@@ -47,6 +56,8 @@ public:
     // Records a failure; the case goes on so that every failure is reported.
     bool check(bool condition, const std::string& what);
     void fail(const std::string& what) { failures.push_back(what); }
+    // Records something the reader should know that is not a failure (a check skipped); once per text.
+    void note(const std::string& what);
     void output(const std::string& name, std::vector<uint8_t> bytes, Tolerance tolerance = {});
 
     // Creates a shader from the embedded blob `name`; fails the case if it does not exist.
@@ -63,12 +74,15 @@ public:
     }
     std::vector<uint8_t> readTexture(rhi::TextureHandle texture, rhi::TextureSubresource sub = {});
 
-    // Barriers issued since the case began, or -1 when the backend does not report them.
-    int64_t barriers() const;
+    // Barriers the device has issued so far (compare two calls), or empty when the backend cannot tell; then
+    // it notes "barrier count unsupported by this backend: check skipped".
+    std::optional<uint64_t> barriers();
 
     std::vector<std::string> failures;
+    std::vector<std::string> notes;
     std::vector<Output> outputs;
-    uint64_t barrierBase = 0;
+    // Set by runCase: the backend's barrierCount bound to the device it created (the wrapper has none).
+    std::function<std::optional<uint64_t>()> barrierCounter;
 };
 
 struct Case {
@@ -77,12 +91,13 @@ struct Case {
     void (*run)(CaseContext&);
 };
 
-// Every case of the kit, in a stable order.
+// Every case of the kit, sorted by name.
 const std::vector<Case>& cases();
 
 struct CaseResult {
     bool passed = false;
-    std::vector<std::string> failures;      // case checks and every error/warning the device reported
+    std::vector<std::string> failures;  // case checks and every error/warning the device reported
+    std::vector<std::string> notes;     // not failures: checks the backend could not support, skipped
     std::vector<Output> outputs;
 };
 
@@ -93,20 +108,18 @@ CaseResult runCase(const Case& c, const Backend& backend);
 // Compares the outputs of two runs of one case; returns the differences (empty = equal within tolerance).
 std::vector<std::string> compareOutputs(const CaseResult& a, const CaseResult& b);
 
-// Registers one Catch2 test per (backend, case) tagged [conformance][<backend name>], and one
-// "cross" test per case comparing the first two backends, tagged [conformance][cross].
-void registerCatchTests(const std::vector<Backend>& backends);
-
-namespace detail {
-struct CaseRegistration {
-    CaseRegistration(const char* name, const char* covers, void (*run)(CaseContext&));
+struct RunOptions {
+    // Runs only the cases whose name contains one of these strings; every case when empty.
+    std::vector<std::string> filters;
+    // Where the report goes; null: std::cout.
+    std::ostream* out = nullptr;
 };
-}  // namespace detail
+
+// The plain runner: runs every selected case on every backend, and when there are two or more backends
+// compares each case's outputs on the first two. Prints one line per run and comparison ("passed" or
+// "failed", the failures and notes indented below it), then a summary. Returns a process exit code: 0 when
+// every run passed and every comparison agreed, 1 otherwise (also when the filters select no case or there
+// is no backend).
+int runAll(const std::vector<Backend>& backends, const RunOptions& options = {});
 
 }  // namespace bricklight::conformance
-
-// Defines and registers a case: BL_CONFORMANCE_CASE(storage_buffer_fill, "storageBuffers, constants") { ... }
-#define BL_CONFORMANCE_CASE(ident, covers)                                                              \
-    static void ident(::bricklight::conformance::CaseContext& ctx);                                     \
-    static ::bricklight::conformance::detail::CaseRegistration ident##_registration(#ident, covers, ident); \
-    static void ident([[maybe_unused]] ::bricklight::conformance::CaseContext& ctx)

@@ -2,7 +2,7 @@
 // comparison per case, so that ctest (through catch_discover_tests) lists each one by name.
 #include <catch2/catch.hpp>
 
-#include "bricklight/conformance.h"
+#include "bricklight/conformance_catch2.h"
 
 namespace bricklight::conformance {
 
@@ -20,6 +20,11 @@ void reportFailures(const std::vector<std::string>& failures) {
     for (const auto& f : failures) FAIL_CHECK(f);
 }
 
+// Notes are not failures (a check the backend cannot support, skipped): shown, never failing.
+void reportNotes(const std::vector<std::string>& notes) {
+    for (const auto& n : notes) WARN(n);
+}
+
 void add(const std::string& name, const std::string& tags, std::function<void()> body) {
     Catch::getMutableRegistryHub().registerTest(
         Catch::makeTestCase(new Invoker(std::move(body)), "", Catch::NameAndTags{name, tags}, CATCH_INTERNAL_LINEINFO));
@@ -33,6 +38,7 @@ void registerCatchTests(const std::vector<Backend>& backends) {
                 INFO("case " << c.name << " covers: " << c.covers);
                 CaseResult r = runCase(c, b);
                 reportFailures(r.failures);
+                reportNotes(r.notes);
                 CHECK(r.passed);
             });
         if (backends.size() >= 2) {
