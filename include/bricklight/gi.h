@@ -26,8 +26,9 @@ enum : uint32_t {
     NoSpecular = 1u << 0,    // no specular rays: the specular output is the irradiance cache's lobe estimate
     NoDenoiser = 1u << 1,    // skip the bilateral blur
     ReversedDepth = 1u << 2, // the depth buffer has 1 at the near plane and 0 at the far plane (sky)
-    // No camera self-check (docs/gi.md, "Camera conventions"): for a G-buffer that holds much geometry the
-    // scene does not (the check would warn that positions rebuilt from depth lie off the field's surfaces).
+    // No camera self-check (docs/gi.md, "Integration contract"): for a G-buffer that holds much geometry the
+    // scene does not, or an orthographic projection (the check would warn that positions rebuilt from depth
+    // lie off the field's surfaces or that the camera is not at cameraPosition).
     NoCameraCheck = 1u << 3,
 };
 }
