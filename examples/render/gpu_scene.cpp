@@ -25,6 +25,15 @@ bool checkImageSize(uint32_t width, uint32_t height, std::string* error) {
     return false;
 }
 
+bool checkStorageRange(const rhi::IDevice& device, uint64_t bytes, const std::string& what, std::string* error) {
+    const uint64_t range = device.capabilities().limits.maxStorageBufferRange;
+    if (!range || bytes <= range) return true;
+    if (error)
+        *error = what + " needs " + std::to_string(bytes) + " bytes, more than this device's maxStorageBufferRange (" +
+                 std::to_string(range) + " bytes)";
+    return false;
+}
+
 bool checkCamera(const scenes::Camera& camera, std::string* error) {
     const glm::vec3 forward = camera.at - camera.eye;
     if (finite(camera.eye) && finite(camera.at) && glm::length(forward) > 0.0f && glm::length(glm::cross(forward, camera.up)) > 0.0f &&
@@ -181,6 +190,14 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->lightCount_ = lightCount;
     s->lightWeight_ = total;
     s->epsilon_ = 1e-5f * std::max(1.0f, glm::length(bvh.nodes[0].max - bvh.nodes[0].min));
+    // Every buffer the passes bind whole, against the device's range, before creating any.
+    const std::string triangles = "the scene's " + std::to_string(n) + " triangles";
+    for (const auto& [bytes, what] : {std::pair{tris.size() * 16, triangles + " (positions)"},
+                                      std::pair{bvh.nodes.size() * sizeof(BvhNode), triangles + " (their BVH)"},
+                                      std::pair{triangleNormals.size() * 16, triangles + " (shading normals)"},
+                                      std::pair{triangleUvs.size() * 16, triangles + " (texture coordinates)"},
+                                      std::pair{lights.size() * 16, std::string("the scene's emitters")}})
+        if (!checkStorageRange(device, uint64_t(bytes), what, error)) return nullptr;
     auto buffer = [&](const char* name, const void* data, uint64_t bytes, uint32_t usage) {
         rhi::BufferDesc d;
         d.size = bytes;

@@ -21,6 +21,9 @@ struct SceneLightConstants {
 
 // What both renderers check before they start: the image size and the camera. False with `error` set.
 bool checkImageSize(uint32_t width, uint32_t height, std::string* error);
+// A storage buffer of `bytes` that a pass binds whole: refused before any work when it exceeds the device's
+// maxStorageBufferRange (the device would reject the binding and the image would come out black).
+bool checkStorageRange(const rhi::IDevice& device, uint64_t bytes, const std::string& what, std::string* error);
 bool checkCamera(const scenes::Camera& camera, std::string* error);
 
 class GpuScene {

@@ -1,4 +1,5 @@
 #include "image_io.h"
+#include "output_file.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -24,21 +25,15 @@ float filmic(float x) {  // ACES approximation (K. Narkowicz 2015), input alread
 float toSrgb(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
 float fromSrgb(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
-}  // namespace
-
-bool writeImage(const std::string& path, const Image& image, float exposure, std::string* error) {
-    const std::string ext = extensionOf(path);
-    if (ext != "png" && ext != "exr") {
-        if (error) *error = "'" + path + "': unsupported output format (use .png or .exr)";
-        return false;
-    }
+// Encodes `image` into `path` (whose extension picks the format).
+bool encodeImage(const std::string& path, const Image& image, float exposure, std::string* error) {
     auto out = OIIO::ImageOutput::create(path);
     if (!out) {
-        if (error) *error = "'" + path + "': " + OIIO::geterror();
+        if (error) *error = OIIO::geterror();
         return false;
     }
     bool ok;
-    if (ext == "exr") {
+    if (extensionOf(path) == "exr") {
         OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
         ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
     } else {
@@ -48,11 +43,36 @@ bool writeImage(const std::string& path, const Image& image, float exposure, std
         OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
         ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
     }
-    if (!ok) {
-        if (error) *error = "'" + path + "': " + out->geterror();
+    ok = out->close() && ok;  // close() flushes: a full disk shows here
+    if (!ok && error) *error = out->geterror();  // may be empty: the caller adds errno
+    return ok;
+}
+
+}  // namespace
+
+bool writeImage(const std::string& path, const Image& image, float exposure, std::string* error) {
+    const std::string ext = extensionOf(path);
+    if (ext != "png" && ext != "exr") {
+        if (error) *error = "'" + path + "': unsupported output format (use .png or .exr)";
         return false;
     }
-    return out->close();
+    if (image.width == 0 || image.height == 0 || image.rgb.size() != size_t(image.width) * image.height * 3) {
+        if (error) *error = "'" + path + "': no image to write";
+        return false;
+    }
+    // The file is read back whole before it replaces the target: a write that failed silently (a full
+    // disk some encoders do not report) is caught here.
+    auto readsBack = [&](const std::string& temp, std::string* why) {
+        Image back;
+        if (!readImage(temp, &back, why)) return false;
+        if (back.width != image.width || back.height != image.height) {
+            *why = "the written file reads back as " + std::to_string(back.width) + "x" + std::to_string(back.height);
+            return false;
+        }
+        return true;
+    };
+    return writeFileAtomically(
+        path, [&](const std::string& temp, std::string* why) { return encodeImage(temp, image, exposure, why); }, readsBack, error);
 }
 
 bool readImage(const std::string& path, Image* image, std::string* error) {

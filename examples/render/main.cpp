@@ -3,26 +3,34 @@
 //   bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]
 //                     [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr] [--aov NAME ...] [--reference --spp N]
 //                     [--exposure E] [--gi sdf|none] [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]
-//                     [--single-bounce]
+//                     [--single-bounce] [--validate] [--record FILE.jsonl] [--help] [--version]
+//
+// Exit status: 0 the image(s) were written; 1 the render failed (the scene, the device, an error any layer
+// reported during the render, or a write; nothing half-written is left); 2 a usage error (nothing done).
 //
 // Without --reference: a rasterized G-buffer, direct lighting and GI from the sparse brick distance field
 // (--gi sdf, the default; over --frames frames the bounces accumulate); with it, the path tracer (the
 // ground truth). AOVs go next to --out as <stem>.<aov>.exr (linear float). --single-bounce keeps indirect
 // light to one bounce on both paths (the path tracer stops after one; GI is fed direct light only), to
 // measure GI's gather apart from its multi-bounce feedback. See docs/render.md.
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_validation.h"
 #include "bricklight/rhi_vulkan.h"
+#include "bricklight/version.h"
 #include "image_io.h"
+#include "output_file.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
 #include "scene_geometry.h"
@@ -47,28 +55,41 @@ struct Options {
     std::vector<std::string> giDebug;
     bool singleBounce = false;
     bool validate = false;  // every call through rhi::createValidationDevice
+    std::string record;     // --record: every device call of the render as JSON lines
 };
 
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
 
-[[noreturn]] void usage(const std::string& problem) {
-    std::fprintf(stderr, "bricklight-render: %s\n", problem.c_str());
-    std::fprintf(stderr,
+void printUsage(FILE* to) {
+    std::fprintf(to,
                  "usage: bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                         [--frames N] [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr]\n"
                  "                         [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
                  "                         [--reference --spp N] [--exposure E] [--gi sdf|none]\n"
                  "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...] [--single-bounce]\n"
-                 "                         [--validate]\n"
-                 "scenes: %s\n", scenes::builtinSceneNames());
+                 "                         [--validate] [--record FILE.jsonl] [--help] [--version]\n"
+                 "scenes: %s\n"
+                 "exit status: 0 written; 1 the render failed; 2 usage error (docs/render.md)\n",
+                 scenes::builtinSceneNames());
+}
+
+[[noreturn]] void usage(const std::string& problem) {
+    std::fprintf(stderr, "bricklight-render: %s\n", problem.c_str());
+    printUsage(stderr);
     std::exit(2);
 }
 
+// A whole number in lo..hi, read as a number: digits only (no sign, so "-18446744073709551615" cannot wrap
+// around), no overflow.
 uint32_t number(const char* text, const std::string& option, uint32_t lo, uint32_t hi) {
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(text, &end, 10);
-    if (!*text || *end || v < lo || v > hi)
+    auto bad = [&] {
         usage(option + " expects a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) + " (got '" + text + "')");
+    };
+    if (!std::isdigit(static_cast<unsigned char>(text[0]))) bad();
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long v = std::strtoull(text, &end, 10);
+    if (*end || errno == ERANGE || v < lo || v > hi) bad();
     return uint32_t(v);
 }
 
@@ -80,7 +101,13 @@ Options parse(int argc, char** argv) {
             if (i + 1 >= argc) usage(a + " needs a value");
             return argv[++i];
         };
-        if (a == "--scene") o.scene = value();
+        if (a == "--help" || a == "-h") {
+            printUsage(stdout);
+            std::exit(0);
+        } else if (a == "--version") {
+            std::printf("bricklight-render %s\n", BRICKLIGHT_VERSION_STRING);
+            std::exit(0);
+        } else if (a == "--scene") o.scene = value();
         else if (a == "--backend") o.backend = value();
         else if (a == "--width") o.width = number(value(), a, 1, 8192);
         else if (a == "--height") o.height = number(value(), a, 1, 8192);
@@ -111,6 +138,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--reference") o.reference = true;
         else if (a == "--single-bounce") o.singleBounce = true;
         else if (a == "--validate") o.validate = true;
+        else if (a == "--record") o.record = value();
         else if (a == "--out") o.out = value();
         else if (a == "--exposure") {
             char* end = nullptr;
@@ -138,6 +166,7 @@ Options parse(int argc, char** argv) {
         }
     }
     if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl (got '" + o.backend + "')");
+    if (!o.giDebug.empty() && (o.reference || !o.gi)) usage("--gi-debug needs the fast path with GI (not --reference or --gi none)");
     return o;
 }
 
@@ -149,16 +178,50 @@ void progress(uint32_t done, uint32_t total) {
     if (done == total) std::fprintf(stderr, "\n");
 }
 
-std::string aovPath(const std::string& out, render::Aov aov) {
+std::string stemOf(const std::string& out) {
     const size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
-    const std::string stem = dot == std::string::npos || (slash != std::string::npos && dot < slash) ? out : out.substr(0, dot);
-    return stem + "." + render::aovName(aov) + ".exr";
+    return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? out : out.substr(0, dot);
 }
+std::string aovPath(const std::string& out, render::Aov aov) { return stemOf(out) + "." + render::aovName(aov) + ".exr"; }
+std::string giDebugPath(const std::string& out, const std::string& view) { return stemOf(out) + ".gi-" + view + ".exr"; }
+
+// Every file the run will write, checked before any work: a bad path costs no render.
+void checkOutputs(const Options& o) {
+    std::vector<std::string> paths{o.out};
+    for (render::Aov aov : o.aovs) paths.push_back(aovPath(o.out, aov));
+    for (const std::string& view : o.giDebug) paths.push_back(giDebugPath(o.out, view));
+    if (!o.record.empty()) paths.push_back(o.record);
+    std::string error;
+    for (const std::string& path : paths) {
+        const size_t dot = path.find_last_of('.');
+        const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
+        if (path != o.record && ext != ".png" && ext != ".exr")
+            usage("'" + path + "': unsupported output format (use .png or .exr)");
+        if (!render::checkOutputPath(path, &error)) usage(error);
+    }
+}
+
+// Counts what the layers report during the run (the device, the validation wrapper, the SDF, GI): an error
+// means the image may be wrong, so the run fails instead of writing it.
+struct Reports {
+    uint64_t errors = 0;
+    std::string firstError;
+    rhi::ErrorCallback callback() {
+        return [this](rhi::Severity s, const std::string& m) {
+            if (s == rhi::Severity::Info) return;
+            std::fprintf(stderr, "bricklight-render: %s%s\n", s == rhi::Severity::Warning ? "warning: " : "", m.c_str());
+            if (s == rhi::Severity::Error && errors++ == 0) firstError = m;
+        };
+    }
+};
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    // A file-size limit (ulimit -f) or a full disk must make a write fail with an error, not kill us.
+    signal(SIGXFSZ, SIG_IGN);
     const Options o = parse(argc, argv);
+    checkOutputs(o);
     std::string error;
     scenes::SceneGeometry scene = scenes::loadScene(o.scene, &error);
     if (scene.meshes.empty()) {
@@ -170,10 +233,13 @@ int main(int argc, char** argv) {
         scene.camera.eye = glm::vec3(o.camera[0], o.camera[1], o.camera[2]);
         scene.camera.at = glm::vec3(o.camera[3], o.camera[4], o.camera[5]);
     }
-    rhi::ErrorCallback report = [](rhi::Severity s, const std::string& m) {
-        if (s != rhi::Severity::Info) std::fprintf(stderr, "bricklight-render: %s\n", m.c_str());
-    };
-    std::unique_ptr<rhi::IDevice> backendDevice;  // with --validate, under `device` (destroyed after it)
+    Reports reports;
+    const rhi::ErrorCallback report = reports.callback();
+    // The layers, innermost first (each destroyed after the ones above it): the backend, the validation
+    // wrapper (--validate), the recorder (--record).
+    std::unique_ptr<rhi::IDevice> backendDevice, validationDevice;
+    std::ofstream recordStream;
+    std::string recordTemp;
     std::unique_ptr<rhi::IDevice> device;
     if (o.backend == "vulkan") {
         vulkan::DeviceOptions options;
@@ -193,6 +259,24 @@ int main(int argc, char** argv) {
         device = rhi::createValidationDevice(*backendDevice);
         device->setErrorCallback(report);
     }
+    // --record: every call of the render, as bricklight-replay reads it; written under a temporary name
+    // and renamed when the run succeeds.
+    if (!o.record.empty()) {
+        recordTemp = o.record + ".tmp" + std::to_string(getpid());
+        recordStream.open(recordTemp, std::ios::binary | std::ios::trunc);
+        if (!recordStream) {
+            std::fprintf(stderr, "bricklight-render: cannot write '%s': %s\n", recordTemp.c_str(), std::strerror(errno));
+            return 1;
+        }
+        validationDevice = std::move(device);
+        device = rhi::createRecordingDevice(*validationDevice, recordStream);
+        device->setErrorCallback(report);
+    }
+    auto failRun = [&](const std::string& message) {
+        std::fprintf(stderr, "bricklight-render: %s\n", message.c_str());
+        if (!recordTemp.empty()) std::remove(recordTemp.c_str());
+        return 1;
+    };
     const auto start = std::chrono::steady_clock::now();
     if (o.reference && scene.animate) scene.animate(scene, o.frames - 1);  // the last frame's state
     std::unique_ptr<render::PathTracer> tracer;
@@ -204,10 +288,7 @@ int main(int argc, char** argv) {
         pto.height = o.height;
         if (o.singleBounce) pto.maxBounces = 1;
         tracer = render::PathTracer::create(*device, scene, pto, &error);
-        if (!tracer) {
-            std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
-            return 1;
-        }
+        if (!tracer) return failRun(error);
         const uint32_t step = std::max(1u, std::min(o.spp, 16u));
         for (uint32_t done = 0; done < o.spp;) {
             const uint32_t n = std::min(step, o.spp - done);
@@ -225,20 +306,15 @@ int main(int argc, char** argv) {
         ro.gi = o.gi;
         ro.giResolution = o.giScale;
         ro.giFeedback = !o.singleBounce;
+        ro.errorCallback = report;  // the SDF's and GI's messages count as the device's do
         // GI converges over frames (each frame's light feeds the next): a still image gets 64 by default.
         const uint32_t frames = o.gi && !o.framesGiven && !scene.animate ? 64u : o.frames;
         raster = render::RasterRenderer::create(*device, scene, ro, &error);
-        if (!raster) {
-            std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
-            return 1;
-        }
+        if (!raster) return failRun(error);
         for (uint32_t f = 0; f < frames; ++f) {
             if (f > 0 && scene.animate) {
                 scene.animate(scene, f);
-                if (!raster->setScene(scene, &error)) {
-                    std::fprintf(stderr, "bricklight-render: frame %u: %s\n", f, error.c_str());
-                    return 1;
-                }
+                if (!raster->setScene(scene, &error)) return failRun("frame " + std::to_string(f) + ": " + error);
             }
             raster->render();
             device->endFrame();
@@ -250,33 +326,35 @@ int main(int argc, char** argv) {
     auto read = [&](render::Aov aov) { return tracer ? tracer->read(aov) : raster->read(aov); };
     render::Image combined = read(render::Aov::Combined);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!render::writeImage(o.out, combined, o.exposure, &error)) {
-        std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
-        return 1;
-    }
+    if (reports.errors)
+        return failRun(std::to_string(reports.errors) + " error(s) were reported during the render (the first: " + reports.firstError +
+                       "); the image may be wrong, so none was written");
+    if (!render::writeImage(o.out, combined, o.exposure, &error)) return failRun(error);
     std::printf("wrote %s (%ux%u, %s, %u triangles, %s on %s) in %.2f s\n", o.out.c_str(), o.width, o.height,
                 scene.name.c_str(), tracer ? tracer->triangleCount() : raster->triangleCount(), how.c_str(), o.backend.c_str(),
                 seconds);
     for (const std::string& view : o.giDebug) {
-        if (!raster) usage("--gi-debug needs the fast path with GI (not --reference or --gi none)");
         uint32_t mode = 0;
         while (view != kGiDebugNames[mode]) ++mode;
         render::Image img = raster->giDebugView(gi::DebugMode(mode), o.exposure);
-        const size_t dot = o.out.find_last_of('.');
-        const std::string path = (dot == std::string::npos ? o.out : o.out.substr(0, dot)) + ".gi-" + view + ".exr";
-        if (img.rgb.empty() || !render::writeImage(path, img, 1.0f, &error)) {
-            std::fprintf(stderr, "bricklight-render: the GI debug view %s failed%s%s\n", view.c_str(), error.empty() ? "" : ": ", error.c_str());
-            return 1;
-        }
+        const std::string path = giDebugPath(o.out, view);
+        if (img.rgb.empty() || !render::writeImage(path, img, 1.0f, &error))
+            return failRun("the GI debug view " + view + " failed" + (error.empty() ? "" : ": " + error));
         std::printf("wrote %s\n", path.c_str());
     }
     for (render::Aov aov : o.aovs) {
         const std::string path = aovPath(o.out, aov);
-        if (!render::writeImage(path, read(aov), 1.0f, &error)) {
-            std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
-            return 1;
-        }
+        if (!render::writeImage(path, read(aov), 1.0f, &error)) return failRun(error);
         std::printf("wrote %s\n", path.c_str());
+    }
+    if (!o.record.empty()) {
+        raster.reset();  // their resources' destruction is part of the recording
+        tracer.reset();
+        device.reset();  // the recorder's last lines
+        recordStream.close();
+        if (!recordStream || reports.errors || std::rename(recordTemp.c_str(), o.record.c_str()) != 0)
+            return failRun("cannot write the recording '" + o.record + "'" + (reports.errors ? ": errors were reported" : ""));
+        std::printf("wrote %s\n", o.record.c_str());
     }
     return 0;
 }

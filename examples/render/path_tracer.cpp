@@ -26,13 +26,18 @@ std::unique_ptr<PathTracer> PathTracer::create(rhi::IDevice& device, const scene
     };
     std::string sceneError;
     if (!checkImageSize(options.width, options.height, &sceneError)) return fail(sceneError);
+    const uint64_t accumulationBytes = uint64_t(options.width) * options.height * 16 * uint32_t(Aov::Count);
+    if (!checkStorageRange(device, accumulationBytes,
+                           "the path tracer's accumulation at " + std::to_string(options.width) + "x" + std::to_string(options.height),
+                           &sceneError))
+        return fail(sceneError + ": render a smaller image");
     std::unique_ptr<GpuScene> gpuScene = GpuScene::create(device, scene, &sceneError);
     if (!gpuScene) return fail(sceneError);
     std::unique_ptr<PathTracer> pt(new PathTracer(device));
     pt->options_ = options;
     pt->scene_ = std::move(gpuScene);
     rhi::BufferDesc d;
-    d.size = uint64_t(options.width) * options.height * 16 * uint32_t(Aov::Count);
+    d.size = accumulationBytes;
     d.debugName = "path tracer accumulation";
     pt->accumulation_ = device.createBuffer(d);
     rhi::ShaderDesc sd;

@@ -59,6 +59,9 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     };
     std::string sceneError;
     if (!checkImageSize(options.width, options.height, &sceneError)) return fail(sceneError);
+    if (!checkStorageRange(device, uint64_t(options.width) * options.height * 16,
+                           "the lighting buffers at " + std::to_string(options.width) + "x" + std::to_string(options.height), &sceneError))
+        return fail(sceneError + ": render a smaller image");
     std::unique_ptr<GpuScene> gpuScene = GpuScene::create(device, scene, &sceneError);
     if (!gpuScene) return fail(sceneError);
     std::unique_ptr<RasterRenderer> r(new RasterRenderer(device));
@@ -128,6 +131,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     // The finest cascade holds the whole scene with a margin; coarser ones catch rays that leave it.
     sd.finestVoxelSize = sdf::suggestVoxelSize(side * 1.1f, 1);
     sd.debugName = "render sdf";
+    sd.errorCallback = options_.errorCallback;
     std::string why;
     sdf_ = sdf::SdfScene::create(device_, sd, &why);
     if (!sdf_) return fail("the distance field for GI: " + why);
@@ -159,6 +163,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     gd.injectTile = options_.giInjectTile;
     gd.probeTile = options_.giProbeTile;
     gd.debugName = "render gi";
+    gd.errorCallback = options_.errorCallback;
     gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
     if (!gi_) return fail(why);
     return true;

@@ -29,6 +29,9 @@ struct RasterOptions {
     uint32_t giInjectTile = 0;   // gi::ContextDesc::injectTile (0: automatic)
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
+    // Receives the SDF's and GI's messages (stderr when empty): an application counts them as it counts its
+    // device's.
+    rhi::ErrorCallback errorCallback;
 };
 
 // The G-buffer and camera of the latest frame, for tools that drive GI themselves (the benchmark).

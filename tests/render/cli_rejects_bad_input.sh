@@ -33,6 +33,38 @@ expect_failure "--gi must be sdf or none" --gi voxels
 expect_failure "--gi-scale must be 100, 75, 50 or 25" --gi-scale 60
 expect_failure "--gi-debug must be radiance-cache" --gi-debug everything
 expect_failure "--gi-debug needs the fast path with GI" "${common[@]}" --gi-debug probes --out "$out/x.png"
+# Numbers are read as numbers: a negative one cannot wrap around to a valid size.
+expect_failure "--width expects a whole number in 1\.\.8192 \(got '-18446744073709551615'\)" --width -18446744073709551615
+expect_failure "--height expects a whole number" --height 99999999999999999999999
+# Output paths are checked before any work (exit 2: nothing was done).
+expect_failure "cannot write '$out/no-such-folder/x.png'" "${common[@]}" --out "$out/no-such-folder/x.png"
+expect_failure "cannot write '$out/x.png.exr'.*not a regular file|unsupported output format" "${common[@]}" --out "$out"
+expect_failure "unsupported output format" "${common[@]}" --aov normal --out "$out/x.tga"
+# Work beyond a device limit is refused before rendering, naming the limit.
+expect_failure "maxStorageBufferRange" --reference --spp 1 --width 1200 --height 1200 --out "$out/x.png"
+# Triangles at the ends of the float range: no crash (the BVH), a clear refusal on both paths.
+expect_failure "camera needs eye != at" "${common[@]}" --scene "$data/huge_coordinates.obj" --out "$out/x.png"
+expect_failure "finestVoxelSize must be a positive finite number" --width 8 --height 8 --frames 1 --scene "$data/huge_coordinates.obj" --out "$out/x.png"
+# Exit codes: usage errors 2, failed renders 1.
+"$render" --width 0 > /dev/null 2>&1; rc=$?
+if [ $rc -ne 2 ]; then echo "FAIL: a usage error exits $rc, not 2"; failures=$((failures + 1)); else echo "ok: usage error -> 2"; fi
+"$render" "${common[@]}" --scene "$data/missing.obj" --out "$out/x.png" > /dev/null 2>&1; rc=$?
+if [ $rc -ne 1 ]; then echo "FAIL: a failed render exits $rc, not 1"; failures=$((failures + 1)); else echo "ok: failed render -> 1"; fi
+# --help and --version succeed.
+if "$render" --help | grep -q "usage: bricklight-render" && "$render" --version | grep -Eq "^bricklight-render [0-9]+\.[0-9]+\.[0-9]+$"; then
+  echo "ok: --help, --version"
+else
+  echo "FAIL: --help or --version"; failures=$((failures + 1))
+fi
+# A write that fails (a file-size limit stands in for a full disk) is an error and keeps the old image whole.
+printf 'old image' > "$out/keep.exr"
+log=$( (trap '' XFSZ; ulimit -f 1; "$render" --width 64 --height 64 --frames 1 --gi none --out "$out/keep.exr") 2>&1); rc=$?
+if [ $rc -ne 1 ] || ! grep -q "cannot write '$out/keep.exr'" <<<"$log" || [ "$(cat "$out/keep.exr")" != "old image" ] ||
+   ls -A "$out" | grep -q '\.tmp'; then
+  echo "FAIL: a failed write: exit $rc, output: $log, old file: $(head -c 20 "$out/keep.exr")"; failures=$((failures + 1))
+else
+  echo "ok: a failed write exits 1 and leaves the old file: $log"
+fi
 log=$("$render" "${common[@]}" --scene "$data/non_manifold_degenerate.obj" --out "$out/ok.png" 2>&1); rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: non-manifold/degenerate geometry: exit $rc: $log"; failures=$((failures + 1)); else echo "ok: non-manifold/degenerate geometry renders: $log"; fi
 # Textures from a file and embedded in a binary glTF give the same albedo (Debian's assimp-testmodels).
