@@ -22,6 +22,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bricklight/gi.h"
+#include "bricklight/version.h"
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_vulkan.h"
 #include "bench_common.h"
@@ -61,6 +62,16 @@ uint32_t number(const char* text, const char* option, uint32_t lo, uint32_t hi) 
 Options parse(int argc, char** argv) {
     Options o;
     if (argc < 2) usage("");
+    if (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+        std::fflush(stderr);
+        std::printf("bricklight-bench sdf|gi [options]: per-pass GPU timings and memory (docs/performance.md); "
+                    "exit status 0 measured, 1 the run failed, 2 usage error (bricklight-bench with no arguments lists the options)\n");
+        std::exit(0);
+    }
+    if (std::string(argv[1]) == "--version") {
+        std::printf("bricklight-bench %s\n", BRICKLIGHT_VERSION_STRING);
+        std::exit(0);
+    }
     o.technique = argv[1];
     if (o.technique != "sdf" && o.technique != "gi") usage("unknown technique '" + o.technique + "' (available: sdf, gi)");
     o.scene = o.technique == "gi" ? "atrium" : "field";

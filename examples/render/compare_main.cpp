@@ -3,12 +3,14 @@
 //   bricklight-compare A B [--max-relmse X]
 //
 // Prints relMSE (epsilon 0.01), RMSE, PSNR and SSIM of display luminance (docs/render.md). With
-// --max-relmse, exits 1 when relMSE exceeds X (for scripts).
+// --max-relmse, exits 1 when relMSE exceeds X (for scripts). Exit status: 0 compared (and within
+// --max-relmse), 1 over it or an image cannot be read, 2 a usage error. --help, --version.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "bricklight/version.h"
 #include "image_io.h"
 #include "image_metrics.h"
 
@@ -19,6 +21,15 @@ int main(int argc, char** argv) {
     double maxRelMse = -1.0;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            std::printf("usage: bricklight-compare A B [--max-relmse X]   (B is the reference)\n"
+                        "exit status: 0 compared (within X), 1 over X or an image cannot be read, 2 usage error\n");
+            return 0;
+        }
+        if (arg == "--version") {
+            std::printf("bricklight-compare %s\n", BRICKLIGHT_VERSION_STRING);
+            return 0;
+        }
         if (arg == "--max-relmse" && i + 1 < argc) {
             char* end = nullptr;
             maxRelMse = std::strtod(argv[++i], &end);
