@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "bricklight/rhi_validation.h"
+#include "size_math.h"
 
 namespace bricklight::rhi {
 
@@ -106,8 +107,16 @@ public:
     }
     bool readTexture(TextureHandle t, TextureSubresource sub, void* out) override {
         const TextureDesc* d = describe(t);
-        if (d && out) std::memset(out, 0, subresourceBytes(*d, sub));
-        return d != nullptr;
+        if (!d) return false;
+        // The one check the null device makes: it writes `out`, and a subresource outside the texture has no
+        // size to write (the count would shift by 32 or more, or overflow).
+        const auto bytes = sizes::subresourceBytes(*d, sub);
+        if (!bytes) {
+            if (callback_) callback_(Severity::Error, "readTexture: subresource outside texture '" + d->debugName + "'");
+            return false;
+        }
+        if (out) std::memset(out, 0, *bytes);
+        return true;
     }
     bool dispatch(const DispatchState&, uint32_t, uint32_t, uint32_t) override { return ++calls_, true; }
     bool dispatchIndirect(const DispatchState&, BufferHandle, uint64_t) override { return ++calls_, true; }

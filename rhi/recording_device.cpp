@@ -4,19 +4,12 @@
 
 #include "bricklight/rhi_validation.h"
 #include "record_json.h"
+#include "size_math.h"
 
 namespace bricklight::rhi {
 
 namespace {
 using record::json;
-
-uint64_t initialBytes(const TextureDesc& d) {
-    uint64_t total = 0;
-    uint32_t layers = textureLayerCount(d);
-    for (uint32_t layer = 0; layer < layers; ++layer)
-        for (uint32_t mip = 0; mip < d.mipLevels; ++mip) total += subresourceBytes(d, {mip, layer, 1});
-    return total;
-}
 
 class RecordingDevice final : public IDevice {
 public:
@@ -28,7 +21,10 @@ public:
     TextureHandle createTexture(const TextureDesc& d, const void* data) override {
         TextureHandle h = inner_.createTexture(d, data);
         json j{{"call", "createTexture"}, {"result", h.id}, {"desc", record::encode(d)}};
-        if (data) j["data"] = record::base64Encode(data, initialBytes(d));
+        // The initial data of a description whose size cannot be computed (no device accepts one) is left
+        // out: counting it looped over every mip of a hostile mipLevels and shifted by 32 or more.
+        if (data)
+            if (const auto bytes = sizes::textureBytes(d)) j["data"] = record::base64Encode(data, *bytes);
         return write(j), h;
     }
     BufferHandle createBuffer(const BufferDesc& d, const void* data) override {
@@ -63,14 +59,16 @@ public:
     const BufferDesc* describe(BufferHandle h) const override { return inner_.describe(h); }
 
     bool writeBuffer(BufferHandle b, uint64_t offset, const void* data, uint64_t size) override {
-        write({{"call", "writeBuffer"}, {"buffer", b.id}, {"offset", offset}, {"data", record::base64Encode(data, data ? size : 0)}});
+        // The size too: a write with null data and a size is replayed as such (and fails again).
+        write({{"call", "writeBuffer"}, {"buffer", b.id}, {"offset", offset}, {"size", size},
+               {"data", record::base64Encode(data, data ? size : 0)}});
         return inner_.writeBuffer(b, offset, data, size);
     }
     bool writeTexture(TextureHandle t, TextureSubresource sub, const void* data) override {
         const TextureDesc* d = inner_.describe(t);
-        uint64_t bytes = d && data ? subresourceBytes(*d, sub) : 0;
+        const auto bytes = d && data ? sizes::subresourceBytes(*d, sub) : std::nullopt;  // none outside the texture
         write({{"call", "writeTexture"}, {"texture", t.id}, {"sub", {sub.mip, sub.layer, sub.layerCount}},
-               {"data", record::base64Encode(data, bytes)}});
+               {"data", record::base64Encode(data, bytes ? *bytes : 0)}});
         return inner_.writeTexture(t, sub, data);
     }
     bool copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset, uint64_t size) override {
@@ -140,7 +138,9 @@ public:
     void waitIdle() override { write({{"call", "waitIdle"}}), inner_.waitIdle(); }
 
 private:
-    void write(const json& j) { out_ << j.dump() << '\n'; }
+    // Names and labels come from the application and need not be UTF-8, which JSON must be: dump() would
+    // throw out of the call; invalid bytes become U+FFFD instead.
+    void write(const json& j) { out_ << j.dump(-1, ' ', false, json::error_handler_t::replace) << '\n'; }
 
     IDevice& inner_;
     std::ostream& out_;

@@ -143,7 +143,7 @@ public:
         const BufferDesc* s = liveBuffer(objects_, src, "src", r);
         if (d) checkBufferRange(*d, dstOffset, size, "dst range", r);
         if (s) checkBufferRange(*s, srcOffset, size, "src range", r);
-        if (dst == src && dstOffset < srcOffset + size && srcOffset < dstOffset + size)
+        if (d && s && r.errors.empty() && dst == src && dstOffset < srcOffset + size && srcOffset < dstOffset + size)
             r.error("src and dst ranges overlap in the same buffer");
         if (size % 4 || dstOffset % 4 || srcOffset % 4) r.error("offsets and size must be multiples of 4");
         return finish(r) && inner_.copyBuffer(dst, dstOffset, src, srcOffset, size);
@@ -178,7 +178,7 @@ public:
         Report r{"clearTexture"};
         if (const TextureDesc* d = liveTexture(objects_, t, "texture", r)) {
             r.call += labelOf(d->debugName.c_str());
-            if (baseMip >= d->mipLevels || (mipCount && baseMip + mipCount > d->mipLevels))
+            if (baseMip >= d->mipLevels || (mipCount && mipCount > d->mipLevels - baseMip))
                 r.error("mip range " + std::to_string(baseMip) + "+" + std::to_string(mipCount) + " out of range (" +
                         std::to_string(d->mipLevels) + " mips)");
         }

@@ -296,9 +296,60 @@ private:
     friend void validation::checkDraw(const ObjectTable&, const Capabilities&, const DrawCallState&, Report&);
 };
 
+// Enum fields hold a value of their enum: a record made by a cast (or decoded from a file) may not.
+template <typename E>
+void checkEnum(E value, int count, const std::string& field, Report& r) {
+    if (int(value) >= count) r.error(field + ": " + std::to_string(int(value)) + " is out of range (0.." + std::to_string(count - 1) + ")");
+}
+
+// A FixedVector's count is a public field: one above the capacity would make every loop read past it.
+template <typename V>
+bool countFits(const V& v, const char* field, Report& r) {
+    if (v.count <= V::capacity) return true;
+    r.error(std::string(field) + ": count " + std::to_string(v.count) + " exceeds the capacity " + std::to_string(V::capacity));
+    return false;
+}
+bool countsFit(const Bindings& b, Report& r) {
+    const size_t before = r.errors.size();
+    countFits(b.constants, "constants", r), countFits(b.textures, "textures", r);
+    countFits(b.readBuffers, "readBuffers", r), countFits(b.storageBuffers, "storageBuffers", r);
+    countFits(b.storageImages, "storageImages", r);
+    return r.errors.size() == before;
+}
+
+void checkAccessEnums(const Bindings& b, Report& r) {
+    for (size_t i = 0; i < b.storageBuffers.size(); ++i)
+        checkEnum(b.storageBuffers[i].access, 4, slotField(BindingClass::StorageBuffer, i, b.storageBuffers[i].slot) + ".access", r);
+    for (size_t i = 0; i < b.storageImages.size(); ++i)
+        checkEnum(b.storageImages[i].access, 4, slotField(BindingClass::StorageImage, i, b.storageImages[i].slot) + ".access", r);
+}
+
+void checkDrawEnums(const DrawCallState& s, Report& r) {
+    checkEnum(s.topology, 4, "topology", r);
+    checkEnum(s.indexBuffer.format, 2, "indexBuffer.format", r);
+    checkEnum(s.raster.cull, 3, "raster.cull", r);
+    checkEnum(s.raster.frontFace, 2, "raster.frontFace", r);
+    checkEnum(s.depth.compare, 8, "depth.compare", r);
+    checkEnum(s.depthTarget.load, 3, "depthTarget.load", r);
+    for (size_t i = 0; i < s.vertexInputs.size(); ++i)
+        checkEnum(s.vertexInputs[i].format, 7, "vertexInputs[" + std::to_string(i) + "].format", r);
+    for (size_t i = 0; i < s.colorTargets.size(); ++i) {
+        const ColorTarget& c = s.colorTargets[i];
+        const std::string field = "colorTargets[" + std::to_string(i) + "]";
+        checkEnum(c.load, 3, field + ".load", r);
+        checkEnum(c.blend.srcColor, 10, field + ".blend.srcColor", r);
+        checkEnum(c.blend.dstColor, 10, field + ".blend.dstColor", r);
+        checkEnum(c.blend.srcAlpha, 10, field + ".blend.srcAlpha", r);
+        checkEnum(c.blend.dstAlpha, 10, field + ".blend.dstAlpha", r);
+        checkEnum(c.blend.colorOp, 5, field + ".blend.colorOp", r);
+        checkEnum(c.blend.alphaOp, 5, field + ".blend.alphaOp", r);
+    }
+}
 }  // namespace
 
 void checkDispatch(const ObjectTable& t, const Capabilities& caps, const DispatchState& s, Report& r) {
+    if (!countsFit(s.bindings, r)) return;
+    checkAccessEnums(s.bindings, r);
     const ShaderInfo* sh = liveShader(t, s.shader, "shader", r);
     if (!sh) return;
     if (sh->blob->stage != ShaderStage::Compute) {
@@ -313,6 +364,13 @@ void checkDispatch(const ObjectTable& t, const Capabilities& caps, const Dispatc
 }
 
 void checkDraw(const ObjectTable& t, const Capabilities& caps, const DrawCallState& s, Report& r) {
+    const size_t before = r.errors.size();
+    countsFit(s.bindings, r);
+    countFits(s.vertexInputs, "vertexInputs", r), countFits(s.vertexBuffers, "vertexBuffers", r);
+    countFits(s.colorTargets, "colorTargets", r);
+    if (r.errors.size() != before) return;
+    checkAccessEnums(s.bindings, r);
+    checkDrawEnums(s, r);
     DeclaredBindings declared;
     const ShaderInfo* vs = liveShader(t, s.vertexShader, "vertexShader", r);
     if (vs && vs->blob->stage != ShaderStage::Vertex) r.error("vertexShader '" + vs->name + "' is not a vertex shader");

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "size_math.h"
 #include "validation_internal.h"
 
 namespace bricklight::rhi::validation {
@@ -84,11 +85,13 @@ void checkTextureDesc(const TextureDesc& d, const Capabilities& caps, Report& r)
             if (d.width != d.height) r.error("cube faces must be square");
             if (d.depthOrLayers != 6) r.error("a cube texture has depthOrLayers 6");
             break;
+        default:
+            r.error("dimension " + std::to_string(int(d.dimension)) + " is not a TextureDimension");
+            return;
     }
-    uint32_t largest = std::max(d.width, d.height);
-    if (d.dimension == TextureDimension::Texture3D) largest = std::max(largest, d.depthOrLayers);
-    uint32_t maxMips = 1;
-    while ((largest >> maxMips) > 0) ++maxMips;
+    // Counted without shifting: `while (largest >> n) ++n` shifted by 32 for a width of 2^31 or more, which
+    // x86 takes as a shift by 0, and looped forever.
+    const uint32_t maxMips = sizes::fullMipCount(sizes::largestExtent(d));
     if (d.mipLevels == 0 || d.mipLevels > maxMips)
         r.error("mipLevels " + std::to_string(d.mipLevels) + " out of range 1.." + std::to_string(maxMips));
     if (d.usage == 0) r.error("usage is empty: give at least one TextureUsage bit");
@@ -119,6 +122,12 @@ void checkBufferDesc(const BufferDesc& d, Report& r) {
 }
 
 void checkSamplerDesc(const SamplerDesc& d, Report& r) {
+    auto inRange = [&](auto value, int count, const char* field) {
+        if (int(value) >= count) r.error(std::string(field) + " " + std::to_string(int(value)) + " is out of range");
+    };
+    inRange(d.minFilter, 2, "minFilter"), inRange(d.magFilter, 2, "magFilter"), inRange(d.mipFilter, 2, "mipFilter");
+    inRange(d.addressU, 4, "addressU"), inRange(d.addressV, 4, "addressV"), inRange(d.addressW, 4, "addressW");
+    inRange(d.borderColor, 3, "borderColor"), inRange(d.compareOp, 8, "compareOp");
     if (!(d.maxAnisotropy >= 1.0f && d.maxAnisotropy <= 16.0f)) r.error("maxAnisotropy must be in [1, 16]");
     if (!(d.minLod <= d.maxLod)) r.error("minLod must not exceed maxLod");
     if (!std::isfinite(d.mipLodBias)) r.error("mipLodBias is not finite");
@@ -151,7 +160,7 @@ bool checkSubresource(const TextureDesc& d, TextureSubresource sub, const std::s
         return false;
     }
     uint32_t layers = textureLayerCount(d);
-    if (sub.layer >= layers || (sub.layerCount && sub.layer + sub.layerCount > layers)) {
+    if (sub.layer >= layers || (sub.layerCount && sub.layerCount > layers - sub.layer)) {
         r.error(field + ": layers " + std::to_string(sub.layer) + "+" + std::to_string(sub.layerCount) +
                 " out of range (texture " + quoted(d.debugName) + " has " + std::to_string(layers) + ")");
         return false;
@@ -160,8 +169,8 @@ bool checkSubresource(const TextureDesc& d, TextureSubresource sub, const std::s
 }
 
 bool checkBufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const std::string& field, Report& r) {
-    if (offset > d.size || size > d.size - offset) {
-        r.error(field + ": range [" + std::to_string(offset) + ", " + std::to_string(offset + size) +
+    if (!sizes::rangeInside(offset, size, d.size)) {
+        r.error(field + ": range [" + std::to_string(offset) + ", +" + std::to_string(size) +
                 ") exceeds buffer " + quoted(d.debugName) + " of " + std::to_string(d.size) + " bytes");
         return false;
     }

@@ -2,8 +2,12 @@
 // rhi_gl.h (createDevice, createHeadlessDevice, barrierCount).
 #include "gl_device.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "gl_formats.h"
 
@@ -71,6 +75,25 @@ bool Device::init(const DeviceOptions& options, std::string* error) {
     return true;
 }
 
+namespace {
+uint64_t queryMaxResourceBytes(const Functions& gl, GLint extensions) {
+    uint64_t gpu = 0;
+    for (GLint i = 0; i < extensions; ++i) {
+        const char* e = reinterpret_cast<const char*>(gl.GetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (e && !strcmp(e, "GL_NVX_gpu_memory_info")) {
+            GLint kib = 0;
+            gl.GetIntegerv(0x9048 /* GL_GPU_MEMORY_INFO_TOTAL_AVAILABLE_MEMORY_NVX */, &kib);
+            gpu = uint64_t(kib > 0 ? kib : 0) * 1024;
+        }
+    }
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    const uint64_t host = pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : 0;
+    const uint64_t known = gpu ? gpu : host;
+    const uint64_t sizeLimit = uint64_t(std::numeric_limits<GLsizeiptr>::max());
+    return known ? std::min(known, sizeLimit) : sizeLimit;
+}
+}  // namespace
+
 void Device::queryCapabilities() {
     caps_.backendName = "gl";
     caps_.deviceName = std::string(reinterpret_cast<const char*>(gl.GetString(GL_RENDERER))) + " (OpenGL " +
@@ -117,6 +140,7 @@ void Device::queryCapabilities() {
             anisotropy_ = true;
     }
     if (anisotropy_) gl.GetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &maxAnisotropy_);
+    maxResourceBytes_ = queryMaxResourceBytes(gl, extensions);
     drainErrors(gl);
 }
 

@@ -166,6 +166,10 @@ private:
     bool anisotropy_ = false;
     float maxAnisotropy_ = 1.0f;
     GLint storageAlignment_ = 1;
+    // The most one buffer or texture may hold, checked by the backend itself (not left to the validation
+    // wrapper): the GPU's memory where the driver tells (GL_NVX_gpu_memory_info), else the host's physical
+    // memory (all a software renderer such as llvmpipe has), and never more than GLsizeiptr holds.
+    uint64_t maxResourceBytes_ = 0;
 
     uint32_t nextId_ = 1;
     std::unordered_map<uint32_t, TextureRecord> textures_;

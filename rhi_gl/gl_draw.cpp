@@ -89,8 +89,16 @@ bool Device::prepareTargets(const Call& call, const DrawCallState& s, DrawPlan* 
     } else if (s.depth.testEnable || s.depth.writeEnable) {
         return fail(call, "depth: test or write enabled but there is no depth target");
     }
-    if (s.viewport.width != 0.0f && !(s.viewport.height > 0.0f && s.viewport.width > 0.0f))
+    const Viewport& v = s.viewport;
+    if (v.width != 0.0f && !(v.height > 0.0f && v.width > 0.0f))
         return fail(call, "viewport: width and height must both be positive (or width 0 for the whole target)");
+    // What Vulkan requires too (both backends refuse the same records): finite, depths in [0, 1].
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.width) || !std::isfinite(v.height))
+        return fail(call, "viewport: x, y, width and height must be finite");
+    if (!(v.minDepth >= 0.0f && v.minDepth <= 1.0f && v.maxDepth >= 0.0f && v.maxDepth <= 1.0f))
+        return fail(call, "viewport: minDepth and maxDepth must be in [0, 1]");
+    if (!std::isfinite(s.raster.depthBiasConstant) || !std::isfinite(s.raster.depthBiasSlope))
+        return fail(call, "raster: depthBiasConstant and depthBiasSlope must be finite");
     std::string error;
     plan->fbo = framebuffers_.get(gl, colors, s.colorTargets.size(), depth, &error);
     if (!plan->fbo) return fail(call, "colorTargets/depthTarget: " + error);

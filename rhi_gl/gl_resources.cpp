@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../rhi/size_math.h"
 #include "gl_device.h"
 #include "gl_formats.h"
 
@@ -10,13 +11,7 @@ namespace bricklight::gl::detail {
 using namespace rhi;
 
 namespace {
-uint32_t maxMipLevels(const TextureDesc& d) {
-    uint32_t largest = std::max(d.width, d.height);
-    if (d.dimension == TextureDimension::Texture3D) largest = std::max(largest, d.depthOrLayers);
-    uint32_t mips = 1;
-    while (largest > 1) largest >>= 1, ++mips;
-    return mips;
-}
+uint32_t maxMipLevels(const TextureDesc& d) { return sizes::fullMipCount(sizes::largestExtent(d)); }
 }  // namespace
 
 bool Device::checkTextureDesc(const Call& call, const TextureDesc& d) const {
@@ -47,6 +42,12 @@ bool Device::checkTextureDesc(const Call& call, const TextureDesc& d) const {
     if (d.mipLevels < 1 || d.mipLevels > maxMipLevels(d))
         return fail(call, "mipLevels " + std::to_string(d.mipLevels) + " out of range 1.." + std::to_string(maxMipLevels(d)));
     if (d.usage == 0) return fail(call, "usage is empty: give at least one TextureUsage bit");
+    // Within the limits above the count fits 64 bits; a texture larger than the memory there is is refused here
+    // rather than by a driver that may try to allocate it.
+    const auto bytes = sizes::textureBytes(d);
+    if (!bytes || *bytes > maxResourceBytes_)
+        return fail(call, "size " + (bytes ? std::to_string(*bytes) + " bytes" : std::string("beyond 2^64 bytes")) +
+                              " exceeds the largest resource this device can hold (" + std::to_string(maxResourceBytes_) + " bytes)");
     const struct {
         uint32_t usage, support;
         const char* name;
@@ -120,6 +121,9 @@ TextureHandle Device::createTexture(const TextureDesc& desc, const void* initial
 
 bool Device::checkBufferDesc(const Call& call, const BufferDesc& d) const {
     if (d.size == 0) return fail(call, "zero-size buffer: size must be at least 1 byte");
+    if (d.size > maxResourceBytes_)
+        return fail(call, "size " + std::to_string(d.size) + " exceeds the largest buffer this device can hold (" +
+                              std::to_string(maxResourceBytes_) + " bytes)");
     if (d.usage == 0) return fail(call, "usage is empty: give at least one BufferUsage bit");
     if (d.structStride && d.structStride % 4)
         return fail(call, "structStride " + std::to_string(d.structStride) + " is not a multiple of 4");

@@ -41,7 +41,7 @@ bool Device::checkSubresource(const Call& call, const std::string& field, const 
 bool Device::checkBufferRange(const Call& call, const std::string& field, const BufferRecord& b, uint64_t offset,
                               uint64_t size) const {
     if (offset > b.desc.size || size > b.desc.size - offset)
-        return fail(call, field + ": range [" + std::to_string(offset) + ", " + std::to_string(offset + size) +
+        return fail(call, field + ": range [" + std::to_string(offset) + ", +" + std::to_string(size) +
                               ") exceeds the " + std::to_string(b.desc.size) + " bytes of " + detail::describe(b));
     return true;
 }
@@ -213,8 +213,13 @@ uint64_t Device::requestReadback(BufferHandle h, uint64_t offset, uint64_t size)
     barriers_.require(&bits, b->lastShaderWrite, GL_BUFFER_UPDATE_BARRIER_BIT);
     barriers_.issue(gl, bits);
     PendingReadback rb;
+    drainErrors(gl);
     gl.CreateBuffers(1, &rb.buffer);
     gl.NamedBufferStorage(rb.buffer, GLsizeiptr(size), nullptr, GL_CLIENT_STORAGE_BIT);
+    if (GLenum err = gl.GetError(); err != GL_NO_ERROR) {  // the staging copy may not fit where the buffer did
+        gl.DeleteBuffers(1, &rb.buffer);
+        return fail(call, "cannot allocate " + std::to_string(size) + " bytes of read-back memory (GL error " + hex(err) + ")"), 0;
+    }
     gl.CopyNamedBufferSubData(b->name, rb.buffer, GLintptr(offset), 0, GLsizeiptr(size));
     rb.fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     rb.size = size;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../rhi/size_math.h"
 #include "vk_device.h"
 #include "vk_formats.h"
 
@@ -66,7 +67,7 @@ bool VulkanDevice::dispatchIndirect(const rhi::DispatchState& state, rhi::Buffer
     if (!a) return false;
     if (!(a->desc.usage & rhi::BufferUsage::IndirectArgs))
         return fail(call + ": args " + bufferName(*a) + " was created without IndirectArgs usage");
-    if (offset % 4 || offset + sizeof(rhi::DispatchIndirectArgs) > a->desc.size)
+    if (offset % 4 || !rhi::sizes::rangeInside(offset, sizeof(rhi::DispatchIndirectArgs), a->desc.size))
         return fail(call + ": args offset " + std::to_string(offset) + " is unaligned or leaves fewer than 12 bytes in " +
                     bufferName(*a));
     AccessRequest req;
@@ -83,6 +84,30 @@ bool VulkanDevice::dispatchIndirect(const rhi::DispatchState& state, rhi::Buffer
     endCallLabel(c, state.label);
     releaseWrapped(c, plan);
     return ok;
+}
+
+// The viewport and depth bias as Vulkan accepts them (VkViewport's rules), checked here rather than left to
+// the validation layer: a NaN reached the scissor's float-to-int clamp, and any other value outside them is
+// undefined behaviour in the driver.
+bool VulkanDevice::checkViewport(const rhi::DrawCallState& s, const std::string& call) {
+    const rhi::Viewport& v = s.viewport;
+    const VkPhysicalDeviceLimits& l = props_.limits;
+    if (!std::isfinite(s.raster.depthBiasConstant) || !std::isfinite(s.raster.depthBiasSlope))
+        return fail(call + ": raster.depthBiasConstant and depthBiasSlope must be finite");
+    if (!(v.minDepth >= 0.0f && v.minDepth <= 1.0f && v.maxDepth >= 0.0f && v.maxDepth <= 1.0f))
+        return fail(call + ": viewport.minDepth and maxDepth must be in [0, 1]");
+    if (v.width == 0.0f) return true;  // the whole target: x, y and height are not used
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.width) || !std::isfinite(v.height))
+        return fail(call + ": viewport: x, y, width and height must be finite");
+    if (!(v.width > 0.0f && v.height > 0.0f && v.width <= float(l.maxViewportDimensions[0]) &&
+          v.height <= float(l.maxViewportDimensions[1])))
+        return fail(call + ": viewport " + std::to_string(v.width) + "x" + std::to_string(v.height) +
+                    " must be positive and within maxViewportDimensions");
+    if (!(v.x >= l.viewportBoundsRange[0] && v.y >= l.viewportBoundsRange[0] && v.x + v.width <= l.viewportBoundsRange[1] &&
+          v.y + v.height <= l.viewportBoundsRange[1]))
+        return fail(call + ": viewport (" + std::to_string(v.x) + ", " + std::to_string(v.y) +
+                    ") lies outside viewportBoundsRange");
+    return true;
 }
 
 bool VulkanDevice::prepareDraw(const rhi::DrawCallState& s, const std::string& call, CallPlan& plan,
@@ -108,6 +133,7 @@ bool VulkanDevice::prepareDraw(const rhi::DrawCallState& s, const std::string& c
     if (s.colorTargets.size() > caps_.limits.maxColorTargets)
         return fail(call + ": " + std::to_string(s.colorTargets.size()) + " colour targets exceed maxColorTargets");
     if (s.raster.depthClamp && !enabled_.depthClamp) return fail(call + ": raster.depthClamp is not supported on this device");
+    if (!checkViewport(s, call)) return false;
 
     // Targets: one mip and one layer each, all the same size.
     extent->width = extent->height = 0;
@@ -372,7 +398,7 @@ bool VulkanDevice::drawIndirect(const rhi::DrawCallState& state, rhi::BufferHand
     if (!(a->desc.usage & rhi::BufferUsage::IndirectArgs))
         return fail(call + ": args " + bufferName(*a) + " was created without IndirectArgs usage");
     const uint64_t need = indexed ? sizeof(rhi::DrawIndexedArgs) : sizeof(rhi::DrawArgs);
-    if (offset % 4 || offset + need > a->desc.size)
+    if (offset % 4 || !rhi::sizes::rangeInside(offset, need, a->desc.size))
         return fail(call + ": args offset " + std::to_string(offset) + " is unaligned or leaves fewer than " +
                     std::to_string(need) + " bytes in " + bufferName(*a));
     AccessRequest req;

@@ -264,6 +264,9 @@ private:
     std::string textureName(const Texture& t) const;
     std::string bufferName(const Buffer& b) const;
     bool checkTextureDesc(const rhi::TextureDesc& desc, const std::string& call);
+    // Whether `bytes` of memory can be one allocation on this device (reports the refusal).
+    bool checkAllocationSize(uint64_t bytes, const std::string& call, const char* what);
+    bool checkBufferSize(const rhi::BufferDesc& desc, const std::string& call);
     Texture* addTexture(const rhi::TextureDesc& desc, VkImage image, VkDeviceMemory memory, bool wrapped);
     void uploadInitialTexture(Texture& texture, const void* data);
 
@@ -298,6 +301,7 @@ private:
                          const Program** program, VkPipeline* pipeline);
     bool prepareDraw(const rhi::DrawCallState& state, const std::string& call, CallPlan& plan,
                      const Program** program, VkPipeline* pipeline, VkExtent2D* extent);
+    bool checkViewport(const rhi::DrawCallState& state, const std::string& call);
     void recordDraw(const rhi::DrawCallState& state, const Program& program, VkPipeline pipeline, VkExtent2D extent,
                     CallPlan& plan, const std::function<void(VkCommandBuffer)>& issue);
     void beginCallLabel(VkCommandBuffer cmd, const char* label);
@@ -340,6 +344,11 @@ private:
     bool pushDescriptors_ = false;
     uint32_t maxPushDescriptors_ = 0;
     rhi::Capabilities caps_;
+    // What one buffer or one allocation may hold here: maintenance4's maxBufferSize, maintenance3's
+    // maxMemoryAllocationSize and the largest device-local heap. Checked by the backend itself (not left to the
+    // validation wrapper): a size of 2^64-1, rounded up to 4, became 0 and a 4-byte buffer stood for it.
+    uint64_t maxBufferBytes_ = 0;
+    uint64_t maxAllocationBytes_ = 0;
 
     // Extension entry points (null when unavailable).
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;

@@ -1,7 +1,9 @@
 // Resource creation, wrapping, lookup and (deferred) destruction.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
+#include "../rhi/size_math.h"
 #include "vk_device.h"
 #include "vk_formats.h"
 
@@ -16,12 +18,22 @@ std::string missing(const Map& map, uint32_t id, uint32_t nextId, const std::str
     return s + (id < nextId ? " was destroyed" : " is not a handle this device issued");
 }
 
-uint32_t maxMips(uint32_t w, uint32_t h, uint32_t d) {
-    uint32_t m = std::max({w, h, d}), n = 1;
-    while (m > 1) m >>= 1, ++n;
-    return n;
-}
+std::string bytesText(uint64_t bytes) { return std::to_string(bytes) + " bytes"; }
 }  // namespace
+
+bool VulkanDevice::checkAllocationSize(uint64_t bytes, const std::string& call, const char* what) {
+    if (bytes <= maxAllocationBytes_) return true;
+    return fail(call + ": " + what + " of " + bytesText(bytes) + " exceeds what one allocation may hold on this device (" +
+                bytesText(maxAllocationBytes_) + ")");
+}
+
+bool VulkanDevice::checkBufferSize(const rhi::BufferDesc& desc, const std::string& call) {
+    if (desc.size == 0) return fail(call + ": size is 0");
+    if (desc.size > maxBufferBytes_)
+        return fail(call + ": size " + std::to_string(desc.size) + " exceeds the largest buffer this device can hold (" +
+                    bytesText(maxBufferBytes_) + ")");
+    return true;
+}
 
 Texture* VulkanDevice::findTexture(rhi::TextureHandle h, const std::string& call, const char* what) {
     if (!h) return fail(call + ": " + what + " is a null texture handle"), nullptr;
@@ -77,6 +89,8 @@ bool VulkanDevice::checkTextureDesc(const rhi::TextureDesc& d, const std::string
     namespace U = rhi::TextureUsage;
     namespace S = rhi::FormatSupport;
     if (d.format == rhi::Format::Unknown || d.format >= rhi::Format::Count) return fail(call + ": format is Unknown");
+    if (d.dimension > TextureDimension::TextureCube)
+        return fail(call + ": dimension " + std::to_string(int(d.dimension)) + " is not a TextureDimension");
     if (!d.width || !d.height || !d.depthOrLayers)
         return fail(call + ": size " + std::to_string(d.width) + "x" + std::to_string(d.height) + "x" +
                     std::to_string(d.depthOrLayers) + " has a zero dimension");
@@ -91,10 +105,13 @@ bool VulkanDevice::checkTextureDesc(const rhi::TextureDesc& d, const std::string
         return fail(call + ": " + std::to_string(d.depthOrLayers) + " layers exceed maxTextureArrayLayers");
     if (d.dimension == TextureDimension::TextureCube && (d.depthOrLayers != 6 || d.width != d.height))
         return fail(call + ": a cube needs depthOrLayers 6 and square faces");
-    const uint32_t depth = d.dimension == TextureDimension::Texture3D ? d.depthOrLayers : 1;
-    if (d.mipLevels == 0 || d.mipLevels > maxMips(d.width, d.height, depth))
-        return fail(call + ": mipLevels " + std::to_string(d.mipLevels) + " is out of range (1.." +
-                    std::to_string(maxMips(d.width, d.height, depth)) + ")");
+    const uint32_t maxMips = rhi::sizes::fullMipCount(rhi::sizes::largestExtent(d));
+    if (d.mipLevels == 0 || d.mipLevels > maxMips)
+        return fail(call + ": mipLevels " + std::to_string(d.mipLevels) + " is out of range (1.." + std::to_string(maxMips) + ")");
+    // Every extent is within the limits here, so the count fits 64 bits; refuse what no allocation can hold.
+    const auto bytes = rhi::sizes::textureBytes(d);
+    if (!bytes) return fail(call + ": the texture's size in bytes does not fit 64 bits");
+    if (!checkAllocationSize(*bytes, call, "a texture")) return false;
     if (d.usage & ~uint32_t(U::Sampled | U::Storage | U::RenderTarget | U::DepthTarget))
         return fail(call + ": usage has unknown bits");
     const bool depthFormat = isDepthFormat(d.format);
@@ -173,10 +190,20 @@ rhi::TextureHandle VulkanDevice::createTexture(const rhi::TextureDesc& desc, con
         return fail(call + ": this device cannot create a " + rhi::textureDimensionName(desc.dimension) + " " +
                     rhi::formatName(desc.format) + " texture of this size/usage"),
                rhi::TextureHandle{};
+    if (const uint64_t bytes = *rhi::sizes::textureBytes(desc); bytes > ifp.maxResourceSize)
+        return fail(call + ": " + bytesText(bytes) + " exceed the device's maxResourceSize for this format (" +
+                    bytesText(ifp.maxResourceSize) + ")"),
+               rhi::TextureHandle{};
 
     VkImage image = VK_NULL_HANDLE;
     if (vkCreateImage(device_, &ici, nullptr, &image) != VK_SUCCESS)
         return fail(call + ": vkCreateImage failed"), rhi::TextureHandle{};
+    VkMemoryRequirements requirements;
+    vkGetImageMemoryRequirements(device_, image, &requirements);
+    if (!checkAllocationSize(requirements.size, call, "the image's memory")) {
+        vkDestroyImage(device_, image, nullptr);
+        return {};
+    }
     VkDeviceMemory memory = VK_NULL_HANDLE;
     if (!allocateImageMemory(image, &memory)) {
         vkDestroyImage(device_, image, nullptr);
@@ -242,7 +269,7 @@ void VulkanDevice::uploadInitialTexture(Texture& t, const void* data) {
 rhi::BufferHandle VulkanDevice::createBuffer(const rhi::BufferDesc& desc, const void* initialData) {
     const std::string call = "createBuffer" + quoted(desc.debugName.c_str());
     namespace U = rhi::BufferUsage;
-    if (desc.size == 0) return fail(call + ": size is 0"), rhi::BufferHandle{};
+    if (!checkBufferSize(desc, call)) return {};
     if (desc.usage & ~uint32_t(U::ShaderRead | U::ShaderWrite | U::IndirectArgs | U::Vertex | U::Index))
         return fail(call + ": usage has unknown bits"), rhi::BufferHandle{};
     if (desc.structStride && desc.size % desc.structStride)
@@ -278,6 +305,14 @@ rhi::SamplerHandle VulkanDevice::createSampler(const rhi::SamplerDesc& d) {
     const std::string call = "createSampler" + quoted(d.debugName.c_str());
     if (!(d.maxAnisotropy >= 1.0f)) return fail(call + ": maxAnisotropy must be >= 1"), rhi::SamplerHandle{};
     if (!(d.minLod <= d.maxLod)) return fail(call + ": minLod is greater than maxLod"), rhi::SamplerHandle{};
+    if (!(std::fabs(d.mipLodBias) <= props_.limits.maxSamplerLodBias))
+        return fail(call + ": mipLodBias " + std::to_string(d.mipLodBias) + " exceeds maxSamplerLodBias " +
+                    std::to_string(props_.limits.maxSamplerLodBias)),
+               rhi::SamplerHandle{};
+    if (int(d.minFilter) > 1 || int(d.magFilter) > 1 || int(d.mipFilter) > 1 || int(d.addressU) > 3 || int(d.addressV) > 3 ||
+        int(d.addressW) > 3 || int(d.borderColor) > 2 || int(d.compareOp) > 7)
+        return fail(call + ": a filter, address mode, border colour or compare op is out of its enum's range"),
+               rhi::SamplerHandle{};
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     sci.magFilter = toVkFilter(d.magFilter);
     sci.minFilter = toVkFilter(d.minFilter);
@@ -349,7 +384,8 @@ rhi::TextureHandle VulkanDevice::wrapNativeTexture(const rhi::TextureDesc& desc,
 rhi::BufferHandle VulkanDevice::wrapNativeBuffer(const rhi::BufferDesc& desc, rhi::NativeObject native) {
     const std::string call = "wrapNativeBuffer" + quoted(desc.debugName.c_str());
     if (!native.object) return fail(call + ": native.object (VkBuffer) is null"), rhi::BufferHandle{};
-    if (desc.size == 0) return fail(call + ": size is 0"), rhi::BufferHandle{};
+    // Vulkan cannot tell a VkBuffer's size: desc.size is trusted, but never beyond what a buffer may be.
+    if (!checkBufferSize(desc, call)) return {};
     auto b = std::make_unique<Buffer>();
     b->id = nextBufferId_++;
     b->desc = desc;

@@ -1,4 +1,5 @@
 // Instance, physical device and device creation; capabilities; the debug messenger; the public factories.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -322,10 +323,20 @@ void VulkanDevice::queryCapabilities() {
     VkPhysicalDevicePushDescriptorPropertiesKHR push{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     driver.pNext = pushDescriptors_ ? &push : nullptr;
+    VkPhysicalDeviceMaintenance3Properties m3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    m3.pNext = &driver;
+    VkPhysicalDeviceMaintenance4Properties m4{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES};
+    m4.pNext = &m3;
     VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-    p2.pNext = &driver;
+    p2.pNext = &m4;
     vkGetPhysicalDeviceProperties2(physical_, &p2);
     maxPushDescriptors_ = pushDescriptors_ ? push.maxPushDescriptors : 0;
+    VkDeviceSize largestHeap = 0;
+    for (uint32_t i = 0; i < memProps_.memoryHeapCount; ++i)
+        if (memProps_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            largestHeap = std::max(largestHeap, memProps_.memoryHeaps[i].size);
+    maxAllocationBytes_ = std::min<uint64_t>(m3.maxMemoryAllocationSize, largestHeap);
+    maxBufferBytes_ = std::min<uint64_t>(m4.maxBufferSize, maxAllocationBytes_);
 
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, nullptr);

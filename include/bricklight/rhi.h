@@ -534,7 +534,7 @@ ConstantsBinding constants(uint8_t slot, const T& value) {
 
 // Mip dimensions of a texture (never below 1).
 inline uint32_t mipExtent(uint32_t base, uint32_t mip) {
-    uint32_t e = base >> mip;
+    const uint32_t e = mip < 32 ? base >> mip : 0;  // a shift by 32 or more is undefined
     return e ? e : 1;
 }
 // Bytes of one subresource as read/written by readTexture/writeTexture.

@@ -6,6 +6,8 @@
 //    IDevice (another backend, a later build, an engine's RHI).
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -28,11 +30,29 @@ std::unique_ptr<IDevice> createNullDevice(const Capabilities* capabilities = nul
 std::unique_ptr<IDevice> createRecordingDevice(IDevice& inner, std::ostream& out);
 
 // Runs a recording on `device`, mapping recorded handles to new ones. Shaders are found by their
-// embedded name (findShader). Returns false with `error` naming the line and the problem.
+// embedded name (findShader). A recording is untrusted input: every field of every line is checked
+// (presence, type, range; a number that does not fit its field is an error, not truncated) before the
+// device is called, what one line may make the replayer allocate is bounded by ReplayOptions, and nothing
+// is thrown out of replayRecording. Returns false with `error` naming the line and the problem at the first
+// line that cannot be understood (the lines before it have run); true when every line was understood,
+// whether or not the device accepted each call (ReplayStats counts those it refused).
 struct ReplayStats {
     uint64_t calls = 0;
-    uint64_t failedCalls = 0;  // calls the device rejected
+    uint64_t failedCalls = 0;      // calls the device rejected
+    uint64_t firstFailedLine = 0;  // line of the first of them (1-based; 0 if none)
 };
-bool replayRecording(std::istream& in, IDevice& device, ReplayStats* stats, std::string* error);
+struct ReplayOptions {
+    // Bounds on one line; a line beyond one of them is an error naming the line and the limit. The defaults
+    // hold every recording our programs make (the largest lines carry initial data in base64).
+    uint64_t maxLineBytes = 256ull << 20;  // characters of one line
+    uint64_t maxJsonValues = 1u << 20;     // JSON values (numbers, strings, arrays, objects) on one line
+    uint64_t maxDataBytes = 192ull << 20;  // decoded base64 payload of one line (initial data, writes, constants)
+    uint64_t maxReadBytes = 256ull << 20;  // scratch memory one read-back line makes the replayer allocate
+    // Called after each call the device refused, with the line number and the call's name.
+    std::function<void(uint64_t line, const std::string& call)> onFailedCall;
+};
+bool replayRecording(std::istream& in, IDevice& device, const ReplayOptions& options, ReplayStats* stats,
+                     std::string* error);
+bool replayRecording(std::istream& in, IDevice& device, ReplayStats* stats, std::string* error);  // default options
 
 }  // namespace bricklight::rhi

@@ -14,6 +14,7 @@
 
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_validation.h"
+#include "hostile_sizes.h"
 
 using namespace bricklight;
 using namespace bricklight::rhi;
@@ -66,6 +67,26 @@ struct FillParams {
 };
 
 }  // namespace
+
+// hostile_sizes.cpp runs on the bare backend; GL's own errors (debug output) are the layer below it.
+std::unique_ptr<smoke::HostileBackend> smoke::makeHostileBackend() {
+    struct Gl final : HostileBackend {
+        const char* name() const override { return "gl"; }
+        IDevice& device() override { return dev(); }
+        std::vector<std::string> takeErrors() override { return take(false); }
+        std::vector<std::string> takeDriverMessages() override { return take(true); }
+        std::vector<std::string> take(bool driver) {
+            std::vector<std::string> taken, kept;
+            for (std::string& e : errors()) {
+                const bool fromDriver = e.rfind("GL error (", 0) == 0;
+                (fromDriver == driver ? taken : kept).push_back(e);
+            }
+            errors() = std::move(kept);
+            return taken;
+        }
+    };
+    return std::make_unique<Gl>();
+}
 
 TEST_CASE("gl: device reports GL capabilities", "[gl]") {
     const Capabilities& caps = dev().capabilities();

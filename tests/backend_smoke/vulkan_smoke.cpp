@@ -9,11 +9,13 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bricklight/rhi.h"
 #include "bricklight/rhi_validation.h"
 #include "bricklight/rhi_vulkan.h"
+#include "hostile_sizes.h"
 
 using namespace bricklight;
 using namespace bricklight::rhi;
@@ -78,6 +80,18 @@ std::vector<uint32_t> readU32(IDevice& d, BufferHandle b, size_t count) {
 uint32_t rgba(uint8_t r, uint8_t g, uint8_t b, uint8_t a) { return r | (g << 8) | (b << 16) | (uint32_t(a) << 24); }
 
 }  // namespace
+
+// hostile_sizes.cpp runs on the bare backend with the validation layer on.
+std::unique_ptr<smoke::HostileBackend> smoke::makeHostileBackend() {
+    struct Vulkan final : HostileBackend {
+        Fixture f;
+        const char* name() const override { return "vulkan"; }
+        IDevice& device() override { return *f.device; }
+        std::vector<std::string> takeErrors() override { return std::exchange(f.messages->errors, {}); }
+        std::vector<std::string> takeDriverMessages() override { return std::exchange(f.messages->validation, {}); }
+    };
+    return std::make_unique<Vulkan>();
+}
 
 TEST_CASE("vulkan: capabilities are reported", "[vulkan][smoke]") {
     Fixture f;

@@ -3,6 +3,7 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <sstream>
 
 #include "bricklight/rhi_validation.h"
@@ -283,4 +284,92 @@ TEST_CASE("a recording replays on another device", "[validation]") {
     std::stringstream broken("{\"call\":\"dispatch\",\"state\":{}}\n");
     CHECK_FALSE(replayRecording(broken, *target, &stats, &error));
     CHECK(error.find("recording line 1") != std::string::npos);
+}
+
+TEST_CASE("sizes of 2^31 and more are rejected in bounded time, and ranges do not wrap", "[validation]") {
+    Fixture f;
+    const auto start = std::chrono::steady_clock::now();
+    // The mip count was found by shifting the largest extent until it reached zero: a width or height of 2^31
+    // or more needed a shift by 32, which x86 performs as a shift by 0, and the wrapper looped forever.
+    for (uint32_t big : {1u << 31, 0xFFFFFFFFu}) {
+        f.expectRejected([&] {
+            TextureDesc t;
+            t.width = big;
+            t.debugName = "wide";
+            return bool(f.device->createTexture(t));
+        }, "createTexture 'wide': size " + std::to_string(big) + "x1 exceeds maxTextureSize2D");
+        f.expectRejected([&] {
+            TextureDesc t;
+            t.height = big;
+            t.mipLevels = 40;
+            t.debugName = "tall";
+            return bool(f.device->createTexture(t));
+        }, "exceeds maxTextureSize2D");
+        f.expectRejected([&] {
+            TextureDesc t;
+            t.dimension = TextureDimension::Texture3D;
+            t.depthOrLayers = big;
+            t.debugName = "deep";
+            return bool(f.device->createTexture(t));
+        }, "exceeds maxTextureSize3D");
+    }
+    // With limits that allow it, a width of 2^31 has exactly 32 mips.
+    Capabilities huge = f.null->capabilities();
+    huge.limits.maxTextureSize2D = UINT32_MAX;
+    auto null = createNullDevice(&huge);
+    auto wrapper = createValidationDevice(*null);
+    std::vector<std::string> errors;
+    wrapper->setErrorCallback([&](Severity, const std::string& m) { errors.push_back(m); });
+    TextureDesc t;
+    t.width = 1u << 31;
+    t.mipLevels = 32;
+    CHECK(wrapper->createTexture(t));
+    CHECK(errors.empty());
+    t.mipLevels = 33;
+    CHECK_FALSE(wrapper->createTexture(t));
+    REQUIRE(errors.size() == 1);
+    CHECK(errors[0].find("mipLevels 33 out of range 1..32") != std::string::npos);
+
+    // Ranges whose end wraps around 2^32 or 2^64 are out of range, not small.
+    f.expectRejected([&] { return f.device->clearTexture(f.source, 1, 0xFFFFFFFFu, ClearValue{}); },
+                     "mip range 1+4294967295 out of range");
+    TextureDesc layers;
+    layers.dimension = TextureDimension::Texture2DArray;
+    layers.depthOrLayers = 4;
+    layers.debugName = "layers";
+    const TextureHandle array = f.device->createTexture(layers);
+    REQUIRE(array);
+    std::vector<uint8_t> texel(64);
+    f.expectRejected([&] { return f.device->writeTexture(array, {0, 1, 0xFFFFFFFFu}, texel.data()); },
+                     "layers 1+4294967295 out of range");
+    f.expectRejected([&] { return f.device->copyBuffer(f.counters, 0, f.weights, UINT64_MAX - 3, 8); },
+                     "src range: range [18446744073709551612, +8) exceeds buffer 'weights' of 256 bytes");
+    f.expectRejected([&] { return f.device->readBuffer(f.weights, 8, UINT64_MAX, texel.data()); }, "exceeds buffer");
+    const auto seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    CHECK(seconds < 5.0);
+}
+
+TEST_CASE("values outside their enum or capacity are rejected", "[validation]") {
+    Fixture f;
+    f.expectRejected([&] {
+        TextureDesc t;
+        t.dimension = TextureDimension(9);
+        t.debugName = "odd";
+        return bool(f.device->createTexture(t));
+    }, "createTexture 'odd': dimension 9 is not a TextureDimension");
+    f.expectRejected([&] {
+        SamplerDesc s;
+        s.addressV = AddressMode(7);
+        return bool(f.device->createSampler(s));
+    }, "addressV 7 is out of range");
+    f.expectRejected([&] {
+        DispatchState s = f.good();
+        s.bindings.storageBuffers[0].access = Access(5);
+        return f.device->dispatch(s, 1, 1, 1);
+    }, "storageBuffers[0] (slot 0).access: 5 is out of range (0..3)");
+    f.expectRejected([&] {
+        DispatchState s = f.good();
+        s.bindings.textures.count = 200;  // a public field: loops would read past the 16 entries
+        return f.device->dispatch(s, 1, 1, 1);
+    }, "textures: count 200 exceeds the capacity 16");
 }
