@@ -11,6 +11,8 @@ packages=(
   libglfw3-dev libglm-dev
   libopenimageio-dev
   catch2 nlohmann-json3-dev libassimp-dev assimp-testmodels
+  clang  # the ASan + UBSan build and libFuzzer (scripts/test_sanitizers.sh)
+  time  # GNU time: peak memory in tests/loading/cli_rejects_hostile_files.sh
 )
 
 missing=()

@@ -1,12 +1,5 @@
-// Built-in scenes and the assimp loader.
+// Built-in scenes, and scene selection by name or file.
 #include "scene_geometry.h"
-
-#include <assimp/cimport.h>
-#include <assimp/material.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#include <assimp/texture.h>
-#include <dlfcn.h>
 
 #include <algorithm>
 #include <array>
@@ -183,214 +176,9 @@ SceneGeometry proceduralField(uint32_t targetTriangles) {
     return s;
 }
 
-namespace {
-
-// assimp's C API, loaded when a file is first opened: programs that only use built-in scenes (the
-// benchmark copied to a bare GPU machine) need no assimp at run time.
-struct AssimpApi {
-    decltype(&aiImportFile) importFile = nullptr;
-    decltype(&aiReleaseImport) releaseImport = nullptr;
-    decltype(&aiGetErrorString) errorString = nullptr;
-    decltype(&aiGetMaterialColor) materialColor = nullptr;
-    decltype(&aiGetMaterialTexture) materialTexture = nullptr;
-    decltype(&aiGetMaterialFloatArray) materialFloats = nullptr;
-    std::string loadError;
-    AssimpApi() {
-        void* lib = nullptr;
-        for (const char* name : {"libassimp.so.5", "libassimp.so"})
-            if ((lib = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
-        if (!lib) {
-            loadError = "assimp (libassimp.so.5) is not installed: only the built-in scenes are available";
-            return;
-        }
-        importFile = reinterpret_cast<decltype(importFile)>(dlsym(lib, "aiImportFile"));
-        releaseImport = reinterpret_cast<decltype(releaseImport)>(dlsym(lib, "aiReleaseImport"));
-        errorString = reinterpret_cast<decltype(errorString)>(dlsym(lib, "aiGetErrorString"));
-        materialColor = reinterpret_cast<decltype(materialColor)>(dlsym(lib, "aiGetMaterialColor"));
-        materialTexture = reinterpret_cast<decltype(materialTexture)>(dlsym(lib, "aiGetMaterialTexture"));
-        materialFloats = reinterpret_cast<decltype(materialFloats)>(dlsym(lib, "aiGetMaterialFloatArray"));
-        if (!importFile || !releaseImport || !errorString || !materialColor || !materialTexture || !materialFloats)
-            loadError = "libassimp lacks its C API";
-    }
-};
-
-const AssimpApi& assimp() {
-    static AssimpApi api;
-    return api;
-}
-
-}  // namespace
-
-// The world transform of the node named `name` (lights hang off nodes by name), or false if none.
-bool nodeTransform(const aiNode* node, const aiString& name, const aiMatrix4x4& parent, aiMatrix4x4* out) {
-    if (!node) return false;
-    const aiMatrix4x4 world = parent * node->mTransformation;
-    if (node->mName == name) {
-        *out = world;
-        return true;
-    }
-    for (unsigned i = 0; i < node->mNumChildren; ++i)
-        if (nodeTransform(node->mChildren[i], name, world, out)) return true;
-    return false;
-}
-
-// Lights of the file: directional -> the sun (the first one), point and spot -> point lights (colour =
-// radiant intensity, W/sr; directional: irradiance), area -> an emissive rectangle (colour = radiance)
-// facing the light's direction. Ambient lights are skipped.
-void importLights(const aiScene* scene, SceneGeometry& s) {
-    bool sun = false;
-    for (unsigned i = 0; i < scene->mNumLights; ++i) {
-        const aiLight* l = scene->mLights[i];
-        aiMatrix4x4 m;
-        if (!nodeTransform(scene->mRootNode, l->mName, aiMatrix4x4(), &m)) m = aiMatrix4x4();
-        const aiVector3D p = m * l->mPosition;
-        aiMatrix3x3 r(m);
-        aiVector3D d = r * l->mDirection;
-        d.Normalize();
-        const glm::vec3 colour(l->mColorDiffuse.r, l->mColorDiffuse.g, l->mColorDiffuse.b);
-        if (l->mType == aiLightSource_DIRECTIONAL && !sun) {
-            s.environment.sunDirection = -glm::vec3(d.x, d.y, d.z);
-            s.environment.sunIrradiance = colour;
-            sun = true;
-        } else if (l->mType == aiLightSource_POINT || l->mType == aiLightSource_SPOT) {
-            PointLight pl;
-            pl.position = glm::vec3(p.x, p.y, p.z);
-            pl.intensity = colour;
-            pl.direction = glm::vec3(d.x, d.y, d.z);
-            if (l->mType == aiLightSource_SPOT) {
-                pl.innerConeRadians = l->mAngleInnerCone;
-                pl.outerConeRadians = l->mAngleOuterCone;
-            }
-            s.pointLights.push_back(pl);
-        } else if (l->mType == aiLightSource_AREA && l->mSize.x > 0.0f && l->mSize.y > 0.0f) {
-            aiVector3D up = r * l->mUp;
-            glm::vec3 n(d.x, d.y, d.z), u = glm::normalize(glm::vec3(up.x, up.y, up.z));
-            if (!std::isfinite(u.x) || std::fabs(glm::dot(u, n)) > 0.999f) u = std::fabs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-            const glm::vec3 right = glm::normalize(glm::cross(u, n)) * (0.5f * l->mSize.x);
-            const glm::vec3 upHalf = glm::normalize(glm::cross(n, right)) * (0.5f * l->mSize.y);
-            const glm::vec3 c(p.x, p.y, p.z);
-            TriangleMesh quad;
-            quad.name = std::string("area light ") + l->mName.C_Str();
-            quad.albedo = glm::vec3(0.0f);
-            quad.emission = colour;
-            for (const glm::vec3& q : {c - right - upHalf, c + right - upHalf, c + right + upHalf, c - right + upHalf})
-                quad.positions.insert(quad.positions.end(), {q.x, q.y, q.z});
-            // Counter-clockwise seen from the side the light faces (its direction): emits that way.
-            const bool ccw = glm::dot(glm::cross(right, upHalf), n) > 0.0f;
-            quad.indices = ccw ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3} : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
-            s.instances.push_back({uint32_t(s.meshes.size()), glm::mat4(1.0f)});
-            s.meshes.push_back(std::move(quad));
-        }
-    }
-}
-
-SceneGeometry loadModel(const std::string& path, std::string* error) {
-    SceneGeometry s;
-    s.name = path;
-    const AssimpApi& api = assimp();
-    if (!api.loadError.empty()) {
-        if (error) *error = "cannot load '" + path + "': " + api.loadError;
-        return s;
-    }
-    // No JoinIdenticalVertices: it merges NaN positions away silently; bad vertices must reach the check below.
-    const aiScene* scene = api.importFile(path.c_str(), aiProcess_Triangulate | aiProcess_PreTransformVertices);
-    if (!scene) {
-        if (error) *error = "cannot load '" + path + "': " + api.errorString();
-        return s;
-    }
-    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
-        const aiMesh* in = scene->mMeshes[i];
-        TriangleMesh m;
-        m.name = in->mName.length ? in->mName.C_Str() : "mesh " + std::to_string(i);
-        for (unsigned v = 0; v < in->mNumVertices; ++v) {
-            const aiVector3D& p = in->mVertices[v];
-            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                if (error) *error = "'" + path + "': mesh '" + m.name + "' vertex " + std::to_string(v) + " is not finite";
-                api.releaseImport(scene);
-                return SceneGeometry{};
-            }
-            m.positions.insert(m.positions.end(), {p.x, p.y, p.z});
-        }
-        for (unsigned f = 0; f < in->mNumFaces; ++f)  // points and lines are not surfaces: skipped
-            if (in->mFaces[f].mNumIndices == 3)
-                m.indices.insert(m.indices.end(), {in->mFaces[f].mIndices[0], in->mFaces[f].mIndices[1], in->mFaces[f].mIndices[2]});
-        if (m.indices.empty()) continue;
-        if (in->mNormals)
-            for (unsigned v = 0; v < in->mNumVertices; ++v) {
-                aiVector3D n = in->mNormals[v];
-                const float length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-                if (!(length > 0.0f) || !std::isfinite(length)) n = aiVector3D(0.0f);  // falls back to the triangle's
-                else n /= length;
-                m.normals.insert(m.normals.end(), {n.x, n.y, n.z});
-            }
-        if (in->mTextureCoords[0])
-            for (unsigned v = 0; v < in->mNumVertices; ++v) m.uvs.insert(m.uvs.end(), {in->mTextureCoords[0][v].x, 1.0f - in->mTextureCoords[0][v].y});
-        if (scene->mMaterials && in->mMaterialIndex < scene->mNumMaterials) {
-            const aiMaterial* mat = scene->mMaterials[in->mMaterialIndex];
-            aiColor4D c;
-            if (api.materialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) m.albedo = {c.r, c.g, c.b};
-            if (api.materialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) m.emission = {c.r, c.g, c.b};
-            // Metallic-roughness materials (glTF's factors where the file has them; defaults otherwise).
-            m.specular = true;
-            ai_real value = 0;
-            unsigned one = 1;
-            if (api.materialFloats(mat, AI_MATKEY_ROUGHNESS_FACTOR, &value, &one) == aiReturn_SUCCESS) m.roughness = std::clamp(float(value), 0.0f, 1.0f);
-            one = 1;
-            if (api.materialFloats(mat, AI_MATKEY_METALLIC_FACTOR, &value, &one) == aiReturn_SUCCESS) m.metalness = std::clamp(float(value), 0.0f, 1.0f);
-            aiString texture;
-            if ((api.materialTexture(mat, aiTextureType_BASE_COLOR, 0, &texture, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) ==
-                     aiReturn_SUCCESS ||
-                 api.materialTexture(mat, aiTextureType_DIFFUSE, 0, &texture, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) ==
-                     aiReturn_SUCCESS) &&
-                texture.length) {
-                const std::string name = texture.C_Str();
-                if (m.uvs.empty()) {
-                    s.warnings.push_back("mesh '" + m.name + "': texture '" + name + "' but no texture coordinates; base colour factor used");
-                } else if (name[0] == '*') {
-                    // Embedded: "*N" is the N-th of the scene's textures; compressed ones (height 0) are kept
-                    // as bytes for the renderer to decode.
-                    const unsigned index = unsigned(std::atoi(name.c_str() + 1));
-                    const aiTexture* t = index < scene->mNumTextures ? scene->mTextures[index] : nullptr;
-                    if (t && t->mHeight == 0 && t->mWidth > 0) {
-                        const auto* bytes = reinterpret_cast<const uint8_t*>(t->pcData);
-                        m.embeddedTexture = std::make_shared<std::vector<uint8_t>>(bytes, bytes + t->mWidth);
-                        // The format hint as an extension: the decoder picks its reader by it.
-                        const std::string hint = t->achFormatHint[0] ? std::string(t->achFormatHint) : std::string("png");
-                        m.baseColorTexture = path + name + "." + hint;
-                    } else {
-                        s.warnings.push_back("mesh '" + m.name + "': embedded texture " + name +
-                                             " is missing or uncompressed (not supported); base colour factor used");
-                    }
-                } else {
-                    const size_t slash = path.find_last_of('/');
-                    m.baseColorTexture = name[0] == '/' || slash == std::string::npos ? name : path.substr(0, slash + 1) + name;
-                }
-            }
-        }
-        s.instances.push_back({uint32_t(s.meshes.size()), glm::mat4(1.0f)});
-        s.meshes.push_back(std::move(m));
-    }
-    if (s.meshes.empty()) {
-        api.releaseImport(scene);
-        if (error) *error = "'" + path + "' holds no triangles";
-        return s;
-    }
-    s.computeBounds();
-    // A view from the front; the file's lights where it has any, else a sky and a sun.
-    const glm::vec3 centre = (s.boundsMin + s.boundsMax) * 0.5f;
-    const float size = glm::length(s.boundsMax - s.boundsMin);
-    s.camera = {centre + glm::vec3(0.0f, 0.25f * size, 1.2f * size), centre, glm::vec3(0, 1, 0), 45.0f};
-    importLights(scene, s);
-    s.computeBounds();  // area lights became geometry
-    if (scene->mNumLights == 0)
-        s.environment = {glm::vec3(0.35f, 0.45f, 0.6f), glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f)), glm::vec3(3.0f)};
-    api.releaseImport(scene);
-    return s;
-}
-
 const char* builtinSceneNames() { return "cornell, two-rooms[:THICKNESS], atrium, dynamic, field"; }
 
-SceneGeometry loadScene(const std::string& nameOrPath, std::string* error) {
+SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits) {
     if (nameOrPath == "cornell") return cornellBox();
     if (nameOrPath == "field") return proceduralField(1000000);
     if (nameOrPath == "atrium") return atrium();
@@ -408,7 +196,7 @@ SceneGeometry loadScene(const std::string& nameOrPath, std::string* error) {
         }
         return twoRooms(thickness);
     }
-    return loadModel(nameOrPath, error);
+    return loadModel(nameOrPath, error, limits);
 }
 
 }  // namespace bricklight::scenes

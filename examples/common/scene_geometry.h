@@ -11,6 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include "load_limits.h"
+
 namespace bricklight::scenes {
 
 struct TriangleMesh {
@@ -70,6 +72,7 @@ struct SceneGeometry {
     std::vector<PointLight> pointLights;
     Camera camera;                               // the scene's default view
     std::vector<std::string> warnings;           // what loading skipped (e.g. embedded textures)
+    LoadLimits loadLimits;                       // what it was loaded under: its textures are read under the same
     // Animated scenes: moves instances (and lights, which are emissive instances) to `frame`.
     std::function<void(SceneGeometry&, uint32_t frame)> animate;
     uint64_t triangleCount() const;              // over instances
@@ -84,8 +87,11 @@ SceneGeometry proceduralField(uint32_t targetTriangles);
 TriangleMesh icosphere(uint32_t subdivisions);
 // A torus of about `triangles` triangles (the benchmark's moving dynamic object).
 TriangleMesh torus(float majorRadius, float minorRadius, uint32_t triangles);
-// OBJ, glTF, PLY, FBX... through assimp, node transforms applied. Empty scene and `error` set on failure.
-SceneGeometry loadModel(const std::string& path, std::string* error);
+// OBJ, glTF, PLY, FBX... through assimp, node transforms applied. Empty scene and `error` set on failure
+// ("cannot load 'path': why"). The file and what it references must be regular files within `limits`;
+// the import runs in a child process with a time and memory limit where the platform allows
+// (isolated_call.h; LoadLimits::isolateImport), so that a file assimp crashes or hangs on is an error.
+SceneGeometry loadModel(const std::string& path, std::string* error, const LoadLimits& limits = {});
 // Two rooms sharing a wall `wallThickness` thick (metres); the sun enters the first through a roof
 // opening; the camera looks at the shared wall from the second, closed room: all light there is leakage.
 SceneGeometry twoRooms(float wallThickness);
@@ -95,7 +101,8 @@ SceneGeometry atrium();
 SceneGeometry dynamicRoom();
 // The built-in scenes' names, for messages.
 const char* builtinSceneNames();
-// A built-in scene by name ("cornell", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model file.
-SceneGeometry loadScene(const std::string& nameOrPath, std::string* error);
+// A built-in scene by name ("cornell", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model
+// file (loadModel, under `limits`).
+SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits = {});
 
 }  // namespace bricklight::scenes

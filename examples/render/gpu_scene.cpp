@@ -158,7 +158,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     for (size_t k = 0; k < texturePaths.size(); ++k) {
         const std::string& path = texturePaths[k];
         std::string textureError;
-        if (!loadTextureLayer(path, kTextureSize, &texels, &textureError, textureBytes[k])) {
+        if (!loadTextureLayer(path, kTextureSize, &texels, &textureError, textureBytes[k], scene.loadLimits)) {
             for (size_t i = 0; i < scene.meshes.size(); ++i)
                 if (scene.meshes[i].baseColorTexture == path)
                     return fail("mesh '" + scene.meshes[i].name + "': base colour texture " + textureError);

@@ -56,6 +56,7 @@ struct Options {
     bool singleBounce = false;
     bool validate = false;  // every call through rhi::createValidationDevice
     std::string record;     // --record: every device call of the render as JSON lines
+    scenes::LoadLimits limits;  // what a model file may cost (docs/render.md, "Untrusted files")
 };
 
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
@@ -68,6 +69,10 @@ void printUsage(FILE* to) {
                  "                         [--reference --spp N] [--exposure E] [--gi sdf|none]\n"
                  "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...] [--single-bounce]\n"
                  "                         [--validate] [--record FILE.jsonl] [--help] [--version]\n"
+                 "                         [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N]\n"
+                 "                         [--max-vertices N] [--max-indices N] [--max-face-indices N] [--max-nodes N]\n"
+                 "                         [--max-node-depth N] [--max-texture-pixels N] [--allow-outside-paths]\n"
+                 "                         [--import-timeout SECONDS] [--import-memory BYTES]\n"
                  "scenes: %s\n"
                  "exit status: 0 written; 1 the render failed; 2 usage error (docs/render.md)\n",
                  scenes::builtinSceneNames());
@@ -91,6 +96,16 @@ uint32_t number(const char* text, const std::string& option, uint32_t lo, uint32
     const unsigned long long v = std::strtoull(text, &end, 10);
     if (*end || errno == ERANGE || v < lo || v > hi) bad();
     return uint32_t(v);
+}
+
+// A limit in 1..2^62, digits only.
+uint64_t bigNumber(const char* text, const std::string& option) {
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long v = std::isdigit(static_cast<unsigned char>(text[0])) ? std::strtoull(text, &end, 10) : 0;
+    if (!v || !end || *end || errno == ERANGE || v > (1ull << 62))
+        usage(option + " expects a whole number in 1..2^62 (got '" + text + "')");
+    return v;
 }
 
 Options parse(int argc, char** argv) {
@@ -139,6 +154,19 @@ Options parse(int argc, char** argv) {
         else if (a == "--single-bounce") o.singleBounce = true;
         else if (a == "--validate") o.validate = true;
         else if (a == "--record") o.record = value();
+        // Limits on model and texture files (examples/common/load_limits.h).
+        else if (a == "--max-file-bytes") o.limits.maxFileBytes = bigNumber(value(), a);
+        else if (a == "--max-json-bytes") o.limits.maxJsonBytes = bigNumber(value(), a);
+        else if (a == "--max-json-depth") o.limits.maxJsonDepth = number(value(), a, 1, 1u << 20);
+        else if (a == "--max-vertices") o.limits.maxVertices = bigNumber(value(), a);
+        else if (a == "--max-indices") o.limits.maxIndices = bigNumber(value(), a);
+        else if (a == "--max-face-indices") o.limits.maxFaceIndices = number(value(), a, 3, 1u << 20);
+        else if (a == "--max-nodes") o.limits.maxNodes = bigNumber(value(), a);
+        else if (a == "--max-node-depth") o.limits.maxNodeDepth = number(value(), a, 1, 1u << 20);
+        else if (a == "--max-texture-pixels") o.limits.maxTexturePixels = bigNumber(value(), a);
+        else if (a == "--allow-outside-paths") o.limits.allowOutsidePaths = true;
+        else if (a == "--import-timeout") o.limits.importTimeoutSeconds = number(value(), a, 1, 86400);
+        else if (a == "--import-memory") o.limits.importMemoryBytes = bigNumber(value(), a);
         else if (a == "--out") o.out = value();
         else if (a == "--exposure") {
             char* end = nullptr;
@@ -223,7 +251,7 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     checkOutputs(o);
     std::string error;
-    scenes::SceneGeometry scene = scenes::loadScene(o.scene, &error);
+    scenes::SceneGeometry scene = scenes::loadScene(o.scene, &error, o.limits);
     if (scene.meshes.empty()) {
         std::fprintf(stderr, "bricklight-render: %s\n", error.empty() ? "the scene is empty" : error.c_str());
         return 1;
