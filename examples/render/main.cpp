@@ -33,49 +33,33 @@
 #include "output_file.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "render_options.h"
 #include "scene_geometry.h"
 
 using namespace bricklight;
 
 namespace {
 
-struct Options {
-    std::string scene = "cornell";
-    std::string backend = "vulkan";
-    uint32_t width = 256, height = 256, frames = 1, spp = 64;
+// The shared options (render_options.h: scene, camera, backend, size, techniques, limits) and the CLI's own.
+struct Options : render::RenderOptions {
+    uint32_t spp = 64;
     bool reference = false;
-    bool haveCamera = false;
-    float camera[6] = {};
     std::string out = "out/render.png";
     std::vector<render::Aov> aovs;
-    float exposure = 1.0f;
-    bool gi = true;
-    bricklight::gi::InternalResolution giScale = bricklight::gi::InternalResolution::Native;
-    bool framesGiven = false;
     std::vector<std::string> giDebug;
-    bool singleBounce = false;
-    bool validate = false;  // every call through rhi::createValidationDevice
-    std::string record;     // --record: every device call of the render as JSON lines
-    scenes::LoadLimits limits;  // what a model file may cost (docs/render.md, "Untrusted files")
+    std::string record;  // --record: every device call of the render as JSON lines
 };
 
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
 
 void printUsage(FILE* to) {
     std::fprintf(to,
-                 "usage: bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
-                 "                         [--frames N] [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr]\n"
-                 "                         [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
-                 "                         [--reference --spp N] [--exposure E] [--gi sdf|none]\n"
-                 "                         [--gi-scale 100|75|50|25] [--gi-debug VIEW ...] [--single-bounce]\n"
-                 "                         [--validate] [--record FILE.jsonl] [--help] [--version]\n"
-                 "                         [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N]\n"
-                 "                         [--max-vertices N] [--max-indices N] [--max-face-indices N] [--max-nodes N]\n"
-                 "                         [--max-node-depth N] [--max-texture-pixels N] [--allow-outside-paths]\n"
-                 "                         [--import-timeout SECONDS] [--import-memory BYTES]\n"
+                 "usage: bricklight-render [options]\n%s"
+                 "  [--out FILE.png|.exr] [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
+                 "  [--reference --spp N] [--gi-debug VIEW ...] [--record FILE.jsonl] [--help] [--version]\n"
                  "scenes: %s\n"
                  "exit status: 0 written; 1 the render failed; 2 usage error (docs/render.md)\n",
-                 scenes::builtinSceneNames());
+                 render::sharedOptionsUsage(), scenes::builtinSceneNames());
 }
 
 [[noreturn]] void usage(const std::string& problem) {
@@ -84,27 +68,10 @@ void printUsage(FILE* to) {
     std::exit(2);
 }
 
-// A whole number in lo..hi, read as a number: digits only (no sign, so "-18446744073709551615" cannot wrap
-// around), no overflow.
 uint32_t number(const char* text, const std::string& option, uint32_t lo, uint32_t hi) {
-    auto bad = [&] {
-        usage(option + " expects a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) + " (got '" + text + "')");
-    };
-    if (!std::isdigit(static_cast<unsigned char>(text[0]))) bad();
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long v = std::strtoull(text, &end, 10);
-    if (*end || errno == ERANGE || v < lo || v > hi) bad();
-    return uint32_t(v);
-}
-
-// A limit in 1..2^62, digits only.
-uint64_t bigNumber(const char* text, const std::string& option) {
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long v = std::isdigit(static_cast<unsigned char>(text[0])) ? std::strtoull(text, &end, 10) : 0;
-    if (!v || !end || *end || errno == ERANGE || v > (1ull << 62))
-        usage(option + " expects a whole number in 1..2^62 (got '" + text + "')");
+    uint32_t v = 0;
+    std::string error;
+    if (!render::parseWholeNumber(text, option, lo, hi, &v, &error)) usage(error);
     return v;
 }
 
@@ -122,69 +89,23 @@ Options parse(int argc, char** argv) {
         } else if (a == "--version") {
             std::printf("bricklight-render %s\n", BRICKLIGHT_VERSION_STRING);
             std::exit(0);
-        } else if (a == "--scene") o.scene = value();
-        else if (a == "--backend") o.backend = value();
-        else if (a == "--width") o.width = number(value(), a, 1, 8192);
-        else if (a == "--height") o.height = number(value(), a, 1, 8192);
-        else if (a == "--frames") {
-            o.frames = number(value(), a, 1, 100000);
-            o.framesGiven = true;
-        } else if (a == "--gi") {
-            const std::string v = value();
-            if (v == "sdf") o.gi = true;
-            else if (v == "none") o.gi = false;
-            else usage("--gi must be sdf or none (got '" + v + "')");
-        } else if (a == "--gi-debug") {
+        }
+        std::string error;
+        const render::OptionParse shared = render::parseSharedOption(argc, argv, i, o, &error);
+        if (shared == render::OptionParse::Error) usage(error);
+        if (shared == render::OptionParse::Consumed) continue;
+        if (a == "--gi-debug") {
             const std::string v = value();
             bool known = false;
             for (const char* n : kGiDebugNames) known = known || v == n;
             if (!known) usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (got '" + v + "')");
             o.giDebug.push_back(v);
-        } else if (a == "--gi-scale") {
-            const uint32_t v = number(value(), a, 25, 100);
-            using R = bricklight::gi::InternalResolution;
-            if (v == 100) o.giScale = R::Native;
-            else if (v == 75) o.giScale = R::Percent75;
-            else if (v == 50) o.giScale = R::Percent50;
-            else if (v == 25) o.giScale = R::Percent25;
-            else usage("--gi-scale must be 100, 75, 50 or 25");
         }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
         else if (a == "--reference") o.reference = true;
-        else if (a == "--single-bounce") o.singleBounce = true;
-        else if (a == "--validate") o.validate = true;
         else if (a == "--record") o.record = value();
-        // Limits on model and texture files (examples/common/load_limits.h).
-        else if (a == "--max-file-bytes") o.limits.maxFileBytes = bigNumber(value(), a);
-        else if (a == "--max-json-bytes") o.limits.maxJsonBytes = bigNumber(value(), a);
-        else if (a == "--max-json-depth") o.limits.maxJsonDepth = number(value(), a, 1, 1u << 20);
-        else if (a == "--max-vertices") o.limits.maxVertices = bigNumber(value(), a);
-        else if (a == "--max-indices") o.limits.maxIndices = bigNumber(value(), a);
-        else if (a == "--max-face-indices") o.limits.maxFaceIndices = number(value(), a, 3, 1u << 20);
-        else if (a == "--max-nodes") o.limits.maxNodes = bigNumber(value(), a);
-        else if (a == "--max-node-depth") o.limits.maxNodeDepth = number(value(), a, 1, 1u << 20);
-        else if (a == "--max-texture-pixels") o.limits.maxTexturePixels = bigNumber(value(), a);
-        else if (a == "--allow-outside-paths") o.limits.allowOutsidePaths = true;
-        else if (a == "--import-timeout") o.limits.importTimeoutSeconds = number(value(), a, 1, 86400);
-        else if (a == "--import-memory") o.limits.importMemoryBytes = bigNumber(value(), a);
         else if (a == "--out") o.out = value();
-        else if (a == "--exposure") {
-            char* end = nullptr;
-            const char* v = value();
-            o.exposure = std::strtof(v, &end);
-            if (!*v || *end || !(o.exposure > 0.0f) || !std::isfinite(o.exposure)) usage("--exposure expects a positive number");
-        } else if (a == "--camera") {
-            const char* v = value();
-            char* end = nullptr;
-            const char* at = v;
-            for (int k = 0; k < 6; ++k) {
-                o.camera[k] = std::strtof(at, &end);
-                if (end == at || !std::isfinite(o.camera[k]) || (k < 5 && *end != ',') || (k == 5 && *end))
-                    usage("--camera expects six numbers: EYE_X,EYE_Y,EYE_Z,AT_X,AT_Y,AT_Z (got '" + std::string(v) + "')");
-                at = end + 1;
-            }
-            o.haveCamera = true;
-        } else if (a == "--aov") {
+        else if (a == "--aov") {
             render::Aov aov;
             const std::string name = value();
             if (!render::aovFromName(name, &aov)) usage("unknown AOV '" + name + "'");
@@ -193,7 +114,8 @@ Options parse(int argc, char** argv) {
             usage("unknown option '" + a + "'");
         }
     }
-    if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl (got '" + o.backend + "')");
+    std::string error;
+    if (!render::checkSharedOptions(o, &error)) usage(error);
     if (!o.giDebug.empty() && (o.reference || !o.gi)) usage("--gi-debug needs the fast path with GI (not --reference or --gi none)");
     return o;
 }
@@ -251,16 +173,12 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     checkOutputs(o);
     std::string error;
-    scenes::SceneGeometry scene = scenes::loadScene(o.scene, &error, o.limits);
+    scenes::SceneGeometry scene = render::loadSceneOf(o, &error);
     if (scene.meshes.empty()) {
-        std::fprintf(stderr, "bricklight-render: %s\n", error.empty() ? "the scene is empty" : error.c_str());
+        std::fprintf(stderr, "bricklight-render: %s\n", error.c_str());
         return 1;
     }
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "bricklight-render: warning: %s\n", w.c_str());
-    if (o.haveCamera) {
-        scene.camera.eye = glm::vec3(o.camera[0], o.camera[1], o.camera[2]);
-        scene.camera.at = glm::vec3(o.camera[3], o.camera[4], o.camera[5]);
-    }
     Reports reports;
     const rhi::ErrorCallback report = reports.callback();
     // The layers, innermost first (each destroyed after the ones above it): the backend, the validation
@@ -328,22 +246,13 @@ int main(int argc, char** argv) {
         }
         how = std::to_string(tracer->samples()) + " spp path-traced";
     } else {
-        render::RasterOptions ro;
-        ro.width = o.width;
-        ro.height = o.height;
-        ro.gi = o.gi;
-        ro.giResolution = o.giScale;
-        ro.giFeedback = !o.singleBounce;
+        render::RasterOptions ro = render::rasterOptionsOf(o);
         ro.errorCallback = report;  // the SDF's and GI's messages count as the device's do
-        // GI converges over frames (each frame's light feeds the next): a still image gets 64 by default.
-        const uint32_t frames = o.gi && !o.framesGiven && !scene.animate ? 64u : o.frames;
+        const uint32_t frames = render::framesToRender(o, scene);
         raster = render::RasterRenderer::create(*device, scene, ro, &error);
         if (!raster) return failRun(error);
         for (uint32_t f = 0; f < frames; ++f) {
-            if (f > 0 && scene.animate) {
-                scene.animate(scene, f);
-                if (!raster->setScene(scene, &error)) return failRun("frame " + std::to_string(f) + ": " + error);
-            }
+            if (!render::animateTo(scene, *raster, f, &error)) return failRun(error);
             raster->render();
             device->endFrame();
         }

@@ -10,6 +10,7 @@
 
 #include "bricklight/gi.h"
 #include "bricklight/sdf.h"
+#include "display_view.h"
 #include "gpu_scene.h"
 #include "path_tracer.h"
 
@@ -59,6 +60,11 @@ public:
     // A GI debug view of the latest frame (tone-mapped, 0..1); empty without GI.
     Image giDebugView(gi::DebugMode mode, float exposure);
     GBufferView gbuffer() const;
+    // Draws `view` of the latest frame into `rect` of `display` (RGBA8_UNORM with Storage usage: a window's
+    // picture), scaled to the rectangle by nearest neighbour; radiance is mapped as image files are
+    // (exposure, filmic, sRGB). False with *error, drawing nothing, when the view needs GI and GI is off or
+    // the display texture or rectangle is unfit. (raster_renderer_display.cpp)
+    bool drawView(View view, rhi::TextureHandle display, const DisplayRect& rect, float exposure, std::string* error);
     gi::GiContext* giContext() { return gi_.get(); }
     sdf::SdfScene* sdfScene() { return sdf_.get(); }
     // The next frame starts a new shot: GI forgets its screen history.
@@ -71,6 +77,7 @@ private:
     bool createGi(const scenes::SceneGeometry& scene, std::string* error);
     void syncSdf(const scenes::SceneGeometry& scene);
     Image readGi(rhi::TextureHandle t);
+    bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_
     rhi::IDevice& device_;
     RasterOptions options_;
     std::unique_ptr<GpuScene> scene_;
@@ -78,6 +85,8 @@ private:
     rhi::TextureHandle albedo_, normal_, emission_, motion_, position_, depth_;
     rhi::TextureHandle lit_, giDiffuse_, giSpecular_;
     rhi::SamplerHandle point_;
+    rhi::ShaderHandle display_;      // render/display.comp, created at the first drawView
+    rhi::TextureHandle debugView_;   // RGBA8 scratch for the SDF and GI debug views, likewise
     rhi::BufferHandle direct_, combined_;
     std::unique_ptr<sdf::SdfScene> sdf_;
     std::vector<sdf::InstanceHandle> sdfInstances_;

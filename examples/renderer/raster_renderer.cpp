@@ -198,9 +198,9 @@ GBufferView RasterRenderer::gbuffer() const {
 RasterRenderer::~RasterRenderer() {
     gi_.reset();
     sdf_.reset();
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_})
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_})
         if (t) device_.destroy(t);
-    for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_})
+    for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_, display_})
         if (s) device_.destroy(s);
     if (point_) device_.destroy(point_);
     if (direct_) device_.destroy(direct_);

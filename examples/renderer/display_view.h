@@ -1,0 +1,43 @@
+// What a window can show of the renderer's latest frame: the final image, each AOV, and every SDF and GI
+// debug view (the viewer lists them; a picture-in-picture shows a second one in a corner).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace bricklight::render {
+
+enum class View : uint32_t {
+    Final,  // direct + GI, as bricklight-render writes it
+    Direct,
+    IndirectDiffuse,
+    SpecularGi,
+    Albedo,
+    Normal,
+    Depth,
+    Motion,
+    SdfDistance,  // sdf::DebugMode, in its order
+    SdfNormal,
+    SdfIterations,
+    SdfBrickId,
+    SdfCascadeId,
+    SdfUvw,
+    GiRadianceCache,  // gi::DebugMode, in its order
+    GiIrradianceCache,
+    GiProbes,
+    GiProbeSh,
+    GiDisocclusion,
+    GiSamples,
+    Count
+};
+
+const char* viewName(View view);  // "final", "direct", ..., "sdf-normal", ..., "gi-probes", ...
+bool viewFromName(const std::string& name, View* out);
+bool viewNeedsGi(View view);  // the SDF and GI views and the GI AOVs exist only with GI on
+
+// A rectangle of the display texture, in pixels, row 0 at the top.
+struct DisplayRect {
+    uint32_t x = 0, y = 0, width = 0, height = 0;
+};
+
+}  // namespace bricklight::render
