@@ -8,7 +8,8 @@ packages=(
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools
   libosmesa6-dev libegl-dev libgl-dev libegl-mesa0
-  libglfw3-dev libglm-dev
+  libglfw3-dev libglm-dev libimgui-dev
+  xvfb xauth xdotool  # bricklight-viewer's tests: a virtual X display, input events (tests/viewer)
   libopenimageio-dev
   catch2 nlohmann-json3-dev libassimp-dev assimp-testmodels
   clang  # the ASan + UBSan build and libFuzzer (scripts/test_sanitizers.sh)

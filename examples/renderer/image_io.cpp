@@ -75,6 +75,42 @@ bool writeImage(const std::string& path, const Image& image, float exposure, std
         path, [&](const std::string& temp, std::string* why) { return encodeImage(temp, image, exposure, why); }, readsBack, error);
 }
 
+bool writeDisplayImage(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba,
+                       std::string* error) {
+    if (extensionOf(path) != "png") {
+        if (error) *error = "'" + path + "': a display image is written as .png";
+        return false;
+    }
+    if (width == 0 || height == 0 || rgba.size() != size_t(width) * height * 4) {
+        if (error) *error = "'" + path + "': no image to write";
+        return false;
+    }
+    auto encode = [&](const std::string& temp, std::string* why) {
+        auto out = OIIO::ImageOutput::create(temp);
+        if (!out) {
+            *why = OIIO::geterror();
+            return false;
+        }
+        // RGB of the RGBA bytes: OpenImageIO strides over the alpha.
+        OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::UINT8);
+        bool ok = out->open(temp, spec) &&
+                  out->write_image(OIIO::TypeDesc::UINT8, rgba.data(), 4, OIIO::stride_t(width) * 4, OIIO::AutoStride);
+        ok = out->close() && ok;
+        if (!ok) *why = out->geterror();
+        return ok;
+    };
+    auto readsBack = [&](const std::string& temp, std::string* why) {
+        Image back;
+        if (!readImage(temp, &back, why)) return false;
+        if (back.width != width || back.height != height) {
+            *why = "the written file reads back as " + std::to_string(back.width) + "x" + std::to_string(back.height);
+            return false;
+        }
+        return true;
+    };
+    return writeFileAtomically(path, encode, readsBack, error);
+}
+
 bool readImage(const std::string& path, Image* image, std::string* error) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) {

@@ -15,6 +15,9 @@ bool unavailable(const std::string& path, std::string* error) {
 
 bool writeImage(const std::string& path, const Image&, float, std::string* error) { return unavailable(path, error); }
 bool readImage(const std::string& path, Image*, std::string* error) { return unavailable(path, error); }
+bool writeDisplayImage(const std::string& path, uint32_t, uint32_t, const std::vector<uint8_t>&, std::string* error) {
+    return unavailable(path, error);
+}
 bool loadTextureLayer(const std::string& path, uint32_t, std::vector<uint8_t>*, std::string* error, const std::vector<uint8_t>*,
                       const scenes::LoadLimits&) {
     return unavailable(path, error);

@@ -256,7 +256,10 @@ void RasterRenderer::render() {
     d.bindings.textures.push({0, rhi::wholeTexture(scene_->textureArray()), scene_->textureSampler()});
     rhi::DrawArgs args;
     args.vertexCount = 3 * scene_->triangleCount();
+    // Markers name the passes in GPU timings (the viewer's table) and in captures.
+    device_.beginMarker("gbuffer");
     device_.draw(d, args);
+    device_.endMarker();
 
     struct {
         glm::mat4 inverseViewProjection;
@@ -273,10 +276,14 @@ void RasterRenderer::render() {
     uint8_t slot = 0;
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_}) s.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     s.bindings.storageBuffers.push({0, direct_, {}, rhi::Access::Write});
+    device_.beginMarker("direct light");
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
+    device_.endMarker();
 
     if (gi_) {
+        device_.beginMarker("sdf update");
         sdf_->update(sdfCenter_);
+        device_.endMarker();
         gi::DispatchDesc g;
         g.view = view_;
         g.projection = projection_;
@@ -302,6 +309,8 @@ void RasterRenderer::render() {
         }
         g.outputDiffuse = giDiffuse_;
         g.outputSpecular = giSpecular_;
+        g.trace = options_.giTrace;
+        g.roughnessThreshold = options_.giRoughnessThreshold;
         g.resetHistory = cut_;
         cut_ = false;
         gi_->dispatch(g);
@@ -324,7 +333,9 @@ void RasterRenderer::render() {
     li.view = rhi::textureMip(lit_, 0);
     li.access = rhi::Access::Write;
     k.bindings.storageImages.push(li);
+    device_.beginMarker("composite");
     device_.dispatch(k, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
+    device_.endMarker();
     // The next frame's motion vectors and GI reprojection start from this camera.
     previousViewProjection_ = viewProjection_;
     previousView_ = view_;

@@ -29,6 +29,8 @@ struct RasterOptions {
     uint32_t giCacheBricks = 0;  // gi::ContextDesc::radianceCacheBricks (0: the default)
     uint32_t giInjectTile = 0;   // gi::ContextDesc::injectTile (0: automatic)
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
+    gi::TraceParams giTrace;            // gi::DispatchDesc::trace (live: setGiTuning)
+    float giRoughnessThreshold = 0.75f;  // gi::DispatchDesc::roughnessThreshold (live)
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
     // Receives the SDF's and GI's messages (stderr when empty): an application counts them as it counts its
     // device's.
@@ -67,6 +69,13 @@ public:
     bool drawView(View view, rhi::TextureHandle display, const DisplayRect& rect, float exposure, std::string* error);
     gi::GiContext* giContext() { return gi_.get(); }
     sdf::SdfScene* sdfScene() { return sdf_.get(); }
+    // GI's tracing parameters from the next frame on (the rest of RasterOptions is fixed at creation).
+    void setGiTuning(const gi::TraceParams& trace, float roughnessThreshold) {
+        options_.giTrace = trace;
+        options_.giRoughnessThreshold = roughnessThreshold;
+    }
+    const RasterOptions& options() const { return options_; }
+    glm::vec3 sdfCenter() const { return sdfCenter_; }
     // The next frame starts a new shot: GI forgets its screen history.
     void cameraCut() { cut_ = true; }
     Image readMotion();  // rg = UV motion (current - previous), b = 0

@@ -100,8 +100,10 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
     out.view = rhi::textureMip(display, 0);
     out.access = rhi::Access::Write;
     k.bindings.storageImages.push(out);
-    if (!device_.dispatch(k, (rect.width + 7) / 8, (rect.height + 7) / 8, 1)) return fail("the display dispatch failed");
-    return true;
+    device_.beginMarker("display");
+    const bool ok = device_.dispatch(k, (rect.width + 7) / 8, (rect.height + 7) / 8, 1);
+    device_.endMarker();
+    return ok || fail("the display dispatch failed");
 }
 
 }  // namespace bricklight::render

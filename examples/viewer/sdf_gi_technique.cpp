@@ -1,0 +1,81 @@
+// The SDF GI technique's panel (Brixelizer GI: include/bricklight/sdf.h, gi.h): its tuning, live where the
+// library takes it per frame, and the distance field's statistics. Registered, not called by the UI code.
+#include <imgui.h>
+
+#include "technique_registry.h"
+#include "viewer_app.h"
+
+namespace bricklight::viewer {
+
+namespace {
+
+void sdfGiPanel(ViewerApp& app) {
+    GiSettings& g = app.gi();
+    render::RenderOptions& options = app.settings().render;
+    bool gi = options.gi;
+    if (ImGui::Checkbox("enabled", &gi)) app.setGiEnabled(gi);
+    if (!options.gi) return;
+
+    // Fixed at creation: these rebuild the renderer (GI starts converging again).
+    const char* scales[] = {"100 %", "75 %", "50 %", "25 %"};
+    int scale = int(options.giScale);
+    if (ImGui::Combo("internal resolution", &scale, scales, 4)) {
+        options.giScale = gi::InternalResolution(scale);
+        app.requestRebuild();
+    }
+    const char* injectTiles[] = {"auto", "1", "2", "4", "8"};
+    const uint32_t injectValues[] = {0, 1, 2, 4, 8};
+    int inject = 0;
+    while (inject < 4 && injectValues[inject] != g.injectTile) ++inject;
+    if (ImGui::Combo("inject tile", &inject, injectTiles, 5)) {
+        g.injectTile = injectValues[inject];
+        app.requestRebuild();
+    }
+    const char* probeTiles[] = {"auto", "8", "16"};
+    int probe = g.probeTile == 8 ? 1 : g.probeTile == 16 ? 2 : 0;
+    if (ImGui::Combo("probe tile", &probe, probeTiles, 3)) {
+        g.probeTile = probe == 1 ? 8 : probe == 2 ? 16 : 0;
+        app.requestRebuild();
+    }
+    if (ImGui::Checkbox("relight off screen", &g.relight)) app.requestRebuild();
+    int cascades = int(g.sdfCascades);
+    if (ImGui::SliderInt("SDF cascades", &cascades, 1, int(sdf::kMaxCascades))) {
+        g.sdfCascades = uint32_t(cascades);
+        app.requestRebuild();
+    }
+
+    // Live: the next frame's gi::DispatchDesc.
+    ImGui::Separator();
+    ImGui::TextUnformatted("tracing (live)");
+    int start = int(g.trace.startCascade), end = int(std::min<uint32_t>(g.trace.endCascade, sdf::kMaxCascades - 1));
+    ImGui::SliderInt("start cascade", &start, 0, int(sdf::kMaxCascades - 1));
+    ImGui::SliderInt("end cascade", &end, start, int(sdf::kMaxCascades - 1));
+    g.trace.startCascade = uint32_t(start);
+    g.trace.endCascade = uint32_t(end);
+    int iterations = int(g.trace.maxIterationsPerCascade);
+    if (ImGui::SliderInt("steps per cascade", &iterations, 1, 256)) g.trace.maxIterationsPerCascade = uint32_t(iterations);
+    ImGui::SliderFloat("coarsen after voxels", &g.trace.coarsenAfterVoxels, 0.0f, 16.0f, "%.1f");
+    ImGui::SliderFloat("epsilon scale", &g.trace.epsilonScale, 0.25f, 4.0f, "%.2f");
+    ImGui::SliderFloat("ray push-off (0: auto)", &g.trace.rayPushOff, 0.0f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("specular roughness cut", &g.roughnessThreshold, 0.0f, 1.0f, "%.2f");
+
+    render::RasterRenderer* r = app.renderer();
+    if (!r || !r->sdfScene()) return;
+    ImGui::Separator();
+    ImGui::TextUnformatted("distance field");
+    const glm::vec3 c = r->sdfCenter();
+    ImGui::Text("centre (%.3g, %.3g, %.3g)", c.x, c.y, c.z);
+    for (uint32_t k = 0; k < r->sdfScene()->desc().cascadeCount; ++k)
+        ImGui::Text("cascade %u: voxel %.3g", k, r->sdfScene()->cascadeVoxelSize(k));
+    const sdf::Stats s = r->sdfScene()->latestStats();
+    ImGui::Text("bricks %u used, %u free of %u", s.bricksUsed, s.bricksFree, s.bricksCapacity);
+    ImGui::Text("last update: %u allocated, %u freed, %u voxels built", s.bricksAllocated, s.bricksFreed, s.voxelsBuilt);
+    ImGui::Text("deferred on the GPU: %u voxels; triangles rejected: %u", s.voxelsDeferredGpu, s.trianglesRejected);
+    if (r->giContext()) ImGui::Text("radiance cache bricks in use: %u", r->giContext()->radianceCacheBricksInUse());
+}
+
+}  // namespace
+
+BRICKLIGHT_VIEWER_TECHNIQUE(Technique{"SDF GI", "Sparse brick distance field + Brixelizer-class GI (docs/gi.md).", 10, sdfGiPanel});
+
+}  // namespace bricklight::viewer
