@@ -48,6 +48,14 @@ int ViewerApp::run(const ViewerSettings& settings) {
                 std::this_thread::sleep_until(begin + std::chrono::duration_cast<Clock::duration>(period));
             }
         }
+        const std::vector<float>& gpu = app.stats_.gpuFrameHistory();
+        float gpuMean = 0.0f;
+        for (float v : gpu) gpuMean += v / float(gpu.size());
+        char line[160];
+        std::snprintf(line, sizeof line, "frame time: %.2f ms (CPU, mean of the last %zu frames), GPU %.2f ms, %ux%u",
+                      app.stats_.averageCpuMilliseconds(), app.stats_.cpuFrameHistory().size(), gpuMean, app.renderWidth_,
+                      app.renderHeight_);
+        app.log(line);
         if (status == 0 && !settings.screenshot.empty()) {
             if (!app.writeScreenshot(settings.screenshot, &error)) {
                 std::fprintf(stderr, "bricklight-viewer: %s\n", error.c_str());
