@@ -2,6 +2,7 @@
 #include <cstring>
 
 #include "bricklight/rhi.h"
+#include "size_math.h"
 
 namespace bricklight::rhi {
 
@@ -91,8 +92,8 @@ uint32_t subresourceLayerCount(const TextureDesc& desc, TextureSubresource sub) 
 }
 
 uint64_t subresourceBytes(const TextureDesc& desc, TextureSubresource sub) {
-    return uint64_t(mipExtent(desc.width, sub.mip)) * mipExtent(desc.height, sub.mip) *
-           textureDepth(desc, sub.mip) * subresourceLayerCount(desc, sub) * formatInfo(desc.format).bytesPerTexel;
+    // Checked: an application may call it on a description no device has validated.
+    return sizes::subresourceBytes(desc, sub).value_or(0);
 }
 
 }  // namespace bricklight::rhi

@@ -537,7 +537,8 @@ inline uint32_t mipExtent(uint32_t base, uint32_t mip) {
     const uint32_t e = mip < 32 ? base >> mip : 0;  // a shift by 32 or more is undefined
     return e ? e : 1;
 }
-// Bytes of one subresource as read/written by readTexture/writeTexture.
+// Bytes of one subresource as read/written by readTexture/writeTexture; 0 when the subresource lies outside
+// the texture, the format has no size, or the count would not fit 64 bits (any description is safe).
 uint64_t subresourceBytes(const TextureDesc& desc, TextureSubresource sub);
 // Layers covered by a TextureSubresource (3D: 1; layerCount 0 = remaining layers).
 uint32_t subresourceLayerCount(const TextureDesc& desc, TextureSubresource sub);

@@ -48,15 +48,23 @@ void main() {
     float depth;
     uint surface;
     giReadInput(pixel, depth, surface);
-    vec2 motion;
-    if (giHasFlag(GI_FLAG_CAMERA_MOTION)) {
+    // The flag is combined with per-pixel data or selected on, never alone in a branch condition: lavapipe
+    // compiles (and leaks) a new variant per dispatch for branches on constants only (docs/notes/soak.md).
+    // So the motion vectors are always fetched: without them (camera motion), texel (0, 0) of the 1×1
+    // stand-in bound there, unused.
+    bool cameraMotion = giHasFlag(GI_FLAG_CAMERA_MOTION);
+    ivec2 source = giInputPixel(pixel);
+    ivec2 origin = ivec2(0);
+    ivec2 motionTexel = cameraMotion ? origin : source;
+    vec2 given = texelFetch(inputMotion, motionTexel, 0).xy * giFrame.motion.xy;
+    vec2 fromCamera = vec2(0.0);
+    if (cameraMotion && !giIsSky(depth)) {
         // No motion vectors: where this point of a still world was on last frame's screen.
         vec2 uv = giPixelUv(pixel);
         vec4 before = giCamera.previousViewProjection * vec4(giWorldPosition(uv, depth, giCamera.inverseViewProjection), 1.0);
-        motion = giIsSky(depth) || !(before.w > 0.0) ? vec2(0.0) : uv - (before.xy / before.w * 0.5 + 0.5);
-    } else {
-        motion = texelFetch(inputMotion, giInputPixel(pixel), 0).xy * giFrame.motion.xy;
+        if (before.w > 0.0) fromCamera = uv - (before.xy / before.w * 0.5 + 0.5);
     }
+    vec2 motion = cameraMotion ? fromCamera : given;
     if (!(giFinite(motion.x) && giFinite(motion.y))) motion = vec2(0.0);
     // The stored motion is what the reprojections read: rg16f rounds it, and the mask must agree with them.
     motion = unpackHalf2x16(packHalf2x16(motion));

@@ -39,24 +39,27 @@ void main() {
     vec3 sent = radiance;  // what the lit image holds: radiance with GI when fed back
     vec3 emission = vec3(0.0);
     vec4 position = texelFetch(gPosition, ivec2(pixel), 0);
-    if (position.w != 0.0) {
+    bool geometry = position.w != 0.0;
+    bool giOn = params.size.z != 0u;
+    // GI's flag only in a condition with per-pixel data: lavapipe compiles (and leaks) a new variant per dispatch for branches on constants only (docs/notes/soak.md).
+    if (geometry && giOn) {
         vec4 albedo = texelFetch(gAlbedo, ivec2(pixel), 0);
         vec4 normal = texelFetch(gNormal, ivec2(pixel), 0);
         vec4 em = texelFetch(gEmission, ivec2(pixel), 0);
         emission = em.rgb;
-        if (params.size.z != 0u) {
-            float metalness = em.a;
-            vec3 f0 = mix(vec3(normal.w), albedo.rgb, metalness);
-            vec3 n = normalize(normal.xyz);
-            float nDotV = clamp(dot(n, normalize(params.eye.xyz - position.xyz)), 1e-4, 1.0);
-            vec3 gi = (1.0 - metalness) * albedo.rgb * texelFetch(diffuseGI, ivec2(pixel), 0).rgb;
-            if (any(greaterThan(f0, vec3(0.0)))) {
-                vec2 ab = splitSum(albedo.a, nDotV);
-                gi += texelFetch(specularGI, ivec2(pixel), 0).rgb * (f0 * ab.x + ab.y);
-            }
-            radiance += gi;
-            if (params.size.w != 0u) sent = radiance;
+        float metalness = em.a;
+        vec3 f0 = mix(vec3(normal.w), albedo.rgb, metalness);
+        vec3 n = normalize(normal.xyz);
+        float nDotV = clamp(dot(n, normalize(params.eye.xyz - position.xyz)), 1e-4, 1.0);
+        vec3 gi = (1.0 - metalness) * albedo.rgb * texelFetch(diffuseGI, ivec2(pixel), 0).rgb;
+        if (any(greaterThan(f0, vec3(0.0)))) {
+            vec2 ab = splitSum(albedo.a, nDotV);
+            gi += texelFetch(specularGI, ivec2(pixel), 0).rgb * (f0 * ab.x + ab.y);
         }
+        radiance += gi;
+        sent = params.size.w != 0u ? radiance : sent;  // a select, not a branch on a constant
+    } else if (geometry) {
+        emission = texelFetch(gEmission, ivec2(pixel), 0).rgb;  // GI off: direct light only
     }
     combined[index] = vec4(radiance, 1.0);
     imageStore(lit, ivec2(pixel), vec4(max(sent - emission, vec3(0.0)), 1.0));

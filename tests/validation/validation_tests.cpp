@@ -373,3 +373,20 @@ TEST_CASE("values outside their enum or capacity are rejected", "[validation]") 
         return f.device->dispatch(s, 1, 1, 1);
     }, "textures: count 200 exceeds the capacity 16");
 }
+
+TEST_CASE("subresourceBytes is safe for any description", "[validation][cpu]") {
+    TextureDesc d;
+    d.format = Format::RGBA32_FLOAT;
+    d.width = d.height = 4;
+    CHECK(subresourceBytes(d, {}) == 4 * 4 * 16);
+    CHECK(subresourceBytes(d, {1, 0, 1}) == 0);  // no mip 1
+    // 2^31 x 2^31 x 2^31 texels of 16 bytes do not fit 64 bits: 0, never a wrapped-around small count.
+    d.dimension = TextureDimension::Texture3D;
+    d.width = d.height = d.depthOrLayers = 1u << 31;
+    CHECK(subresourceBytes(d, {}) == 0);
+    d.dimension = TextureDimension::Texture2DArray;
+    d.width = d.height = 1;
+    d.depthOrLayers = 8;
+    CHECK(subresourceBytes(d, {0, 6, 4}) == 0);  // layers 6..9 of 8
+    CHECK(subresourceBytes(d, {0, 6, 0}) == 2 * 16);
+}
