@@ -5,6 +5,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cstring>
+
+#include "isolated_call.h"
 #include "safe_file.h"
 
 namespace bricklight::render {
@@ -19,6 +22,85 @@ std::string reasonWithoutPath(const std::string& why, const std::string& path) {
     if (rest.compare(0, 2, ": ") == 0) return rest.substr(2);
     if (rest.compare(0, 1, " ") == 0) return "it" + rest;
     return rest;
+}
+
+// The decoder's output: 8-bit texels of the file's own channels.
+struct Decoded {
+    uint32_t width = 0, height = 0, channels = 0;
+    std::vector<uint8_t> bytes;
+};
+
+// Opens and decodes the image, refusing from its header what would cost more than the limits allow.
+bool decode(const std::string& path, const std::vector<uint8_t>* encoded, const scenes::LoadLimits& limits, Decoded* out,
+            std::string* why) {
+    OIIO::Filesystem::IOMemReader memory(encoded ? encoded->data() : nullptr, encoded ? encoded->size() : 0);
+    auto input = OIIO::ImageInput::open(path, nullptr, encoded ? &memory : nullptr);
+    if (!input) return *why = OIIO::geterror(), false;
+    // The header alone says what decoding would cost: refuse before allocating for it.
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels < 1 || spec.nchannels > 64)
+        return *why = "its header describes a " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
+                      std::to_string(spec.depth) + " image of " + std::to_string(spec.nchannels) + " channels (not a 2D image)",
+               false;
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+    if (pixels > limits.maxTexturePixels)
+        return *why = "it is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels, over the limit of " +
+                      std::to_string(limits.maxTexturePixels) + " " + scenes::raiseHint("maxTexturePixels"),
+               false;
+    out->width = uint32_t(spec.width);
+    out->height = uint32_t(spec.height);
+    out->channels = uint32_t(spec.nchannels);
+    out->bytes.resize(size_t(pixels) * out->channels);
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out->bytes.data())) return *why = input->geterror(), false;
+    input->close();
+    return true;
+}
+
+// The decoder in a child process (isolated_call.h) where the platform allows: the image readers are
+// third-party code that a hostile file could crash or hang. The reply is 1 + width, height, channels
+// (uint32 each) + texels, or 0 + the reason.
+bool decodeIsolated(const std::string& path, const std::vector<uint8_t>* encoded, const scenes::LoadLimits& limits, Decoded* out,
+                    std::string* why) {
+    scenes::IsolationLimits isolation;
+    isolation.what = "the image decoder";
+    isolation.timeoutSeconds = limits.importTimeoutSeconds;
+    isolation.memoryBytes = limits.importMemoryBytes;
+    isolation.maxReplyBytes = 13 + limits.maxTexturePixels * 64 + 4096;
+    isolation.timeoutHint = scenes::raiseHint("importTimeoutSeconds");
+    isolation.memoryHint = scenes::raiseHint("importMemoryBytes");
+    std::vector<uint8_t> reply;
+    const bool ran = scenes::runIsolated(
+        [&] {
+            Decoded d;
+            std::string reason;
+            std::vector<uint8_t> r;
+            if (!decode(path, encoded, limits, &d, &reason)) {
+                r.push_back(0);
+                r.insert(r.end(), reason.begin(), reason.end());
+                return r;
+            }
+            r.resize(13);
+            r[0] = 1;
+            const uint32_t header[3] = {d.width, d.height, d.channels};
+            std::memcpy(r.data() + 1, header, sizeof header);
+            r.insert(r.end(), d.bytes.begin(), d.bytes.end());
+            return r;
+        },
+        isolation, &reply, why);
+    if (!ran) return false;
+    if (reply.empty()) return *why = "the image decoder sent no reply", false;
+    if (reply[0] == 0) return *why = std::string(reply.begin() + 1, reply.end()), false;
+    uint32_t header[3] = {};
+    if (reply.size() < 13) return *why = "the image decoder's reply is cut short", false;
+    std::memcpy(header, reply.data() + 1, sizeof header);
+    const uint64_t expected = uint64_t(header[0]) * header[1] * header[2];
+    if (header[2] == 0 || header[2] > 64 || uint64_t(header[0]) * header[1] > limits.maxTexturePixels || reply.size() - 13 != expected)
+        return *why = "the image decoder's reply does not match its header", false;
+    out->width = header[0];
+    out->height = header[1];
+    out->channels = header[2];
+    out->bytes.assign(reply.begin() + 13, reply.end());
+    return true;
 }
 
 }  // namespace
@@ -38,24 +120,13 @@ bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_
         return fail("its " + std::to_string(encoded->size()) + " bytes are over the limit of " + std::to_string(limits.maxFileBytes) + " " +
                     scenes::raiseHint("maxFileBytes"));
     }
-    OIIO::Filesystem::IOMemReader memory(encoded ? encoded->data() : nullptr, encoded ? encoded->size() : 0);
-    auto input = OIIO::ImageInput::open(path, nullptr, encoded ? &memory : nullptr);
-    if (!input) return fail(OIIO::geterror());
-    // The header alone says what decoding would cost: refuse before allocating for it.
-    const OIIO::ImageSpec& spec = input->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels < 1 || spec.nchannels > 64)
-        return fail("its header describes a " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
-                    std::to_string(spec.depth) + " image of " + std::to_string(spec.nchannels) + " channels (not a 2D image)");
-    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-    if (pixels > limits.maxTexturePixels)
-        return fail("it is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels, over the limit of " +
-                    std::to_string(limits.maxTexturePixels) + " " + scenes::raiseHint("maxTexturePixels"));
-    const int channels = spec.nchannels;
-    OIIO::ImageSpec decodedSpec(spec.width, spec.height, channels, OIIO::TypeDesc::UINT8);
-    std::vector<uint8_t> decoded(size_t(pixels) * size_t(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, decoded.data())) return fail(input->geterror());
-    input->close();
-    OIIO::ImageBuf source(decodedSpec, decoded.data());
+    Decoded decoded;
+    const bool isolated = scenes::kIsolationAvailable && limits.isolateImport;
+    if (!(isolated ? decodeIsolated(path, encoded, limits, &decoded, &why) : decode(path, encoded, limits, &decoded, &why)))
+        return fail(why);
+    const int channels = int(decoded.channels);
+    OIIO::ImageSpec decodedSpec(int(decoded.width), int(decoded.height), channels, OIIO::TypeDesc::UINT8);
+    OIIO::ImageBuf source(decodedSpec, decoded.bytes.data());
     // Grey and grey-alpha to RGBA, RGB to RGBA (alpha 1).
     const int map[4] = {0, channels >= 3 ? 1 : 0, channels >= 3 ? 2 : 0, channels == 4 ? 3 : (channels == 2 ? 1 : -1)};
     const float fill[4] = {0.0f, 0.0f, 0.0f, 1.0f};
