@@ -130,6 +130,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     sd.cascadeCount = options_.sdfCascades;
     // The finest cascade holds the whole scene with a margin; coarser ones catch rays that leave it.
     sd.finestVoxelSize = sdf::suggestVoxelSize(side * 1.1f, 1);
+    sd.budgets = options_.sdfBudgets;
     sd.debugName = "render sdf";
     sd.errorCallback = options_.errorCallback;
     std::string why;
@@ -154,7 +155,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
         sdfTransforms_.push_back(i.transform);
         if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError());
     }
-    sdfCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
+    sdfCenter_ = sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
     gi::ContextDesc gd;
     gd.displayWidth = options_.width;
     gd.displayHeight = options_.height;

@@ -31,7 +31,8 @@ struct RasterOptions {
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
     gi::TraceParams giTrace;            // gi::DispatchDesc::trace (live: setGiTuning)
     float giRoughnessThreshold = 0.75f;  // gi::DispatchDesc::roughnessThreshold (live)
-    uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
+    uint32_t sdfCascades = 3;
+    sdf::Budgets sdfBudgets;  // the distance field's per-update budgets (deferred work goes to later updates)  // the finest covers the scene's bounds; each next one doubles
     // Receives the SDF's and GI's messages (stderr when empty): an application counts them as it counts its
     // device's.
     rhi::ErrorCallback errorCallback;
@@ -76,6 +77,11 @@ public:
     }
     const RasterOptions& options() const { return options_; }
     glm::vec3 sdfCenter() const { return sdfCenter_; }
+    // The distance field's cascades follow this point from the next frame on (default: the scene's centre).
+    void setSdfCenter(const glm::vec3& center) { sdfCenter_ = center; }
+    glm::vec3 sceneCenter() const { return sceneCenter_; }
+    // The renderer's own GPU resources (G-buffer, lighting buffers, GI outputs) and their bytes.
+    sdf::MemoryUse memoryUse() const;
     // The next frame starts a new shot: GI forgets its screen history.
     void cameraCut() { cut_ = true; }
     Image readMotion();  // rg = UV motion (current - previous), b = 0
@@ -100,7 +106,7 @@ private:
     std::unique_ptr<sdf::SdfScene> sdf_;
     std::vector<sdf::InstanceHandle> sdfInstances_;
     std::vector<glm::mat4> sdfTransforms_;
-    glm::vec3 sdfCenter_{0.0f};
+    glm::vec3 sdfCenter_{0.0f}, sceneCenter_{0.0f};
     std::unique_ptr<gi::GiContext> gi_;
     std::vector<gi::Light> giLights_;
     bool cut_ = false;

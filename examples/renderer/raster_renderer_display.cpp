@@ -106,4 +106,21 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
     return ok || fail("the display dispatch failed");
 }
 
+sdf::MemoryUse RasterRenderer::memoryUse() const {
+    sdf::MemoryUse use;
+    auto add = [&](const std::string& name, uint64_t bytes) {
+        use.resources.push_back({name, bytes});
+        use.totalBytes += bytes;
+    };
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_}) {
+        const rhi::TextureDesc* d = t ? device_.describe(t) : nullptr;
+        if (d) add(d->debugName, rhi::subresourceBytes(*d, {}));
+    }
+    for (rhi::BufferHandle b : {direct_, combined_}) {
+        const rhi::BufferDesc* d = b ? device_.describe(b) : nullptr;
+        if (d) add(d->debugName, d->size);
+    }
+    return use;
+}
+
 }  // namespace bricklight::render

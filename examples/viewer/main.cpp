@@ -4,7 +4,7 @@
 //   bricklight-viewer [the options bricklight-render shares: --scene, --backend, --camera, --gi, ...]
 //                     [--window WxH] [--view NAME] [--pip NAME] [--no-vsync] [--fps-limit N]
 //                     [--screenshot FILE.png] [--exit-after N] [--screenshot-dir DIR] [--hidden] [--log]
-//                     [--help] [--version]
+//                     [--open-panels] [--help] [--version]
 //
 // --width/--height fix the render size (scaled to the window); without them the render follows the
 // window. --frames N renders N frames and exits (with --screenshot: writes the view first), as
@@ -27,7 +27,7 @@ void printUsage(FILE* to) {
                  "usage: bricklight-viewer [options]\n%s"
                  "  [--window WxH] [--view NAME] [--pip NAME] [--no-vsync] [--fps-limit N]\n"
                  "  [--screenshot FILE.png] [--exit-after N] [--screenshot-dir DIR] [--hidden] [--log]\n"
-                 "  [--help] [--version]\n"
+                 "  [--open-panels] [--help] [--version]\n"
                  "scenes: %s\n"
                  "views: final, direct, indirect-diffuse, specular-gi, albedo, normal, depth, motion, sdf-distance,\n"
                  "  sdf-normal, sdf-iterations, sdf-brick-id, sdf-cascade-id, sdf-uvw, gi-radiance-cache,\n"
@@ -100,6 +100,7 @@ viewer::ViewerSettings parse(int argc, char** argv) {
         else if (a == "--exit-after") exitAfter = whole(1, 100000000);
         else if (a == "--hidden") s.hidden = true;
         else if (a == "--log") s.log = true;
+        else if (a == "--open-panels") s.openPanels = true;
         else usage("unknown option '" + a + "'");
     }
     std::string error;

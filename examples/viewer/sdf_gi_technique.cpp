@@ -43,6 +43,22 @@ void sdfGiPanel(ViewerApp& app) {
         g.sdfCascades = uint32_t(cascades);
         app.requestRebuild();
     }
+    // The field's budgets per update: what does not fit is deferred to later updates (the statistics below).
+    int voxels = int(std::min<uint32_t>(g.sdfBudgets.maxVoxelsPerUpdate, 1u << 24));
+    if (ImGui::SliderInt("voxels per update", &voxels, 64, 1 << 24, "%d", ImGuiSliderFlags_Logarithmic)) {
+        g.sdfBudgets.maxVoxelsPerUpdate = uint32_t(voxels);
+        app.requestRebuild();
+    }
+    int jobs = int(g.sdfBudgets.maxJobsPerUpdate);
+    if (ImGui::SliderInt("jobs per update", &jobs, 1, 4096, "%d", ImGuiSliderFlags_Logarithmic)) {
+        g.sdfBudgets.maxJobsPerUpdate = uint32_t(jobs);
+        app.requestRebuild();
+    }
+    int triangles = int(std::min<uint32_t>(g.sdfBudgets.maxTrianglesPerUpdate, 1u << 24));
+    if (ImGui::SliderInt("triangles per update", &triangles, 1024, 1 << 24, "%d", ImGuiSliderFlags_Logarithmic)) {
+        g.sdfBudgets.maxTrianglesPerUpdate = uint32_t(triangles);
+        app.requestRebuild();
+    }
 
     // Live: the next frame's gi::DispatchDesc.
     ImGui::Separator();
@@ -65,13 +81,16 @@ void sdfGiPanel(ViewerApp& app) {
     ImGui::TextUnformatted("distance field");
     const glm::vec3 c = r->sdfCenter();
     ImGui::Text("centre (%.3g, %.3g, %.3g)", c.x, c.y, c.z);
+    const glm::vec3 extent = app.scene().boundsMax - app.scene().boundsMin;
+    const float reach = std::max(extent.x, std::max(extent.y, extent.z));
+    ImGui::SliderFloat3("centre offset (live)", &g.sdfCenterOffset.x, -reach, reach, "%.3g");
     for (uint32_t k = 0; k < r->sdfScene()->desc().cascadeCount; ++k)
         ImGui::Text("cascade %u: voxel %.3g", k, r->sdfScene()->cascadeVoxelSize(k));
     const sdf::Stats s = r->sdfScene()->latestStats();
     ImGui::Text("bricks %u used, %u free of %u", s.bricksUsed, s.bricksFree, s.bricksCapacity);
     ImGui::Text("last update: %u allocated, %u freed, %u voxels built", s.bricksAllocated, s.bricksFreed, s.voxelsBuilt);
     ImGui::Text("deferred on the GPU: %u voxels; triangles rejected: %u", s.voxelsDeferredGpu, s.trianglesRejected);
-    if (r->giContext()) ImGui::Text("radiance cache bricks in use: %u", r->giContext()->radianceCacheBricksInUse());
+    // (Not GiContext::radianceCacheBricksInUse(): a blocking read-back, refused inside an embedded frame.)
 }
 
 }  // namespace

@@ -96,6 +96,7 @@ bool ViewerApp::start(std::string* error) {
     gi_.trace = defaults.giTrace;
     gi_.roughnessThreshold = defaults.giRoughnessThreshold;
     gi_.sdfCascades = defaults.sdfCascades;
+    gi_.sdfBudgets = defaults.sdfBudgets;
 
     BackendOptions bo;
     bo.width = settings_.windowWidth;
@@ -144,6 +145,7 @@ bool ViewerApp::buildRenderer(std::string* error) {
     ro.giCacheBricks = gi_.cacheBricks;
     ro.giRelight = gi_.relight;
     ro.sdfCascades = gi_.sdfCascades;
+    ro.sdfBudgets = gi_.sdfBudgets;
     ro.errorCallback = [this](rhi::Severity s, const std::string& m) {
         if (s == rhi::Severity::Info) return;
         std::fprintf(stderr, "bricklight-viewer: %s%s\n", s == rhi::Severity::Warning ? "warning: " : "", m.c_str());
@@ -283,6 +285,7 @@ bool ViewerApp::frame(std::string* error) {
         cameraMoved_ = false;
     }
     renderer_->setGiTuning(gi_.trace, gi_.roughnessThreshold);
+    renderer_->setSdfCenter(renderer_->sceneCenter() + gi_.sdfCenterOffset);
     renderer_->render();
     // The picture: the view fitted into the window (letterboxed when the render size is fixed), and the
     // picture-in-picture in the lower right corner.

@@ -31,7 +31,8 @@ struct ViewerSettings {
     bool pip = false;
     render::View pipView = render::View::IndirectDiffuse;
     bool hidden = false;
-    bool log = false;  // --log: one line per state change and screenshot on stdout (tests follow it)
+    bool log = false;
+    bool openPanels = false;  // --open-panels: every panel section open  // --log: one line per state change and screenshot on stdout (tests follow it)
 };
 
 // What the panels change in the scene's light (applied to a copy of the scene as loaded).
@@ -50,6 +51,8 @@ struct GiSettings {
     uint32_t injectTile = 0, probeTile = 0, cacheBricks = 0;  // 0: automatic
     bool relight = true;
     uint32_t sdfCascades = 3;
+    sdf::Budgets sdfBudgets;
+    glm::vec3 sdfCenterOffset{0.0f};  // the cascades' centre from the scene's centre (live)
 };
 
 class ViewerApp {

@@ -45,6 +45,11 @@ void memoryTable(const char* title, const sdf::MemoryUse& use) {
 }  // namespace
 
 void ViewerApp::drawPanels() {
+    // --open-panels: every section open (the tests run each panel's code once; docs' screenshots).
+    auto header = [&](const char* label, ImGuiTreeNodeFlags flags = 0) {
+        if (settings_.openPanels) ImGui::SetNextItemOpen(true, ImGuiCond_Always);
+        return ImGui::CollapsingHeader(label, flags);
+    };
     // A fixed place, so that tests can click the first widgets (tests/viewer).
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
@@ -55,7 +60,7 @@ void ViewerApp::drawPanels() {
     ImGui::SameLine();
     ImGui::Text("%s, %ux%u, %.1f ms/frame", backend_->name(), renderWidth_, renderHeight_, stats_.averageCpuMilliseconds());
 
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (header("View", ImGuiTreeNodeFlags_DefaultOpen)) {
         render::View view = settings_.view;
         if (viewCombo("view", &view, settings_.render.gi)) setView(view);
         ImGui::SliderFloat("exposure", &settings_.render.exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
@@ -76,7 +81,7 @@ void ViewerApp::drawPanels() {
         if (ImGui::SliderInt("frame limit (0: none)", &limit, 0, 240)) settings_.fpsLimit = uint32_t(limit);
     }
 
-    if (ImGui::CollapsingHeader("Camera")) {
+    if (header("Camera")) {
         ImGui::Text("%s, speed %.3g/s (scroll), WASD QE, right mouse to look, Tab: orbit",
                     camera_.mode() == FlyCamera::Mode::Fly ? "fly" : "orbit", camera_.speed());
         for (size_t i = 0; i < bookmarks_.size(); ++i) {
@@ -91,7 +96,7 @@ void ViewerApp::drawPanels() {
         }
     }
 
-    if (ImGui::CollapsingHeader("Light")) {
+    if (header("Light")) {
         bool changed = ImGui::SliderFloat("sun azimuth", &lights_.sunAzimuthDegrees, -180.0f, 180.0f, "%.0f deg");
         changed |= ImGui::SliderFloat("sun elevation", &lights_.sunElevationDegrees, -10.0f, 90.0f, "%.0f deg");
         changed |= ImGui::SliderFloat("sun irradiance", &lights_.sunIrradiance, 0.0f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
@@ -103,14 +108,14 @@ void ViewerApp::drawPanels() {
     }
 
     for (const Technique& t : registeredTechniques()) {
-        if (!ImGui::CollapsingHeader(t.name.c_str())) continue;
+        if (!header(t.name.c_str())) continue;
         if (!t.description.empty()) ImGui::TextWrapped("%s", t.description.c_str());
         ImGui::PushID(t.name.c_str());
         t.panel(*this);
         ImGui::PopID();
     }
 
-    if (ImGui::CollapsingHeader("GPU timings")) {
+    if (header("GPU timings")) {
         const std::vector<float>& gpu = stats_.gpuFrameHistory();
         const std::vector<float>& cpu = stats_.cpuFrameHistory();
         if (!cpu.empty()) ImGui::PlotLines("frame (CPU) ms", cpu.data(), int(cpu.size()), 0, nullptr, 0.0f, FLT_MAX, ImVec2(0, 50));
@@ -127,13 +132,14 @@ void ViewerApp::drawPanels() {
         }
     }
 
-    if (ImGui::CollapsingHeader("Memory")) {
+    if (header("Memory")) {
+        memoryTable("renderer", renderer_->memoryUse());
         if (renderer_->sdfScene()) memoryTable("SDF", renderer_->sdfScene()->memoryUse());
         if (renderer_->giContext()) memoryTable("GI", renderer_->giContext()->memoryUse());
         if (!renderer_->sdfScene()) ImGui::TextUnformatted("GI is off: no SDF or GI resources");
     }
 
-    if (ImGui::CollapsingHeader("Messages")) {
+    if (header("Messages")) {
         for (const std::string& m : messages_) ImGui::TextWrapped("%s", m.c_str());
     }
     ImGui::End();
