@@ -204,19 +204,8 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
     dev->queueFamily_ = static_cast<uint32_t>(findQueueFamily(dev->physical_));
 
     // Features: the required ones plus every optional one the contract can use.
-    VkPhysicalDeviceFeatures supported;
-    vkGetPhysicalDeviceFeatures(dev->physical_, &supported);
     VkPhysicalDeviceFeatures& en = dev->enabled_;
-    en.geometryShader = supported.geometryShader;
-    en.depthClamp = supported.depthClamp;
-    en.samplerAnisotropy = supported.samplerAnisotropy;
-    en.independentBlend = supported.independentBlend;
-    en.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
-    en.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
-    en.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
-    en.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-    en.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
-    en.largePoints = supported.largePoints;
+    en = usefulFeatures(dev->physical_);
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.synchronization2 = VK_TRUE;
     f13.dynamicRendering = VK_TRUE;
@@ -427,6 +416,23 @@ std::unique_ptr<rhi::IDevice> createDevice(const DeviceOptions& options) {
 }
 std::unique_ptr<rhi::IDevice> createEmbeddedDevice(const EmbeddedDesc& desc) {
     return VulkanDevice::createEmbedded(desc);
+}
+
+VkPhysicalDeviceFeatures usefulFeatures(VkPhysicalDevice physicalDevice) {
+    VkPhysicalDeviceFeatures supported{}, en{};
+    if (physicalDevice == VK_NULL_HANDLE) return en;
+    vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
+    en.geometryShader = supported.geometryShader;
+    en.depthClamp = supported.depthClamp;
+    en.samplerAnisotropy = supported.samplerAnisotropy;
+    en.independentBlend = supported.independentBlend;
+    en.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    en.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+    en.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
+    en.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    en.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
+    en.largePoints = supported.largePoints;
+    return en;
 }
 
 namespace {

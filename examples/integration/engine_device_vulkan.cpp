@@ -197,20 +197,9 @@ bool VulkanEngineDevice::create(std::string* error) {
     if (!physical_) return fail("no Vulkan 1.3 device with synchronization2, dynamicRendering and a graphics+compute queue");
     family_ = uint32_t(graphicsComputeFamily(physical_));
 
-    // 3. Device: the two required features, plus the optional ones the backend can use when present (it
-    //    cannot query what an application enabled, so EmbeddedDesc tells it below).
-    VkPhysicalDeviceFeatures supported;
-    vkGetPhysicalDeviceFeatures(physical_, &supported);
-    enabled_.geometryShader = supported.geometryShader;
-    enabled_.depthClamp = supported.depthClamp;
-    enabled_.samplerAnisotropy = supported.samplerAnisotropy;
-    enabled_.independentBlend = supported.independentBlend;
-    enabled_.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
-    enabled_.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
-    enabled_.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
-    enabled_.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
-    enabled_.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-    enabled_.largePoints = supported.largePoints;
+    // 3. Device: the two required features, plus the optional ones the backend can use when present
+    //    (vulkan::usefulFeatures; it cannot query what an application enabled, so EmbeddedDesc tells it below).
+    enabled_ = bricklight::vulkan::usefulFeatures(physical_);
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.synchronization2 = VK_TRUE;
     f13.dynamicRendering = VK_TRUE;

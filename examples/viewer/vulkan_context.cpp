@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "bricklight/rhi_vulkan.h"
 #include "vulkan_errors.h"
 
 namespace bricklight::viewer {
@@ -178,20 +179,9 @@ bool VulkanContext::pickPhysicalDevice(std::string* error) {
 }
 
 bool VulkanContext::createDevice(std::string* error) {
-    // The optional features the standalone device enables (rhi_vulkan/vk_setup.cpp), so that the embedded
-    // one can use the same shader paths; EmbeddedDesc tells it which are on.
-    VkPhysicalDeviceFeatures supported;
-    vkGetPhysicalDeviceFeatures(physical_, &supported);
-    enabled_.geometryShader = supported.geometryShader;
-    enabled_.depthClamp = supported.depthClamp;
-    enabled_.samplerAnisotropy = supported.samplerAnisotropy;
-    enabled_.independentBlend = supported.independentBlend;
-    enabled_.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
-    enabled_.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
-    enabled_.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
-    enabled_.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
-    enabled_.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-    enabled_.largePoints = supported.largePoints;
+    // The optional features the standalone device enables, so that the embedded one can use the same shader
+    // paths; EmbeddedDesc tells it which are on.
+    enabled_ = vulkan::usefulFeatures(physical_);
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.synchronization2 = VK_TRUE;
     f13.dynamicRendering = VK_TRUE;

@@ -52,6 +52,11 @@ struct EmbeddedDesc {
     bool debugUtilsEnabled = false;      // VK_EXT_debug_utils enabled on the instance
 };
 std::unique_ptr<rhi::IDevice> createEmbeddedDevice(const EmbeddedDesc& desc);
+// The core features the backend can use (geometry shaders, depth clamp, stores and atomics in every stage,
+// storage image formats, ...) that `physicalDevice` supports: what the standalone device enables. Enable
+// them on an application-owned device and pass them as EmbeddedDesc::enabledFeatures, so that the
+// embedded backend offers what the standalone one does.
+VkPhysicalDeviceFeatures usefulFeatures(VkPhysicalDevice physicalDevice);
 
 // Embedded mode: record into the application's command buffer (recording state, outside any render
 // pass); until the next call all work goes there and the application submits it to desc.queue, then
