@@ -31,8 +31,8 @@ struct RasterOptions {
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
     gi::TraceParams giTrace;            // gi::DispatchDesc::trace (live: setGiTuning)
     float giRoughnessThreshold = 0.75f;  // gi::DispatchDesc::roughnessThreshold (live)
-    uint32_t sdfCascades = 3;
-    sdf::Budgets sdfBudgets;  // the distance field's per-update budgets (deferred work goes to later updates)  // the finest covers the scene's bounds; each next one doubles
+    uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
+    sdf::Budgets sdfBudgets;   // the distance field's per-update budgets (deferred work goes to later updates)
     // Receives the SDF's and GI's messages (stderr when empty): an application counts them as it counts its
     // device's.
     rhi::ErrorCallback errorCallback;

@@ -1,5 +1,7 @@
 #include "camera_bookmarks.h"
 
+#include <algorithm>
+
 namespace bricklight::viewer {
 
 namespace {
@@ -28,7 +30,9 @@ std::vector<CameraBookmark> cameraBookmarks(const std::string& sceneName, const 
     // Any other scene: from above a corner, from the side at eye height, and straight down.
     marks.push_back({"overview", look(base, centre + glm::vec3(0.6f, 0.5f, 0.6f) * size, centre)});
     marks.push_back({"side", look(base, centre + glm::vec3(-0.45f * size.x, -0.2f * size.y, 0.0f), centre)});
-    marks.push_back({"top", look(base, centre + glm::vec3(0.0f, 0.6f * size.y, 0.01f * size.z), centre)});
+    // Not exactly vertical (a flat scene has size.y = 0): a view straight down has no "up".
+    const float reach = std::max(glm::length(size), 1e-3f);
+    marks.push_back({"top", look(base, centre + glm::vec3(0.0f, 0.6f * size.y + 0.5f * reach, 0.05f * reach), centre)});
     return marks;
 }
 

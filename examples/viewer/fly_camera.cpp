@@ -17,7 +17,8 @@ void FlyCamera::reset(const scenes::Camera& camera, float sceneSize) {
     const float length = glm::length(d);
     const glm::vec3 f = length > 0.0f ? d / length : glm::vec3(0.0f, 0.0f, -1.0f);
     yaw_ = std::atan2(f.x, -f.z);
-    pitch_ = std::asin(std::clamp(f.y, -1.0f, 1.0f));
+    // Clamped as mouse look clamps it: straight up or down the fly basis (forward × up) would be zero.
+    pitch_ = std::clamp(std::asin(std::clamp(f.y, -1.0f, 1.0f)), -kMaxPitch, kMaxPitch);
     distance_ = length > 0.0f ? length : 1.0f;
     target_ = eye_ + f * distance_;
     speed_ = std::max(sceneSize, 1e-3f) * 0.25f;

@@ -13,6 +13,7 @@
 
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_validation.h"
+#include "glfw_errors.h"
 #include "viewer_backend.h"
 
 namespace bricklight::viewer {
@@ -20,12 +21,6 @@ namespace bricklight::viewer {
 namespace {
 
 using rhi::Severity;
-
-std::string& lastGlfwError() {
-    static std::string message;
-    return message;
-}
-void onGlfwError(int, const char* description) { lastGlfwError() = description ? description : ""; }
 
 void* loadGl(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
 
@@ -75,6 +70,7 @@ public:
     const char* name() const override { return "gl"; }
     GLFWwindow* window() override { return window_; }
     rhi::IDevice& device() override { return api(); }
+    bool failed() const override { return failed_; }
     bool beginFrame() override;
     rhi::TextureHandle displayTexture() override { return displayHandle_; }
     uint32_t displayWidth() const override { return width_; }
@@ -99,6 +95,7 @@ private:
     bool imguiGlfw_ = false, imguiGl_ = false;
     GlFunctions gl_;
     std::unique_ptr<rhi::IDevice> device_;
+    bool failed_ = false;
     std::unique_ptr<rhi::IDevice> validation_;  // rhi::createValidationDevice over device_ with options.validation
     // What the app and our own calls use: the validation wrapper when there is one (it must see every
     // resource the app's records name, the wrapped display texture too).
@@ -141,7 +138,7 @@ void GlViewerBackend::destroyDisplay() {
 }
 
 bool GlViewerBackend::create(std::string* error) {
-    glfwSetErrorCallback(onGlfwError);
+    captureGlfwErrors();
     if (!glfwInit())
         return *error = "no display: set DISPLAY or run under Xvfb (docs/viewer.md) [GLFW: " + lastGlfwError() + "]", false;
     glfwReady_ = true;
@@ -205,12 +202,14 @@ bool GlViewerBackend::beginFrame() {
     glfwMakeContextCurrent(window_);
     int fbWidth = 0, fbHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
-    if (fbWidth <= 0 || fbHeight <= 0) return false;
+    if (failed_ || fbWidth <= 0 || fbHeight <= 0) return false;  // failed, or minimized
     if (uint32_t(fbWidth) != width_ || uint32_t(fbHeight) != height_) {
         destroyDisplay();
         std::string error;
-        if (!createDisplay(uint32_t(fbWidth), uint32_t(fbHeight), &error))
+        if (!createDisplay(uint32_t(fbWidth), uint32_t(fbHeight), &error)) {
+            failed_ = true;  // no display texture: no frame can be shown
             return errorCallback_(Severity::Error, error), false;
+        }
     }
     inFrame_ = true;
     ImGui_ImplOpenGL3_NewFrame();

@@ -2,6 +2,8 @@
 // library takes it per frame, and the distance field's statistics. Registered, not called by the UI code.
 #include <imgui.h>
 
+#include <algorithm>
+
 #include "technique_registry.h"
 #include "viewer_app.h"
 
@@ -63,11 +65,14 @@ void sdfGiPanel(ViewerApp& app) {
     // Live: the next frame's gi::DispatchDesc.
     ImGui::Separator();
     ImGui::TextUnformatted("tracing (live)");
-    int start = int(g.trace.startCascade), end = int(std::min<uint32_t>(g.trace.endCascade, sdf::kMaxCascades - 1));
-    ImGui::SliderInt("start cascade", &start, 0, int(sdf::kMaxCascades - 1));
-    ImGui::SliderInt("end cascade", &end, start, int(sdf::kMaxCascades - 1));
+    // Within the field's cascades (the library refuses a start past the last or an end before the start).
+    const int last = int(g.sdfCascades) - 1;
+    int start = std::min(int(g.trace.startCascade), last), end = std::clamp(int(std::min<uint32_t>(g.trace.endCascade, 255)), start, last);
+    ImGui::SliderInt("start cascade", &start, 0, last);
+    end = std::max(end, start);
+    ImGui::SliderInt("end cascade", &end, start, last);
     g.trace.startCascade = uint32_t(start);
-    g.trace.endCascade = uint32_t(end);
+    g.trace.endCascade = uint32_t(std::max(end, start));
     int iterations = int(g.trace.maxIterationsPerCascade);
     if (ImGui::SliderInt("steps per cascade", &iterations, 1, 256)) g.trace.maxIterationsPerCascade = uint32_t(iterations);
     ImGui::SliderFloat("coarsen after voxels", &g.trace.coarsenAfterVoxels, 0.0f, 16.0f, "%.1f");

@@ -62,7 +62,7 @@ int ViewerApp::run(const ViewerSettings& settings) {
                 status = 1;
             }
         }
-        if (status == 0 && app.errors_) {
+        if (status == 0 && app.errors_ && settings.exitAfterFrames) {
             std::fprintf(stderr, "bricklight-viewer: %llu error(s) were reported (the first: %s)\n",
                          static_cast<unsigned long long>(app.errors_), app.firstError_.c_str());
             status = 1;
@@ -105,15 +105,7 @@ bool ViewerApp::start(std::string* error) {
     bo.validation = settings_.render.validate;
     bo.hidden = settings_.hidden;
     bo.title = "bricklight-viewer: " + loaded_.name + " (" + settings_.render.backend + ")";
-    // Every message of the device, the validation layers and our passes is counted: with --exit-after a
-    // reported error fails the run, as it fails bricklight-render.
-    bo.errorCallback = [this](rhi::Severity s, const std::string& m) {
-        if (s == rhi::Severity::Info) return;
-        std::fprintf(stderr, "bricklight-viewer: %s%s\n", s == rhi::Severity::Warning ? "warning: " : "", m.c_str());
-        if (s == rhi::Severity::Error && errors_++ == 0) firstError_ = m;
-        messages_.push_back(m);
-        if (messages_.size() > 64) messages_.erase(messages_.begin());
-    };
+    bo.errorCallback = [this](rhi::Severity s, const std::string& m) { report(s, m); };
     backend_ = settings_.render.backend == "gl" ? ViewerBackend::createGl(bo, error) : ViewerBackend::createVulkan(bo, error);
     if (!backend_) return false;
     backend_->device().setTimingEnabled(true);
@@ -146,14 +138,11 @@ bool ViewerApp::buildRenderer(std::string* error) {
     ro.giRelight = gi_.relight;
     ro.sdfCascades = gi_.sdfCascades;
     ro.sdfBudgets = gi_.sdfBudgets;
-    ro.errorCallback = [this](rhi::Severity s, const std::string& m) {
-        if (s == rhi::Severity::Info) return;
-        std::fprintf(stderr, "bricklight-viewer: %s%s\n", s == rhi::Severity::Warning ? "warning: " : "", m.c_str());
-        if (s == rhi::Severity::Error && errors_++ == 0) firstError_ = m;
-        messages_.push_back(m);
-    };
+    ro.errorCallback = [this](rhi::Severity s, const std::string& m) { report(s, m); };
     renderer_ = render::RasterRenderer::create(backend_->device(), scene_, ro, error);
     if (!renderer_) return false;
+    builtOptions_ = settings_.render;
+    builtGi_ = gi_;
     renderWidth_ = w;
     renderHeight_ = h;
     cameraMoved_ = camera_.camera().eye != scene_.camera.eye || camera_.camera().at != scene_.camera.at;
@@ -161,7 +150,27 @@ bool ViewerApp::buildRenderer(std::string* error) {
     return true;
 }
 
-void ViewerApp::applyLights() {
+// Every message of the device, the validation layers and our passes: on stderr and in the panel, and
+// counted: a --frames run with an error fails, as bricklight-render's does.
+void ViewerApp::report(rhi::Severity s, const std::string& m) {
+    if (s == rhi::Severity::Info) return;
+    std::fprintf(stderr, "bricklight-viewer: %s%s\n", s == rhi::Severity::Warning ? "warning: " : "", m.c_str());
+    if (s == rhi::Severity::Error && errors_++ == 0) firstError_ = m;
+    messages_.push_back(m);
+    if (messages_.size() > 64) messages_.erase(messages_.begin());
+}
+
+bool ViewerApp::rebuildOrRestore(std::string* error) {
+    if (buildRenderer(error)) return true;
+    log("the change was refused: " + *error + "; back to the previous settings");
+    settings_.render = builtOptions_;
+    gi_ = builtGi_;
+    return buildRenderer(error);
+}
+
+// The light settings applied to the scene; `upload` hands it to the renderer (an animation step about to
+// call setScene this frame does that itself: two calls would leave the frame without motion).
+void ViewerApp::applyLights(bool upload) {
     lightsChanged_ = false;
     const float az = glm::radians(lights_.sunAzimuthDegrees), el = glm::radians(lights_.sunElevationDegrees);
     scene_.environment.sunDirection = glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
@@ -170,7 +179,7 @@ void ViewerApp::applyLights() {
     for (size_t i = 0; i < scene_.pointLights.size(); ++i)
         scene_.pointLights[i].intensity = lights_.pointLights ? loaded_.pointLights[i].intensity : glm::vec3(0.0f);
     std::string error;
-    if (!renderer_->setScene(scene_, &error)) log("the light change was refused: " + error);
+    if (upload && !renderer_->setScene(scene_, &error)) log("the light change was refused: " + error);
 }
 
 void ViewerApp::keyCallback(GLFWwindow* window, int key, int scancode, int action, int mods) {
@@ -225,6 +234,7 @@ void ViewerApp::handleKey(int key, int mods) {
         const CameraBookmark& b = bookmarks_[size_t(key - GLFW_KEY_1)];
         camera_.reset(b.camera, sceneSize(loaded_));
         cameraMoved_ = true;
+        renderer_->cameraCut();  // a jump: GI must not reproject its history across it
         log("camera: " + b.name);
     } else if (key == GLFW_KEY_ESCAPE) {
         glfwSetWindowShouldClose(backend_->window(), GLFW_TRUE);
@@ -265,18 +275,42 @@ bool ViewerApp::frame(std::string* error) {
         glfwGetFramebufferSize(backend_->window(), &fw, &fh);
         if (fw > 0 && fh > 0 && (uint32_t(fw) != renderWidth_ || uint32_t(fh) != renderHeight_)) rebuild_ = true;
     }
-    if (rebuild_ && !buildRenderer(error)) return false;
-    if (lightsChanged_) applyLights();
-    if (!backend_->beginFrame()) {  // minimized: nothing to draw
-        glfwWaitEventsTimeout(0.1);
+    if (rebuild_ && !rebuildOrRestore(error)) return false;
+    const bool stepAnimation = playing_ && framesRendered_ > 0 && scene_.animate;
+    if (lightsChanged_) applyLights(!stepAnimation);
+    if (!backend_->beginFrame()) {
+        if (backend_->failed()) return *error = "the window cannot show frames any more (see the message above)", false;
+        glfwWaitEventsTimeout(0.1);  // minimized: nothing to draw
         return true;
     }
     ImGui::NewFrame();
     for (int k : keys_) handleKey(k & 0xFFFF, k >> 16);
     keys_.clear();
     cameraInput(seconds);
-    // The frame loop bricklight-render runs (render_options.h): the scene's frame, then the render.
-    if (playing_ && framesRendered_ > 0 && scene_.animate) {
+    // Once a frame has begun it is always ended (the embedded device records into its command buffer until
+    // endFrame hands it back); a failure inside is returned after that.
+    const bool ok = renderFrame(stepAnimation, error);
+    if (ok && showUi_) drawPanels();
+    ImGui::Render();
+    backend_->endFrame(ImGui::GetDrawData());
+    if (!ok) return false;
+    ++framesRendered_;
+    stats_.update(backend_->device(), seconds * 1000.0f);
+    if (framesRendered_ == 1) log("first frame");
+    if (screenshotRequested_) {
+        screenshotRequested_ = false;
+        const std::string path = settings_.screenshotDir + "/bricklight-viewer-" + std::to_string(++screenshotCount_) + ".png";
+        std::string why;
+        if (!writeScreenshot(path, &why)) log("screenshot failed: " + why);
+    }
+    return !backend_->failed() || (*error = "the window cannot show frames any more (see the message above)", false);
+}
+
+// The frame loop bricklight-render runs (render_options.h): the scene's frame, then the render; then the
+// picture: the view fitted into the window (letterboxed when the render size is fixed), and the
+// picture-in-picture in the lower right corner.
+bool ViewerApp::renderFrame(bool stepAnimation, std::string* error) {
+    if (stepAnimation) {
         ++animationFrame_;
         if (!render::animateTo(scene_, *renderer_, animationFrame_, error)) return false;
     }
@@ -287,8 +321,6 @@ bool ViewerApp::frame(std::string* error) {
     renderer_->setGiTuning(gi_.trace, gi_.roughnessThreshold);
     renderer_->setSdfCenter(renderer_->sceneCenter() + gi_.sdfCenterOffset);
     renderer_->render();
-    // The picture: the view fitted into the window (letterboxed when the render size is fixed), and the
-    // picture-in-picture in the lower right corner.
     const uint32_t dw = backend_->displayWidth(), dh = backend_->displayHeight();
     render::DisplayRect full{0, 0, dw, dh};
     if (settings_.fixedSize) {
@@ -301,21 +333,10 @@ bool ViewerApp::frame(std::string* error) {
     }
     std::string why;
     if (!renderer_->drawView(settings_.view, backend_->displayTexture(), full, settings_.render.exposure, &why)) log(why);
-    if (settings_.pip && full.width >= 8 && full.height >= 8) {
+    if (settings_.pip && full.width >= 24 && full.height >= 24) {  // a third of the picture, 8 pixels in
         const render::DisplayRect pip{full.x + full.width - full.width / 3 - 8, full.y + full.height - full.height / 3 - 8,
                                       full.width / 3, full.height / 3};
         if (!renderer_->drawView(settings_.pipView, backend_->displayTexture(), pip, settings_.render.exposure, &why)) log(why);
-    }
-    if (showUi_) drawPanels();
-    ImGui::Render();
-    backend_->endFrame(ImGui::GetDrawData());
-    ++framesRendered_;
-    stats_.update(backend_->device(), seconds * 1000.0f);
-    if (framesRendered_ == 1) log("first frame");
-    if (screenshotRequested_) {
-        screenshotRequested_ = false;
-        const std::string path = settings_.screenshotDir + "/bricklight-viewer-" + std::to_string(++screenshotCount_) + ".png";
-        if (!writeScreenshot(path, &why)) log("screenshot failed: " + why);
     }
     return true;
 }

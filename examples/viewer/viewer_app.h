@@ -82,8 +82,13 @@ private:
     explicit ViewerApp(const ViewerSettings& settings) : settings_(settings) {}
     bool start(std::string* error);
     bool frame(std::string* error);  // one frame; false on a failure that ends the run
+    bool renderFrame(bool stepAnimation, std::string* error);  // inside a begun frame
     bool buildRenderer(std::string* error);
-    void applyLights();
+    // A rebuild the library refused (a panel's setting it does not take) goes back to the last settings
+    // that built; false only if those fail too.
+    bool rebuildOrRestore(std::string* error);
+    void applyLights(bool upload);
+    void report(rhi::Severity severity, const std::string& message);  // every layer's messages
     void handleKey(int key, int mods);
     void cameraInput(float seconds);
     bool writeScreenshot(const std::string& path, std::string* error);
@@ -93,6 +98,8 @@ private:
     ViewerSettings settings_;
     LightSettings lights_;
     GiSettings gi_;
+    render::RenderOptions builtOptions_;  // what the current renderer was built with (rebuildOrRestore)
+    GiSettings builtGi_;
     std::unique_ptr<ViewerBackend> backend_;
     scenes::SceneGeometry loaded_, scene_;  // as loaded; with the light settings and the animation applied
     std::unique_ptr<render::RasterRenderer> renderer_;

@@ -59,6 +59,10 @@ public:
     // buffers, so blocking read-backs work between frames.
     virtual void endFrame(ImDrawData* ui) = 0;
 
+    // True once the window or device failed for good (a lost surface or device, a swapchain or display
+    // texture that cannot be created, a failed submit): beginFrame then keeps returning false, and the app
+    // must end instead of waiting as for a minimized window.
+    virtual bool failed() const = 0;
     virtual void setVsync(bool on) = 0;  // Vulkan: FIFO vs MAILBOX/IMMEDIATE; GL: glfwSwapInterval
     virtual void waitIdle() = 0;         // vkDeviceWaitIdle / glFinish
 };

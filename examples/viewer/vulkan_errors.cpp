@@ -1,7 +1,5 @@
 #include "vulkan_errors.h"
 
-#include <GLFW/glfw3.h>
-
 namespace bricklight::viewer {
 
 namespace {
@@ -31,21 +29,10 @@ const char* resultName(VkResult r) {
     }
 }
 
-std::string& glfwMessage() {
-    static std::string message;
-    return message;
-}
-
-void onGlfwError(int, const char* description) { glfwMessage() = description ? description : ""; }
-
 }  // namespace
 
 std::string vkFailed(const char* call, VkResult r) {
     return std::string("vulkan: ") + call + " failed (" + resultName(r) + ")";
 }
-
-void captureGlfwErrors() { glfwSetErrorCallback(onGlfwError); }
-
-const std::string& lastGlfwError() { return glfwMessage(); }
 
 }  // namespace bricklight::viewer

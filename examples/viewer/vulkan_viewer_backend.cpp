@@ -71,6 +71,14 @@ private:
     };
 
     void report(const std::string& message) { errorCallback_(Severity::Error, message); }
+    // An error after which no frame can be shown: reported once, and failed() tells the app to end.
+    bool fatal(const std::string& message) {
+        if (!failed_) report(message);
+        failed_ = true;
+        return false;
+    }
+    bool failed() const override { return failed_; }
+    bool failed_ = false;
     bool createBricklightDevice(std::string* error);
     bool createFrameObjects(std::string* error);
     void destroyFrameObjects();
@@ -296,21 +304,21 @@ bool VulkanViewerBackend::beginFrame() {
     if (inFrame_) return report("vulkan viewer: beginFrame called twice without endFrame"), false;
     int fbWidth = 0, fbHeight = 0;
     glfwGetFramebufferSize(window_, &fbWidth, &fbHeight);
-    if (fbWidth <= 0 || fbHeight <= 0) return false;  // minimized: nothing can be presented
+    if (failed_ || fbWidth <= 0 || fbHeight <= 0) return false;  // failed, or minimized: nothing can be presented
 
     const VkDevice vkDevice = context_.device();
-    vkWaitForFences(vkDevice, 1, &fences_[slot_], VK_TRUE, UINT64_MAX);
+    if (VkResult r = vkWaitForFences(vkDevice, 1, &fences_[slot_], VK_TRUE, UINT64_MAX); r != VK_SUCCESS)
+        return fatal(vkFailed("vkWaitForFences", r));
     std::string error;
     for (int attempt = 0;; ++attempt) {
         const VkExtent2D extent = swapchain_.extent();
         if (swapchain_.stale() || uint32_t(fbWidth) != extent.width || uint32_t(fbHeight) != extent.height) {
             vkDeviceWaitIdle(vkDevice);
-            if (!recreateSwapchain(&error)) return report(error), false;
+            if (!recreateSwapchain(&error)) return fatal(error);
         }
         if (display_.width != swapchain_.extent().width || display_.height != swapchain_.extent().height) {
             destroyDisplay();
-            if (!createDisplay(swapchain_.extent().width, swapchain_.extent().height, &error))
-                return report(error), false;
+            if (!createDisplay(swapchain_.extent().width, swapchain_.extent().height, &error)) return fatal(error);
         }
         VkResult r = vkAcquireNextImageKHR(vkDevice, swapchain_.handle(), UINT64_MAX, acquired_[slot_], VK_NULL_HANDLE,
                                            &imageIndex_);
@@ -319,7 +327,7 @@ bool VulkanViewerBackend::beginFrame() {
             swapchain_.markStale();
             break;
         }
-        if (r != VK_ERROR_OUT_OF_DATE_KHR || attempt == 2) return report(vkFailed("vkAcquireNextImageKHR", r)), false;
+        if (r != VK_ERROR_OUT_OF_DATE_KHR || attempt == 2) return fatal(vkFailed("vkAcquireNextImageKHR", r));
         swapchain_.markStale();  // acquire signalled nothing; rebuild and try again
     }
     vkResetFences(vkDevice, 1, &fences_[slot_]);  // only now: a frame that returned early submits nothing
@@ -404,8 +412,12 @@ void VulkanViewerBackend::submitAndPresent(VkCommandBuffer cb) {
     si.pCommandBufferInfos = &cbi;
     si.signalSemaphoreInfoCount = 1;
     si.pSignalSemaphoreInfos = &signal;
-    if (VkResult r = vkQueueSubmit2(context_.queue(), 1, &si, fences_[slot_]); r != VK_SUCCESS)
-        report(vkFailed("vkQueueSubmit2", r));
+    // A failed submit signals neither the semaphore the present would wait on nor the slot's fence: present
+    // nothing and end (waiting on either would hang).
+    if (VkResult r = vkQueueSubmit2(context_.queue(), 1, &si, fences_[slot_]); r != VK_SUCCESS) {
+        fatal(vkFailed("vkQueueSubmit2", r));
+        return;
+    }
 
     const VkSemaphore rendered = swapchain_.rendered(imageIndex_);
     const VkSwapchainKHR swapchain = swapchain_.handle();
@@ -419,7 +431,7 @@ void VulkanViewerBackend::submitAndPresent(VkCommandBuffer cb) {
     if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR)
         swapchain_.markStale();
     else if (r != VK_SUCCESS)
-        report(vkFailed("vkQueuePresentKHR", r));
+        fatal(vkFailed("vkQueuePresentKHR", r));
 }
 
 void VulkanViewerBackend::endFrame(ImDrawData* ui) {
