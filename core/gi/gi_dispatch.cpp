@@ -155,7 +155,9 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     {  // 1, 2. downsample; disocclusion mask
         rhi::DispatchState s;
         addInputs(s.bindings);
-        texture(s.bindings, 3, d.motionVectors ? d.motionVectors : black2D_, point_);  // unread without
+        // Without motion vectors: a 1x1 black stand-in whose texel the shader fetches and ignores (it selects the
+        // camera's motion instead of branching on the flag: lavapipe recompiles per dispatch on such branches).
+        texture(s.bindings, 3, d.motionVectors ? d.motionVectors : black2D_, point_);
         texture(s.bindings, 4, depth_[prev], point_);
         texture(s.bindings, 5, surface_[prev], point_);
         image(s.bindings, 0, depth_[cur], Access::Write);
