@@ -1,16 +1,20 @@
-// Bricklight voxel cone tracing (VXGI-class) — in progress. This first part is the clip-map's geometry: a
-// stack of levels of equal resolution, each twice the voxel size of the one below, centred on an anchor the
-// application moves, addressed toroidally so that moving the anchor revoxelizes only the slabs that entered.
-// Voxelization through draw records, emittance, cone tracing and the GPU resources come next (docs/vct.md
-// will describe them; the issue "Voxel cone tracing GI and voxel AO on a clip-map" lists the plan).
+// Bricklight voxel cone tracing (VXGI-class) — in progress. So far the clip-map: a stack of levels of equal
+// resolution, each twice the voxel size of the one below, centred on an anchor the application moves,
+// addressed toroidally so that moving the anchor revoxelizes only the slabs that entered; and its opacity
+// volume on the device, cleared where levels scroll. Voxelization through draw records, emittance and cone
+// tracing come next (docs/vct.md grows with them).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "bricklight/rhi.h"
+#include "bricklight/sdf.h"  // MemoryUse
 
 namespace bricklight::vct {
 
@@ -74,6 +78,42 @@ private:
     ClipmapDesc desc_;
     std::vector<glm::ivec3> origins_;
     bool placed_ = false;
+};
+
+using MemoryUse = sdf::MemoryUse;
+
+// The clip-map's volumes on a device, kept in step with the placement. So far the opacity volume; the
+// emittance volumes and the passes that fill them come next.
+//
+//   volume        format     size                                   holds
+//   opacity       R32_UINT   resolution² × (resolution × levels)   per voxel; level L in z slices
+//                                                                   [L·resolution, (L+1)·resolution),
+//                                                                   a world voxel at its coordinates
+//                                                                   modulo resolution (toroidal)
+class Clipmap {
+public:
+    // Null with *error for a bad description or a device that cannot create the volumes.
+    static std::unique_ptr<Clipmap> create(rhi::IDevice& device, const ClipmapDesc& desc, std::string* error);
+    ~Clipmap();
+    Clipmap(const Clipmap&) = delete;
+    Clipmap& operator=(const Clipmap&) = delete;
+
+    // Moves the anchor (ClipmapPlacement::moveAnchor) and records a clear of every box that entered a
+    // level (shaders/vct/clear_boxes.comp), in place in the toroidal volumes. A refused anchor changes and
+    // records nothing.
+    std::optional<std::vector<LevelUpdate>> update(const glm::vec3& anchor, std::string* error);
+    void invalidate() { placement_.invalidate(); }
+
+    const ClipmapPlacement& placement() const { return placement_; }
+    rhi::TextureHandle opacityVolume() const { return opacity_; }
+    MemoryUse memoryUse() const;
+
+private:
+    Clipmap(rhi::IDevice& device, const ClipmapPlacement& placement) : device_(device), placement_(placement) {}
+    rhi::IDevice& device_;
+    ClipmapPlacement placement_;
+    rhi::ShaderHandle clearBoxes_;
+    rhi::TextureHandle opacity_;
 };
 
 }  // namespace bricklight::vct

@@ -1,0 +1,19 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+#include "vct_clipmap.glsl"
+// Clears one box of world voxels of one level (what entered the level when the anchor moved), in place in
+// the toroidal volume.
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+BL_CONSTANTS(0) uniform Box {
+    ivec4 minLevel;  // xyz: the box's lowest world voxel, w: the level
+    ivec4 size;      // xyz: the box's extent in voxels
+    uvec4 params;    // x: the resolution, y: the value written
+} box;
+BL_IMAGE(0, r32ui) uniform writeonly uimage3D volume;
+
+void main() {
+    ivec3 local = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(local, box.size.xyz))) return;
+    imageStore(volume, vctTexel(uint(box.minLevel.w), box.minLevel.xyz + local, box.params.x), uvec4(box.params.y));
+}

@@ -1,0 +1,98 @@
+// vct::Clipmap on both backends: the clears of entered voxels land where the CPU placement says (the GLSL
+// addressing in shaders/vct/vct_clipmap.glsl equals ClipmapPlacement::toroidalTexel), and nothing else is
+// touched.
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+#include "backend_test.h"
+#include "bricklight/vct.h"
+#include "test_device.h"
+
+using namespace bricklight;
+using bricklight::testing::makeDevice;
+using bricklight::testing::TestDevice;
+
+namespace {
+
+constexpr uint32_t kResolution = 32, kLevels = 2, kMarker = 7;
+
+std::vector<uint32_t> readVolume(TestDevice& td, rhi::TextureHandle volume) {
+    std::vector<uint32_t> texels(size_t(kResolution) * kResolution * kResolution * kLevels);
+    REQUIRE(td.device->readTexture(volume, {}, texels.data()));
+    return texels;
+}
+
+uint32_t texelOf(const std::vector<uint32_t>& texels, const vct::ClipmapPlacement& p, uint32_t level, glm::ivec3 voxel) {
+    const glm::ivec3 t = p.toroidalTexel(voxel) + glm::ivec3(0, 0, int(level * kResolution));
+    return texels[(size_t(t.z) * kResolution + size_t(t.y)) * kResolution + size_t(t.x)];
+}
+
+void clearsWhatEntered(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    vct::ClipmapDesc desc;
+    desc.levels = kLevels;
+    desc.resolution = kResolution;
+    desc.finestVoxelSize = 0.25f;
+    std::string error;
+    auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
+    INFO(error);
+    REQUIRE(clipmap);
+    CHECK(clipmap->memoryUse().totalBytes == uint64_t(kResolution) * kResolution * kResolution * kLevels * 4);
+    // The first update clears every level whole.
+    rhi::ClearValue marker{};
+    marker.u[0] = kMarker;
+    REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
+    REQUIRE(clipmap->update(glm::vec3(1.1f, -0.4f, 2.0f), &error));
+    for (uint32_t v : readVolume(td, clipmap->opacityVolume())) REQUIRE(v == 0u);
+    // Then only what entered: mark everything, move (a slab on x and y, across negative coordinates), read.
+    REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
+    auto updates = clipmap->update(glm::vec3(-1.3f, 0.9f, 2.0f), &error);
+    REQUIRE(updates);
+    const std::vector<uint32_t> texels = readVolume(td, clipmap->opacityVolume());
+    const vct::ClipmapPlacement& p = clipmap->placement();
+    uint64_t cleared = 0, entered = 0;
+    for (const vct::LevelUpdate& u : *updates) {
+        for (const vct::VoxelBox& b : u.entered) entered += b.voxelCount();
+        const glm::ivec3 o = p.origin(u.level);
+        for (int z = o.z; z < o.z + int(kResolution); ++z)
+            for (int y = o.y; y < o.y + int(kResolution); ++y)
+                for (int x = o.x; x < o.x + int(kResolution); ++x) {
+                    bool inEntered = false;
+                    for (const vct::VoxelBox& b : u.entered)
+                        inEntered = inEntered || (x >= b.min.x && y >= b.min.y && z >= b.min.z && x < b.max.x && y < b.max.y && z < b.max.z);
+                    const uint32_t value = texelOf(texels, p, u.level, {x, y, z});
+                    if (value == 0u) ++cleared;
+                    if (value != (inEntered ? 0u : kMarker)) {
+                        INFO("level " << u.level << " voxel (" << x << ", " << y << ", " << z << ")");
+                        REQUIRE(value == (inEntered ? 0u : kMarker));
+                    }
+                }
+    }
+    INFO("entered voxels " << entered);
+    CHECK(entered > 0);
+    CHECK(cleared == entered);
+    // A refused anchor records nothing.
+    REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
+    CHECK_FALSE(clipmap->update(glm::vec3(INFINITY, 0.0f, 0.0f), &error));
+    CHECK(error.find("anchor") != std::string::npos);
+    for (uint32_t v : readVolume(td, clipmap->opacityVolume())) REQUIRE(v == kMarker);
+    REQUIRE_NO_MESSAGES(td);
+}
+
+void refusesBadDescriptions(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    vct::ClipmapDesc desc;
+    desc.resolution = 48;
+    std::string error;
+    CHECK_FALSE(vct::Clipmap::create(*td.device, desc, &error));
+    CHECK(error.find("resolution 48") != std::string::npos);
+    REQUIRE_NO_MESSAGES(td);
+}
+
+}  // namespace
+
+BACKEND_TEST("clip-map clears exactly the voxels that entered its levels", "[vct]", clearsWhatEntered)
+BACKEND_TEST("clip-map refuses a bad description", "[vct]", refusesBadDescriptions)
