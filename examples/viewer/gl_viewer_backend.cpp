@@ -59,9 +59,7 @@ struct GlFunctions {
 class GlViewerBackend final : public ViewerBackend {
 public:
     explicit GlViewerBackend(const BackendOptions& options) : options_(options) {
-        errorCallback_ = options.errorCallback;
-        if (!errorCallback_)
-            errorCallback_ = [](Severity, const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+        errorCallback_ = callbackOrStderr(options.errorCallback);
     }
     ~GlViewerBackend() override;
 

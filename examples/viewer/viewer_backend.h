@@ -30,6 +30,9 @@ struct BackendOptions {
 
 class ViewerBackend {
 public:
+    // The options' callback, or one that prints to stderr: backends store the result (its address goes to
+    // the Vulkan messenger and ImGui), so it is never empty.
+    static rhi::ErrorCallback callbackOrStderr(const rhi::ErrorCallback& callback);
     // nullptr + *error (one clear line) when there is no display, no Vulkan 1.3 device with a
     // present-capable graphics+compute queue, no GL 4.5 core context, ... Never crashes.
     static std::unique_ptr<ViewerBackend> createVulkan(const BackendOptions& options, std::string* error);

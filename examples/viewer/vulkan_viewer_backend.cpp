@@ -37,10 +37,7 @@ constexpr VkImageLayout kDisplayLayout = VK_IMAGE_LAYOUT_GENERAL;
 class VulkanViewerBackend final : public ViewerBackend {
 public:
     explicit VulkanViewerBackend(const BackendOptions& options) : options_(options), vsync_(options.vsync) {
-        // Stored in the object (its address is handed to the messenger and ImGui), never empty.
-        errorCallback_ = options.errorCallback;
-        if (!errorCallback_)
-            errorCallback_ = [](Severity, const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+        errorCallback_ = callbackOrStderr(options.errorCallback);
     }
     ~VulkanViewerBackend() override;
 
