@@ -1,8 +1,41 @@
-// vct::Clipmap: the clip-map's volumes on a device, cleared where the levels scroll.
+// vct::Clipmap: the clip-map's resources on a device, the clears and refills an update needs, and the draw
+// records through which the application voxelizes its meshes.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
 #include "bricklight/vct.h"
 #include "../core_shaders.h"
+#include "clipmap_regions.h"
 
 namespace bricklight::vct {
+
+bool checkVoxelMaterial(const VoxelMaterial& m, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "voxel material: " + why;
+        return false;
+    };
+    if (!(m.thickness >= 0.0f && m.thickness <= 2.0f))
+        return fail("thickness " + std::to_string(m.thickness) + " is outside 0..2 voxels");
+    if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) return fail("opacity " + std::to_string(m.opacity) + " is outside 0..1");
+    return true;
+}
+
+namespace {
+
+rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader(name);
+    return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+}
+
+// The constants of the clear and downsampling passes: one box of one level.
+struct BoxConstants {
+    glm::ivec4 minLevel, size;
+    glm::uvec4 params;
+};
+
+}  // namespace
 
 std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc& desc, std::string* error) {
     auto fail = [&](const std::string& why) {
@@ -16,11 +49,20 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     if (desc.resolution > limits.maxTextureSize3D || depth > limits.maxTextureSize3D)
         return fail("the opacity volume (" + std::to_string(desc.resolution) + "² × " + std::to_string(depth) +
                     ") exceeds the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution");
+    const uint64_t voxels = uint64_t(desc.resolution) * desc.resolution * depth;
+    const uint64_t emittanceBytes = std::max<uint64_t>(voxels * emittanceWordsPerVoxel(desc.emittance) * 4, 16);
+    if (emittanceBytes > limits.maxStorageBufferRange)
+        return fail("the emittance buffer (" + std::to_string(emittanceBytes >> 20) + " MiB) exceeds the device's storage buffer range of " +
+                    std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: use isotropic emittance, fewer levels or a lower resolution");
     shaders::link_bricklight_core();
     std::unique_ptr<Clipmap> c(new Clipmap(device, *placement));
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader("vct/clear_boxes.comp");
-    c->clearBoxes_ = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+    c->clearBoxes_ = makeShader(device, "vct/clear_boxes.comp");
+    c->clearEmittance_ = makeShader(device, "vct/clear_emittance_boxes.comp");
+    c->downsample_ = makeShader(device, "vct/downsample.comp");
+    if (device.capabilities().geometryShader) {
+        c->voxelizeGeometry_ = makeShader(device, "vct/voxelize.geom");
+        c->voxelizeOpacity_ = makeShader(device, "vct/voxelize_opacity.frag");
+    }
     rhi::TextureDesc td;
     td.dimension = rhi::TextureDimension::Texture3D;
     td.format = rhi::Format::R32_UINT;
@@ -29,46 +71,226 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
     td.debugName = "vct opacity";
     c->opacity_ = device.createTexture(td);
-    if (!c->clearBoxes_ || !c->opacity_) return fail("the device could not create the opacity volume or its clear pass");
+    rhi::TextureDesc rd;
+    rd.format = rhi::Format::D32_FLOAT;
+    rd.width = rd.height = desc.resolution;
+    rd.usage = rhi::TextureUsage::DepthTarget;
+    rd.debugName = "vct raster size";
+    c->rasterSize_ = device.createTexture(rd);
+    rhi::BufferDesc bd;
+    bd.size = emittanceBytes;
+    bd.usage = rhi::BufferUsage::ShaderWrite;
+    bd.debugName = "vct emittance";
+    c->emittance_ = device.createBuffer(bd);
+    bd.size = detail::kFrameBufferBytes;
+    bd.usage = rhi::BufferUsage::ShaderRead;
+    bd.debugName = "vct frame";
+    c->frame_ = device.createBuffer(bd);
+    bd.size = detail::kCounterWords * 4;
+    bd.usage = rhi::BufferUsage::ShaderWrite;
+    bd.debugName = "vct counters";
+    c->counters_ = device.createBuffer(bd);
+    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->opacity_ || !c->rasterSize_ || !c->emittance_ ||
+        !c->frame_ || !c->counters_)
+        return fail("the device could not create the clip-map's volumes, buffers or passes");
     return c;
 }
 
 Clipmap::~Clipmap() {
-    if (opacity_) device_.destroy(opacity_);
-    if (clearBoxes_) device_.destroy(clearBoxes_);
+    for (rhi::TextureHandle t : {opacity_, rasterSize_})
+        if (t) device_.destroy(t);
+    for (rhi::BufferHandle b : {emittance_, frame_, counters_})
+        if (b) device_.destroy(b);
+    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, voxelizeGeometry_, voxelizeOpacity_})
+        if (s) device_.destroy(s);
 }
 
-std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor, std::string* error) {
+std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor, std::string* error,
+                                                        const std::vector<WorldBox>& invalidated) {
+    for (size_t i = 0; i < invalidated.size(); ++i) {
+        const WorldBox& w = invalidated[i];
+        bool finite = true;
+        for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(w.min[a]) && std::isfinite(w.max[a]);
+        if (!finite) {
+            if (error) *error = "clip-map: invalidated box " + std::to_string(i) + " is not finite";
+            return std::nullopt;
+        }
+    }
+    const ClipmapDesc& d = desc();
+    std::vector<glm::ivec3> before(d.levels);
+    for (uint32_t level = 0; level < d.levels; ++level) before[level] = placement_.origin(level);
+    const bool placedBefore = placement_.placed();
     std::optional<std::vector<LevelUpdate>> updates = placement_.moveAnchor(anchor, error);
     if (!updates) return std::nullopt;
-    const uint32_t resolution = placement_.desc().resolution;
-    for (const LevelUpdate& u : *updates)
-        for (const VoxelBox& b : u.entered) {
-            const glm::ivec3 size = b.max - b.min;
-            struct {
-                glm::ivec4 minLevel, size;
-                glm::uvec4 params;
-            } c{glm::ivec4(b.min, int(u.level)), glm::ivec4(size, 0), glm::uvec4(resolution, 0u, 0u, 0u)};
-            rhi::DispatchState s;
-            s.shader = clearBoxes_;
-            s.label = "vct clear entered voxels";
-            s.bindings.constants.push(rhi::constants(0, c));
-            rhi::StorageImageBinding volume;
-            volume.slot = 0;
-            volume.view = rhi::textureMip(opacity_, 0);
-            volume.access = rhi::Access::Write;
-            s.bindings.storageImages.push(volume);
-            device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
-        }
+    detail::FrameRegions regions = detail::frameRegions(d, before, placedBefore, *updates, invalidated);
+    rewrite_ = std::move(regions.rewrite);
+    downsampleBoxes_ = std::move(regions.downsample);
+    for (const LevelBox& b : rewrite_) clearBox(b);
+    writeFrame();
     return updates;
+}
+
+void Clipmap::clearBox(const LevelBox& b) {
+    const uint32_t resolution = desc().resolution, words = emittanceWordsPerVoxel(desc().emittance);
+    const glm::ivec3 size = b.box.max - b.box.min;
+    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(resolution, 0u, 0u, 0u)};
+    rhi::DispatchState s;
+    s.shader = clearBoxes_;
+    s.label = "vct clear voxels";
+    s.bindings.constants.push(rhi::constants(0, c));
+    rhi::StorageImageBinding volume;
+    volume.slot = 0;
+    volume.view = rhi::textureMip(opacity_, 0);
+    volume.access = rhi::Access::Write;
+    s.bindings.storageImages.push(volume);
+    device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
+    if (!words) return;
+    c.params.y = words;
+    rhi::DispatchState e;
+    e.shader = clearEmittance_;
+    e.label = "vct clear emittance";
+    e.bindings.constants.push(rhi::constants(0, c));
+    rhi::StorageBufferBinding buffer;
+    buffer.slot = 0;
+    buffer.buffer = emittance_;
+    buffer.access = rhi::Access::Write;
+    e.bindings.storageBuffers.push(buffer);
+    device_.dispatch(e, (uint32_t(size.x) * words + 63) / 64, uint32_t(size.y), uint32_t(size.z));
+}
+
+void Clipmap::writeFrame() {
+    const ClipmapDesc& d = desc();
+    std::vector<uint8_t> bytes(sizeof(detail::FrameHeader) + rewrite_.size() * sizeof(detail::FrameBox));
+    detail::FrameHeader h{};
+    for (uint32_t level = 0; level < d.levels; ++level) h.origin[level] = glm::ivec4(placement_.origin(level), 0);
+    h.params = glm::uvec4(d.resolution, d.levels, emittanceWordsPerVoxel(d.emittance), uint32_t(rewrite_.size()));
+    h.scales = glm::vec4(d.finestVoxelSize, detail::kEmittanceUnits * d.emittanceStorageScale, 0.0f, 0.0f);
+    h.flags = glm::uvec4(countersEnabled_ ? 1u : 0u, 0u, 0u, 0u);
+    std::memcpy(bytes.data(), &h, sizeof(h));
+    for (size_t i = 0; i < rewrite_.size(); ++i) {
+        const detail::FrameBox b{glm::ivec4(rewrite_[i].box.min, int(rewrite_[i].level)), glm::ivec4(rewrite_[i].box.max, 0)};
+        std::memcpy(bytes.data() + sizeof(h) + i * sizeof(b), &b, sizeof(b));
+    }
+    device_.writeBuffer(frame_, 0, bytes.data(), bytes.size());
+}
+
+std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial& material, std::string* error) {
+    if (!checkVoxelMaterial(material, error)) return std::nullopt;
+    if (!voxelizeGeometry_ || !voxelizeOpacity_) {
+        if (error) *error = "clip-map: voxelization needs geometry shaders, which the device does not offer";
+        return std::nullopt;
+    }
+    const MaterialBlock block{{material.thickness, material.opacity, material.twoSided ? 1.0f : 0.0f, 0.0f}};
+    const MaterialBlock* constants = nullptr;
+    for (const auto& m : materials_)
+        if (std::memcmp(m->values, block.values, sizeof(block.values)) == 0) constants = m.get();
+    if (!constants) {
+        constexpr size_t kMaxMaterials = 4096;
+        if (materials_.size() >= kMaxMaterials) {
+            if (error) *error = "clip-map: more than " + std::to_string(kMaxMaterials) + " distinct voxel materials";
+            return std::nullopt;
+        }
+        materials_.push_back(std::make_unique<MaterialBlock>(block));
+        constants = materials_.back().get();
+    }
+    const uint32_t resolution = desc().resolution;
+    rhi::DrawCallState s;
+    s.geometryShader = voxelizeGeometry_;
+    s.fragmentShader = material.fragmentShader ? material.fragmentShader : voxelizeOpacity_;
+    s.topology = rhi::PrimitiveTopology::TriangleList;
+    s.depthTarget.view = rhi::textureMip(rasterSize_, 0);
+    s.depthTarget.load = rhi::LoadOp::DontCare;
+    s.viewport = rhi::Viewport{0.0f, 0.0f, float(resolution), float(resolution), 0.0f, 1.0f};
+    s.raster.cull = rhi::CullMode::None;
+    s.label = "vct voxelize";
+    s.bindings.constants.push(rhi::ConstantsBinding{VoxelizationSlots::kMaterialConstants, constants->values, uint32_t(sizeof(block.values))});
+    rhi::ReadBufferBinding frame;
+    frame.slot = VoxelizationSlots::kFrameReadBuffer;
+    frame.buffer = frame_;
+    s.bindings.readBuffers.push(frame);
+    rhi::StorageBufferBinding emittance;
+    emittance.slot = VoxelizationSlots::kEmittanceBuffer;
+    emittance.buffer = emittance_;
+    emittance.access = rhi::Access::Atomic;
+    s.bindings.storageBuffers.push(emittance);
+    rhi::StorageBufferBinding counters = emittance;
+    counters.slot = VoxelizationSlots::kCountersBuffer;
+    counters.buffer = counters_;
+    s.bindings.storageBuffers.push(counters);
+    rhi::StorageImageBinding opacity;
+    opacity.slot = VoxelizationSlots::kOpacityImage;
+    opacity.view = rhi::textureMip(opacity_, 0);
+    opacity.access = rhi::Access::Atomic;
+    s.bindings.storageImages.push(opacity);
+    return s;
+}
+
+void Clipmap::downsampleBox(const LevelBox& b) {
+    const glm::ivec3 size = b.box.max - b.box.min;
+    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0),
+                   glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), 0u, 0u)};
+    rhi::DispatchState s;
+    s.shader = downsample_;
+    s.label = "vct downsample";
+    s.bindings.constants.push(rhi::constants(0, c));
+    rhi::StorageImageBinding volume;
+    volume.slot = 0;
+    volume.view = rhi::textureMip(opacity_, 0);
+    volume.access = rhi::Access::ReadWrite;
+    s.bindings.storageImages.push(volume);
+    rhi::StorageBufferBinding buffer;
+    buffer.slot = 0;
+    buffer.buffer = emittance_;
+    buffer.access = rhi::Access::ReadWrite;
+    s.bindings.storageBuffers.push(buffer);
+    device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
+}
+
+void Clipmap::finishVoxelization() {
+    device_.beginMarker("vct downsample");
+    for (const LevelBox& b : downsampleBoxes_) downsampleBox(b);
+    device_.endMarker();
+}
+
+std::vector<WorldBox> Clipmap::dirtyRegions() const {
+    std::vector<WorldBox> regions;
+    for (const LevelBox& b : rewrite_) {
+        const float size = placement_.voxelSize(b.level);
+        regions.push_back({glm::vec3(b.box.min) * size, glm::vec3(b.box.max) * size});
+    }
+    return regions;
+}
+
+void Clipmap::setCountersEnabled(bool enabled) {
+    countersEnabled_ = enabled;
+    if (placement_.placed()) writeFrame();
+}
+
+void Clipmap::resetCounters() { device_.clearBuffer(counters_, {}, 0u); }
+
+VoxelizationCounters Clipmap::readCounters() {
+    uint32_t words[detail::kCounterWords] = {};
+    VoxelizationCounters c;
+    if (!device_.readBuffer(counters_, 0, sizeof(words), words)) return c;
+    c.fragments = words[0];
+    c.offTriangle = words[1];
+    c.voxelsWritten = words[2];
+    c.killedByFiner = words[3];
+    c.killedNotDirty = words[4];
+    c.emittanceWrites = words[5];
+    return c;
 }
 
 MemoryUse Clipmap::memoryUse() const {
     MemoryUse use;
-    if (const rhi::TextureDesc* d = device_.describe(opacity_)) {
-        use.resources.push_back({d->debugName, rhi::subresourceBytes(*d, {})});
-        use.totalBytes += use.resources.back().bytes;
-    }
+    auto add = [&](const std::string& name, uint64_t bytes) {
+        use.resources.push_back({name, bytes});
+        use.totalBytes += bytes;
+    };
+    for (rhi::TextureHandle t : {opacity_, rasterSize_})
+        if (const rhi::TextureDesc* d = device_.describe(t)) add(d->debugName, rhi::subresourceBytes(*d, {}));
+    for (rhi::BufferHandle b : {emittance_, frame_, counters_})
+        if (const rhi::BufferDesc* d = device_.describe(b)) add(d->debugName, d->size);
     return use;
 }
 

@@ -1,8 +1,10 @@
 // The clip-map's geometry (include/bricklight/vct.h): description checks, level placement around the
 // anchor and the slabs a move uncovers.
+#include <algorithm>
 #include <cmath>
 
 #include "bricklight/vct.h"
+#include "clipmap_regions.h"
 
 namespace bricklight::vct {
 
@@ -13,29 +15,6 @@ namespace {
 constexpr double kMaxAnchorVoxels = double(1 << 28);
 
 bool isPowerOfTwo(uint32_t v) { return v && !(v & (v - 1)); }
-
-// The boxes of `now` that are not in `before` (both R³ boxes of one level), as up to three disjoint slabs:
-// first the part outside before's x range, then, within it, outside its y range, then z.
-std::vector<VoxelBox> uncovered(const VoxelBox& before, const VoxelBox& now) {
-    std::vector<VoxelBox> slabs;
-    VoxelBox rest = now;  // shrinks to the part still inside before's ranges on the axes done so far
-    for (int axis = 0; axis < 3; ++axis) {
-        if (rest.min[axis] < before.min[axis]) {  // moved towards negative: a slab below
-            VoxelBox s = rest;
-            s.max[axis] = std::min(before.min[axis], rest.max[axis]);
-            slabs.push_back(s);
-            rest.min[axis] = s.max[axis];
-        }
-        if (rest.max[axis] > before.max[axis]) {  // towards positive: a slab above
-            VoxelBox s = rest;
-            s.min[axis] = std::max(before.max[axis], rest.min[axis]);
-            slabs.push_back(s);
-            rest.max[axis] = s.min[axis];
-        }
-        if (rest.min[axis] >= rest.max[axis]) break;  // nothing of `now` overlaps `before`
-    }
-    return slabs;
-}
 
 }  // namespace
 
@@ -61,7 +40,24 @@ bool checkClipmapDesc(const ClipmapDesc& d, std::string* error) {
     if (d.mipLevels > fullChain)
         return fail("mipLevels " + std::to_string(d.mipLevels) + " is more than the " + std::to_string(fullChain) +
                     " mips a level of " + std::to_string(d.resolution) + "³ has");
+    if (d.emittance != EmittanceMode::None && d.emittance != EmittanceMode::Isotropic &&
+        d.emittance != EmittanceMode::Anisotropic)
+        return fail("emittance mode " + std::to_string(int(d.emittance)) + " is not None, Isotropic or Anisotropic");
+    if (!(d.emittanceStorageScale > 0.0f) || !std::isfinite(d.emittanceStorageScale))
+        return fail("emittanceStorageScale must be a positive finite number (got " + std::to_string(d.emittanceStorageScale) + ")");
     return true;
+}
+
+uint32_t emittanceWordsPerVoxel(EmittanceMode mode) {
+    return mode == EmittanceMode::Anisotropic ? 18u : mode == EmittanceMode::Isotropic ? 3u : 0u;
+}
+
+uint64_t clipmapBytes(const ClipmapDesc& d) {
+    const uint64_t voxels = uint64_t(d.resolution) * d.resolution * d.resolution * d.levels;
+    const uint64_t opacity = voxels * 4, emittance = std::max<uint64_t>(voxels * emittanceWordsPerVoxel(d.emittance) * 4, 16);
+    const uint64_t rasterSize = uint64_t(d.resolution) * d.resolution * 4;
+    const uint64_t frame = detail::kFrameBufferBytes, counters = detail::kCounterWords * 4;
+    return opacity + emittance + rasterSize + frame + counters;
 }
 
 uint32_t clipmapMipLevels(const ClipmapDesc& d) {
@@ -115,7 +111,7 @@ std::optional<std::vector<LevelUpdate>> ClipmapPlacement::moveAnchor(const glm::
         const VoxelBox now{u.origin, u.origin + glm::ivec3(r)};
         const VoxelBox before{origins_[level], origins_[level] + glm::ivec3(r)};
         if (!placed_) u.entered.push_back(now);
-        else if (u.origin != origins_[level]) u.entered = uncovered(before, now);
+        else if (u.origin != origins_[level]) u.entered = detail::uncovered(before, now);
         origins_[level] = u.origin;
         updates.push_back(std::move(u));
     }

@@ -1,8 +1,9 @@
 // Bricklight voxel cone tracing (VXGI-class) — in progress. So far the clip-map: a stack of levels of equal
 // resolution, each twice the voxel size of the one below, centred on an anchor the application moves,
-// addressed toroidally so that moving the anchor revoxelizes only the slabs that entered; and its opacity
-// volume on the device, cleared where levels scroll. Voxelization through draw records, emittance and cone
-// tracing come next (docs/vct.md grows with them).
+// addressed toroidally so that moving the anchor revoxelizes only the slabs that entered; its volumes on the
+// device; and voxelization of opacity and emittance through the application's own draws (a DrawCallState with
+// our geometry and fragment shaders, to which the application adds its vertex shader and meshes), with the
+// coarser levels' inner parts downsampled from the finer ones. Cone tracing comes next (docs/vct.md).
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,13 @@ namespace bricklight::vct {
 
 constexpr uint32_t kMinLevels = 2, kMaxLevels = 8;
 
+// How the light surfaces send is stored: not at all (voxel AO), one RGB value per voxel, or one per face
+// direction (+X, +Y, +Z, −X, −Y, −Z; VXGI's anisotropic emittance, which keeps a wall lit on one side from
+// lighting the other).
+enum class EmittanceMode : uint8_t { None, Isotropic, Anisotropic };
+// 32-bit accumulation words per voxel: 0, 3 or 18.
+uint32_t emittanceWordsPerVoxel(EmittanceMode mode);
+
 struct ClipmapDesc {
     uint32_t levels = 5;             // stack levels, kMinLevels..kMaxLevels (VXGI 2.0 in UE4: 128³ × 5)
     uint32_t resolution = 128;       // voxels per axis of every level: 32, 64, 128 or 256
@@ -27,6 +35,13 @@ struct ClipmapDesc {
     // Coarser mips of the last level above the stack (each halves its resolution); 0: log2(resolution) − 2,
     // down to 4³, as VXGI does.
     uint32_t mipLevels = 0;
+    EmittanceMode emittance = EmittanceMode::Anisotropic;
+    // Keep voxels from frame to frame and rewrite only what entered a level or was invalidated (VXGI's
+    // persistentVoxelData); false: every update() clears and rewrites every level.
+    bool persistent = true;
+    // Emittance is accumulated in fixed point, 65536 × emittanceStorageScale units per unit of radiance in
+    // 32-bit words: raise it for dim scenes, lower it where a voxel gathers more than ~60000 / scale.
+    float emittanceStorageScale = 1.0f;
 };
 
 // False with *error naming the field and the problem for a description no clip-map can have.
@@ -62,6 +77,7 @@ public:
     std::optional<std::vector<LevelUpdate>> moveAnchor(const glm::vec3& anchor, std::string* error);
     // The next moveAnchor() revoxelizes every level in full.
     void invalidate() { placed_ = false; }
+    bool placed() const { return placed_; }
 
     const ClipmapDesc& desc() const { return desc_; }
     float voxelSize(uint32_t level) const;  // world units
@@ -82,14 +98,69 @@ private:
 
 using MemoryUse = sdf::MemoryUse;
 
-// The clip-map's volumes on a device, kept in step with the placement. So far the opacity volume; the
-// emittance volumes and the passes that fill them come next.
+// A box of one level's world voxels.
+struct LevelBox {
+    uint32_t level = 0;
+    VoxelBox box;
+};
+// An axis-aligned box in world units (moved objects, changed lights).
+struct WorldBox {
+    glm::vec3 min{0.0f}, max{0.0f};
+};
+
+// What one voxelization draw of the application's meshes writes (VXGI's MaterialInfo).
+struct VoxelMaterial {
+    // Voxels of the level being written added along the projection axis, half in front and half behind the
+    // surface (0..2): thicker walls leak less light.
+    float thickness = 0.0f;
+    // Emits from both sides (the hook runs twice, the second time with the normal flipped).
+    bool twoSided = false;
+    float opacity = 1.0f;  // 0..1: how much of a voxel's cross-section the surface blocks
+    // The application's voxelization fragment shader (bricklight/voxelize.glsl with its blVoxelEmittance);
+    // null: ours, opacity only.
+    rhi::ShaderHandle fragmentShader;
+};
+// False with *error naming the field for a material no draw can use.
+bool checkVoxelMaterial(const VoxelMaterial& material, std::string* error);
+
+// The binding slots a voxelization record uses; the application's own bindings (its vertex shader's and its
+// emittance function's) must use others.
+namespace VoxelizationSlots {
+constexpr uint8_t kMaterialConstants = 3;  // BL_CONSTANTS
+constexpr uint8_t kFrameReadBuffer = 7;    // BL_READ_BUFFER
+constexpr uint8_t kEmittanceBuffer = 6;    // BL_STORAGE_BUFFER
+constexpr uint8_t kCountersBuffer = 7;     // BL_STORAGE_BUFFER
+constexpr uint8_t kOpacityImage = 7;       // BL_IMAGE
+}  // namespace VoxelizationSlots
+
+// Validation counters of the voxelization fragment shader (VXGI's scissor statistics), summed over the draws
+// since resetCounters().
+struct VoxelizationCounters {
+    uint64_t fragments = 0;        // fragments shaded
+    uint64_t offTriangle = 0;      // fragments of the dilated quad whose pixel does not touch the triangle
+    uint64_t voxelsWritten = 0;    // opacity writes
+    uint64_t killedByFiner = 0;    // voxels inside the finer level (downsampled instead)
+    uint64_t killedNotDirty = 0;   // voxels outside this update's rewrite boxes
+    uint64_t emittanceWrites = 0;  // voxels that received emittance
+};
+
+// Bytes a description needs on the device (what memoryUse() will report), for sizing before creating.
+uint64_t clipmapBytes(const ClipmapDesc& desc);
+
+// The clip-map's volumes on a device, kept in step with the placement, and the voxelization that fills them.
 //
-//   volume        format     size                                   holds
-//   opacity       R32_UINT   resolution² × (resolution × levels)   per voxel; level L in z slices
-//                                                                   [L·resolution, (L+1)·resolution),
-//                                                                   a world voxel at its coordinates
-//                                                                   modulo resolution (toroidal)
+//   resource             format / layout                          holds
+//   vct opacity          R32_UINT 3D, resolution² ×               per voxel, 16-bit fixed point (65535 = opaque);
+//                        (resolution × levels)                    level L in z slices [L·res, (L+1)·res), a world
+//                                                                 voxel at its coordinates modulo res (toroidal)
+//   vct emittance        buffer, words per voxel × voxels,        fixed-point radiance per voxel (RGB, or RGB ×
+//                        in the opacity volume's texel order      six directions), accumulated with atomics
+//   vct frame            read buffer (origins, boxes)             what update() decided, read by the draws
+//   vct counters         storage buffer, 8 words                  VoxelizationCounters
+//   vct raster size      D32 resolution², never written           sets the draws' raster size (no colour targets)
+//
+// A frame: update(anchor, invalidated) → the application draws its meshes with voxelizationState(material)
+// (all of them, or those touching dirtyRegions()) → finishVoxelization().
 class Clipmap {
 public:
     // Null with *error for a bad description or a device that cannot create the volumes.
@@ -98,22 +169,58 @@ public:
     Clipmap(const Clipmap&) = delete;
     Clipmap& operator=(const Clipmap&) = delete;
 
-    // Moves the anchor (ClipmapPlacement::moveAnchor) and records a clear of every box that entered a
-    // level (shaders/vct/clear_boxes.comp), in place in the toroidal volumes. A refused anchor changes and
-    // records nothing.
-    std::optional<std::vector<LevelUpdate>> update(const glm::vec3& anchor, std::string* error);
+    // Moves the anchor (ClipmapPlacement::moveAnchor), decides which voxels this frame rewrites — what
+    // entered a level, what left the finer level inside it, and the `invalidated` boxes (moved objects,
+    // changed lights), or everything when the clip-map is not persistent — and records their clears. A refused
+    // anchor or a non-finite box changes and records nothing.
+    std::optional<std::vector<LevelUpdate>> update(const glm::vec3& anchor, std::string* error,
+                                                   const std::vector<WorldBox>& invalidated = {});
+    // The next update() rewrites every level whole.
     void invalidate() { placement_.invalidate(); }
 
+    // The draw record for one material: our geometry shader (one invocation per level, dominant-axis projection,
+    // dilated by half a voxel) and fragment shader (material.fragmentShader or ours), the clip-map's bindings,
+    // a resolution² raster and no colour targets. The application sets vertexShader (writing
+    // bricklight/voxelize_vertex.glsl's outputs), vertexInputs, vertexBuffers, indexBuffer and topology
+    // (triangles), may add bindings in slots other than VoxelizationSlots, and draws. The record stays valid
+    // across frames while this clip-map lives. Null with *error for a bad material or a device without
+    // geometry shaders.
+    std::optional<rhi::DrawCallState> voxelizationState(const VoxelMaterial& material, std::string* error);
+    // After this frame's draws: fills the coarser levels' inner voxels that this frame changed from the finer
+    // levels (shaders/vct/downsample.comp).
+    void finishVoxelization();
+
+    // The boxes this frame's draws may write (fragments elsewhere are dropped), and the same as world boxes
+    // for culling the draws.
+    const std::vector<LevelBox>& rewriteBoxes() const { return rewrite_; }
+    std::vector<WorldBox> dirtyRegions() const;
+
+    void setCountersEnabled(bool enabled);
+    void resetCounters();
+    VoxelizationCounters readCounters();  // waits for the GPU (tests and tools)
+
     const ClipmapPlacement& placement() const { return placement_; }
+    const ClipmapDesc& desc() const { return placement_.desc(); }
     rhi::TextureHandle opacityVolume() const { return opacity_; }
+    rhi::BufferHandle emittanceBuffer() const { return emittance_; }
     MemoryUse memoryUse() const;
 
 private:
     Clipmap(rhi::IDevice& device, const ClipmapPlacement& placement) : device_(device), placement_(placement) {}
+    void clearBox(const LevelBox& box);
+    void downsampleBox(const LevelBox& box);
+    void writeFrame();
+    struct MaterialBlock {
+        float values[4];
+    };
     rhi::IDevice& device_;
     ClipmapPlacement placement_;
-    rhi::ShaderHandle clearBoxes_;
-    rhi::TextureHandle opacity_;
+    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, voxelizeGeometry_, voxelizeOpacity_;
+    rhi::TextureHandle opacity_, rasterSize_;
+    rhi::BufferHandle emittance_, frame_, counters_;
+    std::vector<LevelBox> rewrite_, downsampleBoxes_;
+    std::vector<std::unique_ptr<MaterialBlock>> materials_;  // stable addresses for the records' constants
+    bool countersEnabled_ = false;
 };
 
 }  // namespace bricklight::vct

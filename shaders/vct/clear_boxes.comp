@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
-#include "vct_clipmap.glsl"
+#include "bricklight/vct_layout.glsl"
 // Clears one box of world voxels of one level (what entered the level when the anchor moved), in place in
 // the toroidal volume.
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

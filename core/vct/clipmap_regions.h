@@ -1,0 +1,47 @@
+// Box arithmetic of the clip-map (internal): the slabs a move uncovers, and per update which voxels the
+// voxelization rewrites and which the downsampling refills.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "bricklight/vct.h"
+
+namespace bricklight::vct::detail {
+
+// At most this many boxes reach the draws per update; beyond it each level's boxes merge into one.
+constexpr size_t kMaxFrameBoxes = 64;
+
+// The frame buffer's layout (BL_VCT_FRAME_BLOCK in shaders/include/bricklight/vct_layout.glsl, std430).
+struct FrameHeader {
+    glm::ivec4 origin[kMaxLevels];
+    glm::uvec4 params;  // resolution, levels, emittance words per voxel, boxes
+    glm::vec4 scales;   // finest voxel size, fixed-point units per unit of radiance
+    glm::uvec4 flags;   // x: counters on
+};
+struct FrameBox {
+    glm::ivec4 minLevel, max;
+};
+static_assert(sizeof(FrameHeader) == 176 && sizeof(FrameBox) == 32);
+constexpr uint64_t kFrameBufferBytes = sizeof(FrameHeader) + kMaxFrameBoxes * sizeof(FrameBox);
+constexpr uint32_t kCounterWords = 8;
+// Fixed-point units of emittance per unit of radiance at emittanceStorageScale 1.
+constexpr float kEmittanceUnits = 65536.0f;
+
+// The parts of `now` not in `before`, as up to three disjoint slabs.
+std::vector<VoxelBox> uncovered(const VoxelBox& before, const VoxelBox& now);
+std::optional<VoxelBox> intersect(const VoxelBox& a, const VoxelBox& b);
+
+struct FrameRegions {
+    // Cleared, then written by the draws (except voxels inside the finer level).
+    std::vector<LevelBox> rewrite;
+    // Inner voxels (inside the finer level) to refill from it, levels ≥ 1, in increasing level order.
+    std::vector<LevelBox> downsample;
+};
+
+// `before`: each level's origin before the move (meaningless when !placedBefore); `updates`: the move's result.
+// World boxes must be finite (checked by the caller).
+FrameRegions frameRegions(const ClipmapDesc& desc, const std::vector<glm::ivec3>& before, bool placedBefore,
+                          const std::vector<LevelUpdate>& updates, const std::vector<WorldBox>& invalidated);
+
+}  // namespace bricklight::vct::detail

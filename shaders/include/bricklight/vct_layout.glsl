@@ -1,0 +1,54 @@
+// The voxel clip-map's layout on the device (include/bricklight/vct.h), shared by our voxelization, clear and
+// downsampling passes and by the application's voxelization fragment shader (bricklight/voxelize.glsl).
+//
+// Level L's voxels live in z slices [L × resolution, (L + 1) × resolution) of the opacity volume, a world voxel
+// at its coordinates modulo the resolution (toroidal), so that a level keeps what it still covers while it
+// scrolls. The emittance accumulation buffer holds `channels` words per voxel in the same texel order.
+#ifndef BRICKLIGHT_VCT_LAYOUT_GLSL
+#define BRICKLIGHT_VCT_LAYOUT_GLSL
+
+// Opacity words: 16-bit fixed point, BL_VCT_OPACITY_ONE = fully opaque.
+const uint BL_VCT_OPACITY_ONE = 65535u;
+// Counters (Clipmap::readCounters): which word counts what.
+const uint BL_VCT_COUNT_FRAGMENTS = 0u;          // voxelization fragments shaded
+const uint BL_VCT_COUNT_OFF_TRIANGLE = 1u;       // fragments of the dilated quad whose pixel misses the triangle
+const uint BL_VCT_COUNT_VOXELS_WRITTEN = 2u;     // opacity writes (one per voxel a fragment covers)
+const uint BL_VCT_COUNT_KILLED_BY_FINER = 3u;    // voxels left to downsampling (inside the finer level)
+const uint BL_VCT_COUNT_KILLED_NOT_DIRTY = 4u;   // voxels outside this frame's rewrite boxes
+const uint BL_VCT_COUNT_EMITTANCE_WRITES = 5u;   // voxels that received emittance
+const uint BL_VCT_COUNTER_COUNT = 8u;
+
+// A box of world voxels of one level: [minLevel.xyz, max.xyz), the level in minLevel.w.
+struct BlVctBox {
+    ivec4 minLevel;
+    ivec4 max;
+};
+
+// What changes with the anchor: written by Clipmap::update, read by every voxelization draw.
+#define BL_VCT_FRAME_BLOCK(slot)                                                                          \
+    BL_READ_BUFFER(slot) BlVctFrame {                                                                     \
+        ivec4 origin[8];  /* each level's lowest world voxel */                                          \
+        uvec4 params;     /* x resolution, y levels, z emittance words per voxel (0, 3, 18), w boxes */  \
+        vec4 scales;      /* x finest voxel size, y fixed-point units per unit of radiance */            \
+        uvec4 flags;      /* x 1: count (BL_VCT_COUNT_*) */                                              \
+        BlVctBox boxes[]; /* the voxels this frame's voxelization may write */                           \
+    } blVctFrame
+
+ivec3 vctTexel(uint level, ivec3 worldVoxel, uint resolution) {
+    ivec3 t = worldVoxel & ivec3(int(resolution) - 1);  // a power of two: the positive modulo, also below zero
+    return t + ivec3(0, 0, int(level * resolution));
+}
+
+// The texel's index in buffers laid out like the volume (x fastest, then y, then z).
+uint vctTexelIndex(uint level, ivec3 worldVoxel, uint resolution) {
+    uvec3 t = uvec3(vctTexel(level, worldVoxel, resolution));
+    return (t.z * resolution + t.y) * resolution + t.x;
+}
+
+// The six emittance directions of the anisotropic mode, in storage order.
+vec3 vctDirection(uint d) {
+    vec3 axis = vec3(equal(uvec3(d % 3u), uvec3(0u, 1u, 2u)));
+    return d < 3u ? axis : -axis;
+}
+
+#endif

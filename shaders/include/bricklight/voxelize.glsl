@@ -1,0 +1,209 @@
+// The voxelization fragment shader (vct::Clipmap::voxelizationState). An application that voxelizes emittance
+// writes a fragment shader of three lines and compiles it with bricklight_add_shaders:
+//
+//     #version 450
+//     #extension GL_GOOGLE_include_directive : require
+//     #include "bricklight/voxelize.glsl"
+//     vec3 blVoxelEmittance(BlVoxelFragment f) { return /* light the surface sends: direct × albedo + emission */; }
+//
+// blVoxelEmittance returns the radiance leaving the surface's front side (the side its normal points to) at
+// f.position; it may read the application's own resources (constants slots 0–2, textures, read buffers 0–6,
+// storage buffers 0–5, images 0–6). It runs once per covered pixel of the projection (twice for two-sided
+// materials, the second time with the normal flipped). Define BL_VOXEL_OPACITY_ONLY before the include for a
+// shader without emittance (our vct/voxelize_opacity.frag is that).
+//
+// Per pixel: the pixel's square is tested against the triangle's edges (conservatively: any overlap counts),
+// every voxel along the projection axis that the triangle's plane crosses within the square (and the triangle's
+// own depth range, widened by the material's thickness) becomes opaque; emittance goes to the voxel of each of
+// 4 × 4 samples inside the triangle (edges owned by one side only, so that shared edges count once), weighted
+// by the surface area it stands for and split over the six directions by the face normal.
+#ifndef BRICKLIGHT_VOXELIZE_GLSL
+#define BRICKLIGHT_VOXELIZE_GLSL
+
+#include "bricklight/bindings.glsl"
+#include "bricklight/vct_layout.glsl"
+
+struct BlVoxelFragment {
+    vec3 position;    // world space, the pixel's centre on the triangle's plane
+    vec3 normal;      // the application's normal, interpolated and normalized (flipped for a back side)
+    vec4 user0, user1;
+    uint level;       // the clip-map level being written
+    float voxelSize;  // that level's voxel size in world units
+};
+
+#ifndef BL_VOXEL_OPACITY_ONLY
+vec3 blVoxelEmittance(BlVoxelFragment f);
+#endif
+
+BL_VCT_FRAME_BLOCK(7);
+BL_STORAGE_BUFFER(6) BlVctEmittance { uint words[]; } blVctEmittance;
+BL_STORAGE_BUFFER(7) BlVctCounters { uint counts[]; } blVctCounters;
+BL_IMAGE(7, r32ui) uniform coherent uimage3D blVctOpacity;
+
+layout(location = 0) in vec3 blVoxelNormalGs;
+layout(location = 1) in vec4 blVoxelUser0Gs;
+layout(location = 2) in vec4 blVoxelUser1Gs;
+layout(location = 3) flat in vec4 blVoxelEdge0;
+layout(location = 4) flat in vec4 blVoxelEdge1;
+layout(location = 5) flat in vec4 blVoxelEdge2;
+layout(location = 6) flat in vec4 blVoxelPlane;
+layout(location = 7) flat in vec4 blVoxelBounds;
+layout(location = 8) flat in vec4 blVoxelDepth;
+layout(location = 9) flat in ivec4 blVoxelLevelAxis;
+layout(location = 10) flat in vec3 blVoxelFaceNormal;
+layout(location = 11) flat in ivec3 blVoxelOffset;
+
+const int BL_VOXEL_MAX_SPAN = 6;  // voxels one pixel can cover along the axis: 3 for the plane, +2 for thickness
+
+void blVoxelCount(uint counter, uint amount) {
+    if (blVctFrame.flags.x != 0u && amount != 0u) atomicAdd(blVctCounters.counts[counter], amount);
+}
+
+// Back from the projection's (u, v, w) to level coordinates.
+ivec3 blVoxelUnproject(ivec3 q, int axis) { return axis == 0 ? q.zxy : (axis == 1 ? q.yzx : q); }
+vec3 blVoxelUnproject(vec3 q, int axis) { return axis == 0 ? q.zxy : (axis == 1 ? q.yzx : q); }
+
+// Inside for a sample: strictly inside, or on an edge that faces up-left (so that a shared edge belongs to one
+// of its two triangles).
+float blVoxelEdge(vec4 edge, vec2 s) {
+    precise float e = edge.x * (s.x - edge.z) + edge.y * (s.y - edge.w);
+    return e;
+}
+
+bool blVoxelOwns(vec4 edge, vec2 s) {
+    float e = blVoxelEdge(edge, s);
+    return e > 0.0 || (e == 0.0 && (edge.x > 0.0 || (edge.x == 0.0 && edge.y > 0.0)));
+}
+
+bool blVoxelWritable(uint level, ivec3 voxel, uint resolution, uint boxCount, out uint reason) {
+    reason = 0u;
+    if (level > 0u) {
+        ivec3 finerLo = blVctFrame.origin[level - 1u].xyz >> 1;
+        if (all(greaterThanEqual(voxel, finerLo)) && all(lessThan(voxel, finerLo + int(resolution / 2u)))) {
+            reason = BL_VCT_COUNT_KILLED_BY_FINER;
+            return false;
+        }
+    }
+    for (uint b = 0u; b < boxCount; ++b) {
+        BlVctBox box = blVctFrame.boxes[b];
+        if (uint(box.minLevel.w) == level && all(greaterThanEqual(voxel, box.minLevel.xyz)) && all(lessThan(voxel, box.max.xyz)))
+            return true;
+    }
+    reason = BL_VCT_COUNT_KILLED_NOT_DIRTY;
+    return false;
+}
+
+void main() {
+    blVoxelCount(BL_VCT_COUNT_FRAGMENTS, 1u);
+    ivec2 pixelInLevel = ivec2(floor(gl_FragCoord.xy));
+    // The triangle's frame (see vct/voxelize.geom): integer offsets, so these are exact.
+    vec2 pixel = vec2(pixelInLevel - blVoxelOffset.xy);
+    vec2 centre = pixel + 0.5;
+    // Does the pixel's square touch the triangle? Its bounding box first, then each edge at the square's corner
+    // furthest inside.
+    bool touches = pixel.x + 1.0 >= blVoxelBounds.x && pixel.x <= blVoxelBounds.z && pixel.y + 1.0 >= blVoxelBounds.y &&
+                   pixel.y <= blVoxelBounds.w;
+    touches = touches && blVoxelEdge(blVoxelEdge0, centre) + 0.5 * (abs(blVoxelEdge0.x) + abs(blVoxelEdge0.y)) >= 0.0;
+    touches = touches && blVoxelEdge(blVoxelEdge1, centre) + 0.5 * (abs(blVoxelEdge1.x) + abs(blVoxelEdge1.y)) >= 0.0;
+    touches = touches && blVoxelEdge(blVoxelEdge2, centre) + 0.5 * (abs(blVoxelEdge2.x) + abs(blVoxelEdge2.y)) >= 0.0;
+    if (!touches) {
+        blVoxelCount(BL_VCT_COUNT_OFF_TRIANGLE, 1u);
+        return;
+    }
+
+    uint level = uint(blVoxelLevelAxis.x);
+    int axis = blVoxelLevelAxis.y;
+    uint resolution = blVctFrame.params.x;
+    uint boxCount = blVctFrame.params.w;
+    ivec3 origin = blVctFrame.origin[level].xyz;
+    // The depths the plane takes over the square, within the triangle's own range, widened by the thickness.
+    precise float wCentre = blVoxelPlane.x + blVoxelPlane.y * centre.x + blVoxelPlane.z * centre.y;
+    float wSpread = 0.5 * (abs(blVoxelPlane.y) + abs(blVoxelPlane.z));
+    float wLo = max(wCentre - wSpread, blVoxelDepth.x) - 0.5 * blVoxelDepth.z;
+    float wHi = min(wCentre + wSpread, blVoxelDepth.y) + 0.5 * blVoxelDepth.z;
+    int k0 = max(int(floor(wLo)) + blVoxelOffset.z, 0);
+    int k1 = min(min(int(floor(wHi)) + blVoxelOffset.z, int(resolution) - 1), k0 + BL_VOXEL_MAX_SPAN - 1);
+
+    uint opacity = uint(blVoxelDepth.w * float(BL_VCT_OPACITY_ONE) + 0.5);
+    uint writable = 0u;  // bit k - k0
+    uint written = 0u, killedByFiner = 0u, killedNotDirty = 0u;
+    for (int k = k0; k <= k1; ++k) {
+        ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k), axis);
+        uint reason;
+        if (!blVoxelWritable(level, voxel, resolution, boxCount, reason)) {
+            killedByFiner += reason == BL_VCT_COUNT_KILLED_BY_FINER ? 1u : 0u;
+            killedNotDirty += reason == BL_VCT_COUNT_KILLED_NOT_DIRTY ? 1u : 0u;
+            continue;
+        }
+        writable |= 1u << uint(k - k0);
+        imageAtomicMax(blVctOpacity, vctTexel(level, voxel, resolution), opacity);
+        ++written;
+    }
+    blVoxelCount(BL_VCT_COUNT_VOXELS_WRITTEN, written);
+    blVoxelCount(BL_VCT_COUNT_KILLED_BY_FINER, killedByFiner);
+    blVoxelCount(BL_VCT_COUNT_KILLED_NOT_DIRTY, killedNotDirty);
+
+#ifndef BL_VOXEL_OPACITY_ONLY
+    uint channels = blVctFrame.params.z;  // 0 (opacity only), 3 (isotropic) or 18 (six directions)
+    if (writable == 0u || channels == 0u) return;
+    // Emittance: the samples inside the triangle, counted per voxel along the axis.
+    uint samples[BL_VOXEL_MAX_SPAN] = uint[BL_VOXEL_MAX_SPAN](0u, 0u, 0u, 0u, 0u, 0u);
+    uint inside = 0u;
+    for (int sy = 0; sy < 4; ++sy)
+        for (int sx = 0; sx < 4; ++sx) {
+            vec2 s = pixel + (vec2(sx, sy) + 0.5) * 0.25;
+            if (!blVoxelOwns(blVoxelEdge0, s) || !blVoxelOwns(blVoxelEdge1, s) || !blVoxelOwns(blVoxelEdge2, s)) continue;
+            precise float w = clamp(blVoxelPlane.x + blVoxelPlane.y * s.x + blVoxelPlane.z * s.y, blVoxelDepth.x, blVoxelDepth.y);
+            int k = int(floor(w)) + blVoxelOffset.z - k0;
+            if (k < 0 || k >= BL_VOXEL_MAX_SPAN || (writable & (1u << uint(k))) == 0u) continue;
+            ++samples[k];
+            ++inside;
+        }
+    if (inside == 0u) return;
+
+    float voxelSize = blVctFrame.scales.x * float(1u << level);
+    vec3 local = blVoxelUnproject(vec3(centre, wCentre) + vec3(blVoxelOffset), axis);
+    BlVoxelFragment f;
+    f.position = (vec3(origin) + local) * voxelSize;
+    vec3 normal = blVoxelNormalGs;
+    f.normal = dot(normal, normal) > 0.0 ? normalize(normal) : blVoxelFaceNormal;
+    f.user0 = blVoxelUser0Gs;
+    f.user1 = blVoxelUser1Gs;
+    f.level = level;
+    f.voxelSize = voxelSize;
+    // The front side is where the application's normal points; the face normal, so oriented, splits the light.
+    vec3 front = dot(blVoxelFaceNormal, f.normal) >= 0.0 ? blVoxelFaceNormal : -blVoxelFaceNormal;
+    uint directions = channels / 3u;
+    int sides = 1 + blVoxelLevelAxis.z;
+    // Fixed-point units per unit radiance, × the area each sample stands for (1/16 of a voxel face, divided by
+    // the projection's cosine).
+    // precise (no fused multiply-adds) here and in the geometry stage: Vulkan and GL then round alike and write
+    // the same words.
+    precise float unitsPerSample = blVctFrame.scales.y * blVoxelPlane.w / 16.0;
+    uint emittanceWrites = 0u;
+    for (int side = 0; side < sides; ++side) {
+        BlVoxelFragment g = f;
+        g.normal = side == 0 ? f.normal : -f.normal;
+        vec3 facing = side == 0 ? front : -front;
+        vec3 radiance = blVoxelEmittance(g);
+        // Negative and NaN light adds nothing; one fragment adds at most FP16's largest value.
+        radiance = mix(vec3(0.0), min(radiance, vec3(65504.0)), greaterThan(radiance, vec3(0.0)));
+        for (int k = 0; k < BL_VOXEL_MAX_SPAN; ++k) {
+            if (samples[k] == 0u) continue;
+            ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
+            uint base = vctTexelIndex(level, voxel, resolution) * channels;
+            for (uint d = 0u; d < directions; ++d) {
+                precise float weight = directions == 1u ? 1.0 : max(dot(facing, vctDirection(d)), 0.0);
+                precise vec3 amount = radiance * (weight * float(samples[k]) * unitsPerSample);
+                uvec3 units = uvec3(min(amount + 0.5, vec3(4.0e9)));
+                for (uint c = 0u; c < 3u; ++c)
+                    if (units[c] != 0u) atomicAdd(blVctEmittance.words[base + d * 3u + c], units[c]);
+            }
+            ++emittanceWrites;
+        }
+    }
+    blVoxelCount(BL_VCT_COUNT_EMITTANCE_WRITES, emittanceWrites);
+#endif
+}
+
+#endif

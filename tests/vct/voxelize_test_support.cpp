@@ -1,0 +1,103 @@
+#include "voxelize_test_support.h"
+
+#include <catch2/catch.hpp>
+
+namespace bricklight::testing {
+
+std::vector<Triangle> boxTriangles(const glm::vec3& lo, const glm::vec3& hi) {
+    std::vector<Triangle> out;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            glm::vec3 n(0.0f);
+            n[axis] = side ? 1.0f : -1.0f;
+            auto corner = [&](int cu, int cv) {
+                glm::vec3 p;
+                p[axis] = side ? hi[axis] : lo[axis];
+                p[u] = cu ? hi[u] : lo[u];
+                p[v] = cv ? hi[v] : lo[v];
+                return p;
+            };
+            out.push_back({{corner(0, 0), corner(1, 0), corner(1, 1)}, n});
+            out.push_back({{corner(0, 0), corner(1, 1), corner(0, 1)}, n});
+        }
+    return out;
+}
+
+VoxelizeHarness::VoxelizeHarness(TestDevice& td, const vct::ClipmapDesc& desc) : td_(td) {
+    std::string error;
+    clipmap_ = vct::Clipmap::create(*td.device, desc, &error);
+    INFO(error);
+    REQUIRE(clipmap_);
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("vct_tests/voxelize_mesh.vert");
+    REQUIRE(sd.blob);
+    vertex_ = td.device->createShader(sd);
+    sd.blob = rhi::findShader("vct_tests/voxelize_emissive.frag");
+    REQUIRE(sd.blob);
+    emissive_ = td.device->createShader(sd);
+    REQUIRE(vertex_);
+    REQUIRE(emissive_);
+}
+
+VoxelizeHarness::~VoxelizeHarness() {
+    for (rhi::BufferHandle b : buffers_) td_.device->destroy(b);
+    td_.device->destroy(vertex_);
+    td_.device->destroy(emissive_);
+}
+
+void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& base, const glm::vec3* radiance) {
+    std::vector<float> vertices;
+    for (const Triangle& t : triangles)
+        for (const glm::vec3& p : t.p)
+            vertices.insert(vertices.end(), {p.x, p.y, p.z, t.normal.x, t.normal.y, t.normal.z});
+    rhi::BufferDesc bd;
+    bd.size = vertices.size() * sizeof(float);
+    bd.usage = rhi::BufferUsage::Vertex;
+    bd.debugName = "voxelized mesh";
+    const rhi::BufferHandle buffer = td_.device->createBuffer(bd, vertices.data());
+    REQUIRE(buffer);
+    buffers_.push_back(buffer);
+    vct::VoxelMaterial material = base;
+    material.fragmentShader = radiance ? emissive_ : rhi::ShaderHandle{};
+    std::string error;
+    std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &error);
+    INFO(error);
+    REQUIRE(state);
+    state->vertexShader = vertex_;
+    state->vertexInputs.push(rhi::VertexInput{0, rhi::VertexFormat::Float3, 0, 0});
+    state->vertexInputs.push(rhi::VertexInput{1, rhi::VertexFormat::Float3, 0, 12});
+    state->vertexBuffers.push(rhi::VertexBufferBinding{buffer, 0, 24, false});
+    const glm::vec4 emission(radiance ? *radiance : glm::vec3(0.0f), 0.0f);
+    if (radiance) state->bindings.constants.push(rhi::constants(0, emission));
+    rhi::DrawArgs args;
+    args.vertexCount = uint32_t(triangles.size() * 3);
+    REQUIRE(td_.device->draw(*state, args));
+}
+
+std::vector<uint32_t> VoxelizeHarness::opacity() {
+    const vct::ClipmapDesc& d = clipmap_->desc();
+    std::vector<uint32_t> texels(size_t(d.resolution) * d.resolution * d.resolution * d.levels);
+    REQUIRE(td_.device->readTexture(clipmap_->opacityVolume(), {}, texels.data()));
+    return texels;
+}
+
+std::vector<uint32_t> VoxelizeHarness::emittance() {
+    const rhi::BufferDesc* d = td_.device->describe(clipmap_->emittanceBuffer());
+    REQUIRE(d);
+    std::vector<uint32_t> words(d->size / 4);
+    REQUIRE(td_.device->readBuffer(clipmap_->emittanceBuffer(), 0, d->size, words.data()));
+    return words;
+}
+
+size_t VoxelizeHarness::texelIndex(uint32_t level, glm::ivec3 voxel) const {
+    const uint32_t r = clipmap_->desc().resolution;
+    const glm::ivec3 t = clipmap_->placement().toroidalTexel(voxel);
+    return (size_t(level * r + uint32_t(t.z)) * r + size_t(t.y)) * r + size_t(t.x);
+}
+
+uint32_t VoxelizeHarness::opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const {
+    return volume[texelIndex(level, voxel)];
+}
+
+}  // namespace bricklight::testing

@@ -1,0 +1,44 @@
+// Voxelizing triangle lists in tests: a mesh on the device drawn through Clipmap::voxelizationState with the
+// test vertex shader (shaders/vct_tests/voxelize_mesh.vert), read-backs of the volumes, and scenes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bricklight/vct.h"
+#include "test_device.h"
+
+namespace bricklight::testing {
+
+struct Triangle {
+    glm::vec3 p[3];
+    glm::vec3 normal;  // the shading normal of all three vertices
+};
+
+// The 12 triangles of an axis-aligned box, normals outward, each face split along its diagonal.
+std::vector<Triangle> boxTriangles(const glm::vec3& lo, const glm::vec3& hi);
+
+class VoxelizeHarness {
+public:
+    VoxelizeHarness(TestDevice& td, const vct::ClipmapDesc& desc);
+    ~VoxelizeHarness();
+    vct::Clipmap& clipmap() { return *clipmap_; }
+    // Draws the triangles with the opacity-only shader (radiance null) or the emissive test shader.
+    void draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& material, const glm::vec3* radiance);
+    std::vector<uint32_t> opacity();    // the whole volume, texel order
+    std::vector<uint32_t> emittance();  // the whole buffer
+    uint32_t opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const;
+    size_t texelIndex(uint32_t level, glm::ivec3 voxel) const;
+    rhi::ShaderHandle emissiveShader() const { return emissive_; }
+
+private:
+    TestDevice& td_;
+    std::unique_ptr<vct::Clipmap> clipmap_;
+    rhi::ShaderHandle vertex_, emissive_;
+    std::vector<rhi::BufferHandle> buffers_;
+};
+
+}  // namespace bricklight::testing
