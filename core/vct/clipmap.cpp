@@ -59,6 +59,10 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     c->clearBoxes_ = makeShader(device, "vct/clear_boxes.comp");
     c->clearEmittance_ = makeShader(device, "vct/clear_emittance_boxes.comp");
     c->downsample_ = makeShader(device, "vct/downsample.comp");
+    const char* resolve = desc.emittance == EmittanceMode::Anisotropic ? "vct/resolve_anisotropic.comp"
+                          : desc.emittance == EmittanceMode::Isotropic ? "vct/resolve_isotropic.comp"
+                                                                       : "vct/resolve_opacity.comp";
+    c->resolve_ = makeShader(device, resolve);
     if (device.capabilities().geometryShader) {
         c->voxelizeGeometry_ = makeShader(device, "vct/voxelize.geom");
         c->voxelizeOpacity_ = makeShader(device, "vct/voxelize_opacity.frag");
@@ -71,6 +75,28 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
     td.debugName = "vct opacity";
     c->opacity_ = device.createTexture(td);
+    // The traced volumes: each level's slab has a border slice on each side (resolve_body.glsl).
+    const uint64_t tracedDepth = uint64_t(desc.resolution + 2) * desc.levels;
+    if (tracedDepth > limits.maxTextureSize3D)
+        return fail("the traced volumes (" + std::to_string(desc.resolution) + "² × " + std::to_string(tracedDepth) +
+                    ") exceed the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution");
+    td.depthOrLayers = uint32_t(tracedDepth);
+    td.format = rhi::Format::RGBA8_UNORM;  // opacity along x, y, z
+    td.debugName = "vct traced opacity";
+    c->tracedOpacity_ = device.createTexture(td);
+    const uint32_t directions = desc.emittance == EmittanceMode::Anisotropic ? 6 : 1;
+    td.format = rhi::Format::RGBA16_FLOAT;
+    if (desc.emittance == EmittanceMode::None) td.width = td.height = td.depthOrLayers = 1;
+    static const char* kDirectionNames[6] = {"+x", "+y", "+z", "-x", "-y", "-z"};
+    for (uint32_t d = 0; d < directions; ++d) {
+        td.debugName = directions == 1 ? std::string("vct traced emittance") : std::string("vct traced emittance ") + kDirectionNames[d];
+        c->tracedEmittance_.push_back(device.createTexture(td));
+    }
+    rhi::SamplerDesc sampler;
+    sampler.addressU = sampler.addressV = rhi::AddressMode::Repeat;  // toroidal in x and y; z has borders
+    sampler.mipFilter = rhi::Filter::Nearest;
+    sampler.debugName = "vct traced";
+    c->tracedSampler_ = device.createSampler(sampler);
     rhi::TextureDesc rd;
     rd.format = rhi::Format::D32_FLOAT;
     rd.width = rd.height = desc.resolution;
@@ -79,7 +105,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     c->rasterSize_ = device.createTexture(rd);
     rhi::BufferDesc bd;
     bd.size = emittanceBytes;
-    bd.usage = rhi::BufferUsage::ShaderWrite;
+    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
     bd.debugName = "vct emittance";
     c->emittance_ = device.createBuffer(bd);
     bd.size = detail::kFrameBufferBytes;
@@ -90,18 +116,23 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     bd.usage = rhi::BufferUsage::ShaderWrite;
     bd.debugName = "vct counters";
     c->counters_ = device.createBuffer(bd);
-    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->opacity_ || !c->rasterSize_ || !c->emittance_ ||
-        !c->frame_ || !c->counters_)
+    bool traced = c->tracedOpacity_ && c->tracedSampler_;
+    for (rhi::TextureHandle t : c->tracedEmittance_) traced = traced && t;
+    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->opacity_ || !c->rasterSize_ ||
+        !c->emittance_ || !c->frame_ || !c->counters_ || !traced)
         return fail("the device could not create the clip-map's volumes, buffers or passes");
     return c;
 }
 
 Clipmap::~Clipmap() {
-    for (rhi::TextureHandle t : {opacity_, rasterSize_})
+    for (rhi::TextureHandle t : {opacity_, rasterSize_, tracedOpacity_})
         if (t) device_.destroy(t);
+    for (rhi::TextureHandle t : tracedEmittance_)
+        if (t) device_.destroy(t);
+    if (tracedSampler_) device_.destroy(tracedSampler_);
     for (rhi::BufferHandle b : {emittance_, frame_, counters_})
         if (b) device_.destroy(b);
-    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, voxelizeGeometry_, voxelizeOpacity_})
+    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_})
         if (s) device_.destroy(s);
 }
 
@@ -246,10 +277,48 @@ void Clipmap::downsampleBox(const LevelBox& b) {
     device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
 }
 
+void Clipmap::resolveBox(const LevelBox& b) {
+    const glm::ivec3 size = b.box.max - b.box.min;
+    struct {
+        glm::ivec4 minLevel, size;
+        glm::uvec4 params;
+        glm::vec4 scales;
+    } c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), 0u, 0u),
+        glm::vec4(1.0f / (detail::kEmittanceUnits * desc().emittanceStorageScale), 0.0f, 0.0f, 0.0f)};
+    rhi::DispatchState s;
+    s.shader = resolve_;
+    s.label = "vct resolve";
+    s.bindings.constants.push(rhi::constants(0, c));
+    auto image = [&](uint8_t slot, rhi::TextureHandle t, rhi::Access access) {
+        rhi::StorageImageBinding i;
+        i.slot = slot;
+        i.view = rhi::textureMip(t, 0);
+        i.access = access;
+        s.bindings.storageImages.push(i);
+    };
+    image(0, opacity_, rhi::Access::Read);
+    image(1, tracedOpacity_, rhi::Access::Write);
+    if (desc().emittance != EmittanceMode::None)
+        for (size_t d = 0; d < tracedEmittance_.size(); ++d) image(uint8_t(2 + d), tracedEmittance_[d], rhi::Access::Write);
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, emittance_, {}});
+    device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
+}
+
 void Clipmap::finishVoxelization() {
     device_.beginMarker("vct downsample");
     for (const LevelBox& b : downsampleBoxes_) downsampleBox(b);
     device_.endMarker();
+    device_.beginMarker("vct resolve");
+    for (const LevelBox& b : rewrite_) resolveBox(b);
+    for (const LevelBox& b : downsampleBoxes_) resolveBox(b);
+    device_.endMarker();
+}
+
+void Clipmap::traceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_t frameSlot) const {
+    bindings.textures.push(rhi::TextureBinding{textureBase, rhi::wholeTexture(tracedOpacity_), tracedSampler_});
+    for (uint8_t d = 0; d < 6; ++d)
+        bindings.textures.push(rhi::TextureBinding{uint8_t(textureBase + 1 + d), rhi::wholeTexture(tracedEmittance(d)), tracedSampler_});
+    bindings.readBuffers.push(rhi::ReadBufferBinding{frameSlot, frame_, {}});
 }
 
 std::vector<WorldBox> Clipmap::dirtyRegions() const {
@@ -287,7 +356,9 @@ MemoryUse Clipmap::memoryUse() const {
         use.resources.push_back({name, bytes});
         use.totalBytes += bytes;
     };
-    for (rhi::TextureHandle t : {opacity_, rasterSize_})
+    std::vector<rhi::TextureHandle> textures{opacity_, rasterSize_, tracedOpacity_};
+    textures.insert(textures.end(), tracedEmittance_.begin(), tracedEmittance_.end());
+    for (rhi::TextureHandle t : textures)
         if (const rhi::TextureDesc* d = device_.describe(t)) add(d->debugName, rhi::subresourceBytes(*d, {}));
     for (rhi::BufferHandle b : {emittance_, frame_, counters_})
         if (const rhi::BufferDesc* d = device_.describe(b)) add(d->debugName, d->size);

@@ -110,8 +110,11 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
         return fail("the device could not create the G-buffer or the lighting pass (see its messages)");
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
-    if (options.gi && !r->createGi(scene, error)) return nullptr;
+    const bool vct = options.gi && options.giTechnique == GiTechnique::Vct;
+    if (options.gi && !vct && !r->createGi(scene, error)) return nullptr;
     r->giLights_ = giLightsOf(scene);
+    r->sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
+    if ((vct || options.vxao) && !r->createVct(scene, error)) return nullptr;
     if (!r->setCamera(scene.camera, error)) return nullptr;
     r->previousViewProjection_ = r->viewProjection_;
     r->previousView_ = r->view_;
@@ -199,6 +202,10 @@ GBufferView RasterRenderer::gbuffer() const {
 RasterRenderer::~RasterRenderer() {
     gi_.reset();
     sdf_.reset();
+    coneTracer_.reset();
+    clipmap_.reset();
+    for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_})
+        if (s) device_.destroy(s);
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_})
         if (t) device_.destroy(t);
     for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_, display_})
@@ -316,10 +323,11 @@ void RasterRenderer::render() {
         cut_ = false;
         gi_->dispatch(g);
     }
+    if (clipmap_) renderVct();
     struct {
         glm::vec4 eye;
         uint32_t size[4];
-    } c{glm::vec4(camera_.eye, 1.0f), {options_.width, options_.height, gi_ ? 1u : 0u, options_.giFeedback ? 1u : 0u}};
+    } c{glm::vec4(camera_.eye, 1.0f), {options_.width, options_.height, giOn() ? 1u : 0u, options_.giFeedback ? 1u : 0u}};
     rhi::DispatchState k;
     k.shader = composite_;
     k.label = "composite";

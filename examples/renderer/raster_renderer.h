@@ -10,11 +10,15 @@
 
 #include "bricklight/gi.h"
 #include "bricklight/sdf.h"
+#include "bricklight/vct.h"
 #include "display_view.h"
 #include "gpu_scene.h"
 #include "path_tracer.h"
 
 namespace bricklight::render {
+
+// Which technique gives the indirect light when RasterOptions::gi is on.
+enum class GiTechnique { Sdf, Vct };
 
 struct RasterOptions {
     uint32_t width = 256, height = 256;
@@ -31,6 +35,16 @@ struct RasterOptions {
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
     gi::TraceParams giTrace;            // gi::DispatchDesc::trace (live: setGiTuning)
     float giRoughnessThreshold = 0.75f;  // gi::DispatchDesc::roughnessThreshold (live)
+    GiTechnique giTechnique = GiTechnique::Sdf;
+    // Voxel cone tracing (giTechnique Vct, or vxao): the clip-map is centred on the scene; its finest level
+    // holds the scene's bounds with a margin, each next level doubles.
+    uint32_t vctResolution = 64, vctLevels = 5;
+    vct::EmittanceMode vctEmittance = vct::EmittanceMode::Anisotropic;
+    uint32_t vctLightSamples = 4;  // light samples per voxelization fragment
+    vct::ConeTraceParams vctTrace;
+    // Voxel ambient occlusion (an opacity-only clip-map) when GI does not already trace cones: the AO image is
+    // readAmbientOcclusion(); it does not change the lit image (direct lighting already shadows the sky).
+    bool vxao = false;
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
     sdf::Budgets sdfBudgets;   // the distance field's per-update budgets (deferred work goes to later updates)
     // Receives the SDF's and GI's messages (stderr when empty): an application counts them as it counts its
@@ -60,6 +74,9 @@ public:
     // normal, depth.
     Image read(Aov aov);
     Image readSpecularGi();  // GI's specular output (zero without GI)
+    // Voxel ambient occlusion (1 open) in every channel: from the cone tracer's diffuse alpha (--gi vxgi or
+    // vxao); empty without voxel cone tracing.
+    Image readAmbientOcclusion();
     // A GI debug view of the latest frame (tone-mapped, 0..1); empty without GI.
     Image giDebugView(gi::DebugMode mode, float exposure);
     GBufferView gbuffer() const;
@@ -69,6 +86,7 @@ public:
     // the display texture or rectangle is unfit. (raster_renderer_display.cpp)
     bool drawView(View view, rhi::TextureHandle display, const DisplayRect& rect, float exposure, std::string* error);
     gi::GiContext* giContext() { return gi_.get(); }
+    vct::Clipmap* clipmap() { return clipmap_.get(); }
     sdf::SdfScene* sdfScene() { return sdf_.get(); }
     // GI's tracing parameters from the next frame on (the rest of RasterOptions is fixed at creation).
     void setGiTuning(const gi::TraceParams& trace, float roughnessThreshold) {
@@ -90,6 +108,9 @@ public:
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
     bool createGi(const scenes::SceneGeometry& scene, std::string* error);
+    bool createVct(const scenes::SceneGeometry& scene, std::string* error);  // raster_renderer_vct.cpp
+    void renderVct();
+    bool giOn() const { return gi_ || (clipmap_ && options_.vctEmittance != vct::EmittanceMode::None); }
     void syncSdf(const scenes::SceneGeometry& scene);
     Image readGi(rhi::TextureHandle t);
     bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_
@@ -108,6 +129,9 @@ private:
     std::vector<glm::mat4> sdfTransforms_;
     glm::vec3 sdfCenter_{0.0f}, sceneCenter_{0.0f};
     std::unique_ptr<gi::GiContext> gi_;
+    std::unique_ptr<vct::Clipmap> clipmap_;
+    std::unique_ptr<vct::ConeTracer> coneTracer_;
+    rhi::ShaderHandle vctVertex_, vctEmittance_;
     std::vector<gi::Light> giLights_;
     bool cut_ = false;
     scenes::Camera camera_;

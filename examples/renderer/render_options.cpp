@@ -74,11 +74,22 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
     if (a == "--gi") {
         if (!value()) return OptionParse::Error;
         const std::string s = v;
-        if (s != "sdf" && s != "none") {
-            *error = "--gi must be sdf or none (got '" + s + "')";
+        if (s != "sdf" && s != "vxgi" && s != "none") {
+            *error = "--gi must be sdf, vxgi or none (got '" + s + "')";
             return OptionParse::Error;
         }
-        o.gi = s == "sdf";
+        o.gi = s != "none";
+        o.giTechnique = s == "vxgi" ? GiTechnique::Vct : GiTechnique::Sdf;
+        return OptionParse::Consumed;
+    }
+    if (a == "--ao") {
+        if (!value()) return OptionParse::Error;
+        const std::string s = v;
+        if (s != "vxao" && s != "none") {
+            *error = "--ao must be vxao or none (got '" + s + "')";
+            return OptionParse::Error;
+        }
+        o.vxao = s == "vxao";
         return OptionParse::Consumed;
     }
     if (a == "--gi-scale") {
@@ -163,7 +174,8 @@ bool checkSharedOptions(const RenderOptions& o, std::string* error) {
 
 const char* sharedOptionsUsage() {
     return "  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]\n"
-           "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|none] [--gi-scale 100|75|50|25]\n"
+           "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
+           "  [--gi-scale 100|75|50|25]\n"
            "  [--single-bounce] [--validate]\n"
            "  [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N] [--max-vertices N] [--max-indices N]\n"
            "  [--max-face-indices N] [--max-nodes N] [--max-node-depth N] [--max-texture-pixels N]\n"
@@ -188,6 +200,8 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.width = o.width;
     ro.height = o.height;
     ro.gi = o.gi;
+    ro.giTechnique = o.giTechnique;
+    ro.vxao = o.vxao;
     ro.giResolution = o.giScale;
     ro.giFeedback = !o.singleBounce;
     return ro;

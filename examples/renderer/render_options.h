@@ -23,6 +23,8 @@ struct RenderOptions {
     float camera[6] = {};  // eye, at
     float exposure = 1.0f;
     bool gi = true;
+    GiTechnique giTechnique = GiTechnique::Sdf;  // --gi sdf|vxgi|none
+    bool vxao = false;                            // --ao vxao
     gi::InternalResolution giScale = gi::InternalResolution::Native;
     bool singleBounce = false;
     bool validate = false;      // every call through rhi::createValidationDevice

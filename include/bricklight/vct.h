@@ -6,6 +6,7 @@
 // coarser levels' inner parts downsampled from the finer ones. Cone tracing comes next (docs/vct.md).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -110,9 +111,10 @@ struct WorldBox {
 
 // What one voxelization draw of the application's meshes writes (VXGI's MaterialInfo).
 struct VoxelMaterial {
-    // Voxels of the level being written added along the projection axis, half in front and half behind the
-    // surface (0..2): thicker walls leak less light.
-    float thickness = 0.0f;
+    // Voxels of the level being written added along the projection axis behind the surface (half each side
+    // for two-sided materials), 0..2. With 0 a wall is only the voxels it touches, often one, which a cone's filtered samples
+    // see half transparent; 1 (VXGI's default) makes it two, which they see opaque.
+    float thickness = 1.0f;
     // Emits from both sides (the hook runs twice, the second time with the normal flipped).
     bool twoSided = false;
     float opacity = 1.0f;  // 0..1: how much of a voxel's cross-section the surface blocks
@@ -150,7 +152,7 @@ uint64_t clipmapBytes(const ClipmapDesc& desc);
 // The clip-map's volumes on a device, kept in step with the placement, and the voxelization that fills them.
 //
 //   resource             format / layout                          holds
-//   vct opacity          R32_UINT 3D, resolution² ×               per voxel, 16-bit fixed point (65535 = opaque);
+//   vct opacity          R32_UINT 3D, resolution² ×               per voxel, opacity along x, y, z (10 bits each);
 //                        (resolution × levels)                    level L in z slices [L·res, (L+1)·res), a world
 //                                                                 voxel at its coordinates modulo res (toroidal)
 //   vct emittance        buffer, words per voxel × voxels,        fixed-point radiance per voxel (RGB, or RGB ×
@@ -187,8 +189,14 @@ public:
     // geometry shaders.
     std::optional<rhi::DrawCallState> voxelizationState(const VoxelMaterial& material, std::string* error);
     // After this frame's draws: fills the coarser levels' inner voxels that this frame changed from the finer
-    // levels (shaders/vct/downsample.comp).
+    // levels (shaders/vct/downsample.comp), then turns what changed into the volumes cones sample
+    // (shaders/vct/resolve_*.comp).
     void finishVoxelization();
+
+    // For an application's shader that includes bricklight/cone_trace.glsl: the traced volumes at texture slots
+    // textureBase .. textureBase + 6 (with a linear sampler that wraps in x and y) and the frame buffer at read
+    // buffer slot frameSlot (the include's defaults: 8 and 7). Added to `bindings`.
+    void traceBindings(rhi::Bindings& bindings, uint8_t textureBase = 8, uint8_t frameSlot = 7) const;
 
     // The boxes this frame's draws may write (fragments elsewhere are dropped), and the same as world boxes
     // for culling the draws.
@@ -202,6 +210,10 @@ public:
     const ClipmapPlacement& placement() const { return placement_; }
     const ClipmapDesc& desc() const { return placement_.desc(); }
     rhi::TextureHandle opacityVolume() const { return opacity_; }
+    // The traced volumes: opacity along x, y, z (RGBA8_UNORM) and emittance radiance (RGBA16_FLOAT; six for anisotropic, one
+    // for isotropic, a 1³ zero texture without emittance), levels stacked in z with a border slice each side.
+    rhi::TextureHandle tracedOpacity() const { return tracedOpacity_; }
+    rhi::TextureHandle tracedEmittance(uint32_t direction) const { return tracedEmittance_[std::min<size_t>(direction, tracedEmittance_.size() - 1)]; }
     rhi::BufferHandle emittanceBuffer() const { return emittance_; }
     MemoryUse memoryUse() const;
 
@@ -209,18 +221,84 @@ private:
     Clipmap(rhi::IDevice& device, const ClipmapPlacement& placement) : device_(device), placement_(placement) {}
     void clearBox(const LevelBox& box);
     void downsampleBox(const LevelBox& box);
+    void resolveBox(const LevelBox& box);
     void writeFrame();
     struct MaterialBlock {
         float values[4];
     };
     rhi::IDevice& device_;
     ClipmapPlacement placement_;
-    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, voxelizeGeometry_, voxelizeOpacity_;
-    rhi::TextureHandle opacity_, rasterSize_;
+    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_;
+    rhi::TextureHandle opacity_, rasterSize_, tracedOpacity_;
+    std::vector<rhi::TextureHandle> tracedEmittance_;
+    rhi::SamplerHandle tracedSampler_;
     rhi::BufferHandle emittance_, frame_, counters_;
     std::vector<LevelBox> rewrite_, downsampleBoxes_;
     std::vector<std::unique_ptr<MaterialBlock>> materials_;  // stable addresses for the records' constants
     bool countersEnabled_ = false;
+};
+
+// Cone tracing parameters (VXGI's CommonTracingParameters, DiffuseTracingParameters, SpecularTracingParameters).
+struct ConeTraceParams {
+    uint32_t diffuseCones = 8;      // 1..32 cones over the hemisphere, cosine-weighted
+    float diffuseConeAngle = 0.0f;  // full angle in radians; 0: from the count (each cone covers 2π / cones sr)
+    uint32_t tracingSparsity = 2;   // 1..4: diffuse cones traced for one pixel per N×N block (another each frame)
+    float tracingStep = 0.5f;       // 0.25..1: sample spacing / sample diameter (smaller: smoother, slower)
+    float opacityCorrection = 1.0f; // 0.1..10: scales opacity's Beer exponent (higher: darker, more contrast)
+    uint32_t lightLeakLag = 0;      // 0..2: samples the transmittance lags (VXGI 1.0 used 2; 0 leaks least)
+    float initialOffset = 2.0f;     // voxels (of the level at the surface) along the normal before the first sample
+    float maxDistance = 0.0f;       // world units a cone may go; 0: until it leaves the clip-map
+    float ambientRange = 0.0f;      // world units: ambient = transmittance at this distance; 0: 8 finest voxels
+    float temporalWeight = 0.85f;   // 0..0.98: the reprojected history's share (0: off)
+    float maxSpecularRoughness = 0.75f;  // roughness is clamped to this for the specular cone's width
+};
+// False with *error naming the field for parameters no trace can use.
+bool checkConeTraceParams(const ConeTraceParams& params, std::string* error);
+
+// One frame's cone tracing from the application's G-buffer. The conventions are GiContext's (gi.h,
+// DispatchDesc): depth [0, 1] with 1 the far plane, NDC y = −1 at the top row, world-space normals
+// (unpacked as n · scale + offset), motion vectors as UV (current − previous).
+struct TraceDesc {
+    glm::mat4 view{1.0f}, projection{1.0f}, previousView{1.0f}, previousProjection{1.0f};
+    glm::vec3 cameraPosition{0.0f};
+    rhi::TextureHandle depth, normals, roughness, motionVectors;  // motionVectors optional
+    glm::vec3 normalsUnpackScale{1.0f}, normalsUnpackOffset{0.0f};
+    uint32_t roughnessChannel = 0;
+    // RGBA16_FLOAT, display size, Storage. Diffuse: rgb irradiance / π (before albedo), a ambient (1 open);
+    // specular (optional): rgb prefiltered radiance along the mirror direction.
+    rhi::TextureHandle outputDiffuse, outputSpecular;
+    ConeTraceParams params;
+    bool resetHistory = false;  // a camera cut: forget the reprojected history
+};
+
+// The tracing passes: sparse diffuse cones + geometry-aware upsample with refinement + temporal reprojection
+// (shaders/vct/trace_diffuse.comp, resolve_diffuse.comp), one specular cone per pixel + temporal
+// (trace_specular.comp). Reads what the clip-map's finishVoxelization() resolved. Without emittance
+// (EmittanceMode::None) the diffuse output's rgb is zero and its alpha is the voxel ambient occlusion.
+class ConeTracer {
+public:
+    // Null with *error for a zero size or a device that cannot create the history.
+    static std::unique_ptr<ConeTracer> create(rhi::IDevice& device, const Clipmap& clipmap, uint32_t width, uint32_t height,
+                                              std::string* error);
+    ~ConeTracer();
+    ConeTracer(const ConeTracer&) = delete;
+    ConeTracer& operator=(const ConeTracer&) = delete;
+    // Records the passes; false with *error (recording nothing) for missing or mis-sized inputs or bad parameters.
+    bool dispatch(const TraceDesc& desc, std::string* error);
+    MemoryUse memoryUse() const;
+
+private:
+    ConeTracer(rhi::IDevice& device, const Clipmap& clipmap) : device_(device), clipmap_(clipmap) {}
+    rhi::IDevice& device_;
+    const Clipmap& clipmap_;
+    uint32_t width_ = 0, height_ = 0, frame_ = 0;
+    uint32_t sparsity_ = 0;  // of the low-resolution textures as created
+    rhi::ShaderHandle traceDiffuse_, resolveDiffuse_, traceSpecular_;
+    rhi::TextureHandle lowDiffuse_, lowGuide_;
+    rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], guide_[2];
+    rhi::BufferHandle params_;
+    rhi::SamplerHandle point_;
+    bool bindLowResolution(uint32_t sparsity, std::string* error);
 };
 
 }  // namespace bricklight::vct

@@ -4,8 +4,8 @@
 #include "bricklight/vct_layout.glsl"
 // Fills voxels of level L that lie inside level L − 1 from their 2³ children there (the voxelization leaves
 // them to this pass). Values mean what a cone sees through a voxel's cross-section:
-//  * opacity: along each axis the two children of a column combine as complements (1 − (1 − a)(1 − b)), the
-//    four columns average; the three axes average (the volume is isotropic);
+//  * opacity along each axis: the two children of each column along it combine as complements
+//    (1 − (1 − a)(1 − b)) of their opacity along that axis, the four columns average;
 //  * emittance towards direction d: in each of the four columns along d's axis, the child nearer the viewer
 //    (further along d) plus the other one seen through it (× (1 − its opacity)); the four columns' sum is
 //    divided by 4, since a parent's face is four children's faces. Isotropic emittance takes the mean of that
@@ -27,20 +27,20 @@ void main() {
     uint level = uint(box.minLevel.w), resolution = box.params.x, channels = box.params.y;
     ivec3 voxel = box.minLevel.xyz + local;
     // Children in x-fastest order: child i is at 2·voxel + (i & 1, (i >> 1) & 1, i >> 2).
-    float alpha[8];
+    vec3 alpha[8];
     uint base[8];
     for (int i = 0; i < 8; ++i) {
         ivec3 child = voxel * 2 + ivec3(i & 1, (i >> 1) & 1, i >> 2);
-        alpha[i] = float(imageLoad(opacityVolume, vctTexel(level - 1u, child, resolution)).x) / float(BL_VCT_OPACITY_ONE);
+        alpha[i] = vctUnpackOpacity(imageLoad(opacityVolume, vctTexel(level - 1u, child, resolution)).x);
         base[i] = vctTexelIndex(level - 1u, child, resolution) * channels;
     }
-    precise float opacity = 0.0;  // precise: Vulkan and GL round alike
+    precise vec3 opacity = vec3(0.0);  // precise: Vulkan and GL round alike
     for (int axis = 0; axis < 3; ++axis) {
         int step = 1 << axis;
         for (int i = 0; i < 8; ++i)
-            if ((i & step) == 0) opacity += (1.0 - (1.0 - alpha[i]) * (1.0 - alpha[i + step])) / 12.0;
+            if ((i & step) == 0) opacity[axis] += (1.0 - (1.0 - alpha[i][axis]) * (1.0 - alpha[i + step][axis])) * 0.25;
     }
-    imageStore(opacityVolume, vctTexel(level, voxel, resolution), uvec4(uint(opacity * float(BL_VCT_OPACITY_ONE) + 0.5)));
+    imageStore(opacityVolume, vctTexel(level, voxel, resolution), uvec4(vctPackOpacity(opacity)));
 
     uint directions = channels / 3u;
     uint parent = vctTexelIndex(level, voxel, resolution) * channels;
@@ -58,7 +58,7 @@ void main() {
                 for (uint c = 0u; c < 3u; ++c) {
                     float nearE = float(emittance.words[base[nearChild] + word + c]);
                     float farE = float(emittance.words[base[farChild] + word + c]);
-                    sum[c] += nearE + (1.0 - alpha[nearChild]) * farE;
+                    sum[c] += nearE + (1.0 - alpha[nearChild][dir % 3u]) * farE;
                 }
             }
         }

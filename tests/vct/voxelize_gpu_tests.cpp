@@ -16,7 +16,7 @@ using namespace bricklight::testing;
 namespace {
 
 constexpr uint32_t kResolution = 32;
-constexpr uint32_t kOne = 65535;  // opaque
+float axisOpacity(uint32_t word, int axis) { return float((word >> (10 * axis)) & 1023u) / 1023.0f; }
 constexpr float kUnits = 65536.0f;  // fixed-point emittance units per unit radiance
 
 // 2 levels of 32³ with 1-unit finest voxels; the anchor puts level 0 at world [0, 32)³ and level 1 (2-unit voxels)
@@ -31,6 +31,12 @@ vct::ClipmapDesc testDesc(bool persistent = true, vct::EmittanceMode mode = vct:
     return d;
 }
 const glm::vec3 kAnchor(16.5f, 16.5f, 16.5f);
+// The surface voxels only (thickness 0), whose sets the tests state exactly.
+vct::VoxelMaterial thinMaterial() {
+    vct::VoxelMaterial m;
+    m.thickness = 0.0f;
+    return m;
+}
 
 // The part of [v, v + 1) a face spanning [lo, hi] covers along one axis.
 float coverage(int v, float lo, float hi) { return std::max(0.0f, std::min(float(v + 1), hi) - std::max(float(v), lo)); }
@@ -51,7 +57,7 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
     const glm::vec3 radiance(1.0f, 0.5f, 0.25f);
     std::vector<Triangle> scene = boxTriangles(lo, hi), cube1 = boxTriangles(lo1, hi1);
     scene.insert(scene.end(), cube1.begin(), cube1.end());
-    h.draw(scene, vct::VoxelMaterial{}, &radiance);
+    h.draw(scene, thinMaterial(), &radiance);
     const std::vector<uint32_t> opacity = h.opacity();
     const std::vector<uint32_t> emittance = h.emittance();
 
@@ -65,7 +71,11 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
                 const bool onShell = inside && (x == 4 || x == 12 || y == 4 || y == 12 || z == 4 || z == 12);
                 shell += onShell;
                 const uint32_t got = h.opacityAt(opacity, 0, v);
-                if (got != (onShell ? kOne : 0u)) {
+                // A face blocks light along its normal's axis only.
+                const uint32_t expected = inside ? ((x == 4 || x == 12) ? 1023u : 0u) | ((y == 4 || y == 12) ? 1023u << 10 : 0u) |
+                                                       ((z == 4 || z == 12) ? 1023u << 20 : 0u)
+                                                 : 0u;
+                if (got != expected) {
                     if (++mismatches < 8) UNSCOPED_INFO("level 0 voxel " << x << "," << y << "," << z << ": " << got);
                 }
                 // Emittance per direction: each face sends its light towards its normal, weighted by the part of the
@@ -97,8 +107,10 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
             for (int x = -8; x < 24; ++x) {
                 const glm::ivec3 v(x, y, z);
                 const bool inside = glm::all(glm::greaterThanEqual(v, glm::ivec3(18))) && glm::all(glm::lessThanEqual(v, glm::ivec3(21)));
-                const bool onShell = inside && (x == 18 || x == 21 || y == 18 || y == 21 || z == 18 || z == 21);
-                if (h.opacityAt(opacity, 1, v) != (onShell ? kOne : 0u) && ++mismatches < 8)
+                const uint32_t expected = inside ? ((x == 18 || x == 21) ? 1023u : 0u) | ((y == 18 || y == 21) ? 1023u << 10 : 0u) |
+                                                       ((z == 18 || z == 21) ? 1023u << 20 : 0u)
+                                                 : 0u;
+                if (h.opacityAt(opacity, 1, v) != expected && ++mismatches < 8)
                     UNSCOPED_INFO("level 1 voxel " << x << "," << y << "," << z << ": " << h.opacityAt(opacity, 1, v));
             }
     CHECK(mismatches == 0);
@@ -117,17 +129,20 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
     for (int z = 0; z < 16; ++z)
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x) {
-                float alpha[8];
+                uint32_t children[8];
                 for (int i = 0; i < 8; ++i)
-                    alpha[i] = float(h.opacityAt(opacity, 0, glm::ivec3(x, y, z) * 2 + glm::ivec3(i & 1, (i >> 1) & 1, i >> 2))) / float(kOne);
-                float expected = 0.0f;
-                for (int axis = 0; axis < 3; ++axis)
-                    for (int i = 0; i < 8; ++i)
-                        if (!(i & (1 << axis))) expected += (1.0f - (1.0f - alpha[i]) * (1.0f - alpha[i + (1 << axis)])) / 12.0f;
-                const int64_t want = std::lround(double(expected) * kOne), got = h.opacityAt(after, 1, {x, y, z});
+                    children[i] = h.opacityAt(opacity, 0, glm::ivec3(x, y, z) * 2 + glm::ivec3(i & 1, (i >> 1) & 1, i >> 2));
+                const uint32_t got = h.opacityAt(after, 1, {x, y, z});
                 filled += got != 0;
-                if (std::abs(got - want) > 1 && ++mismatches < 8)
-                    UNSCOPED_INFO("level 1 voxel " << x << "," << y << "," << z << ": " << got << ", expected " << want);
+                for (int axis = 0; axis < 3; ++axis) {
+                    float expected = 0.0f;
+                    for (int i = 0; i < 8; ++i)
+                        if (!(i & (1 << axis)))
+                            expected += (1.0f - (1.0f - axisOpacity(children[i], axis)) * (1.0f - axisOpacity(children[i + (1 << axis)], axis))) * 0.25f;
+                    const int64_t want = std::lround(double(expected) * 1023.0), have = (got >> (10 * axis)) & 1023u;
+                    if (std::abs(have - want) > 1 && ++mismatches < 8)
+                        UNSCOPED_INFO("level 1 voxel " << x << "," << y << "," << z << " axis " << axis << ": " << have << ", expected " << want);
+                }
             }
     CHECK(filled > 0);
     CHECK(mismatches == 0);
@@ -186,11 +201,11 @@ void smallTrianglesAreNotLost(const std::string& backend) {
             if (clean) mustBeOpaque.push_back(p);
         }
     }
-    h.draw(triangles, vct::VoxelMaterial{}, nullptr);
+    h.draw(triangles, thinMaterial(), nullptr);
     const std::vector<uint32_t> opacity = h.opacity();
     uint64_t lost = 0;
     for (const glm::vec3& p : mustBeOpaque)
-        if (h.opacityAt(opacity, 0, glm::ivec3(glm::floor(p))) != kOne && ++lost < 8) UNSCOPED_INFO("lost the point " << p.x << "," << p.y << "," << p.z);
+        if (h.opacityAt(opacity, 0, glm::ivec3(glm::floor(p))) == 0u && ++lost < 8) UNSCOPED_INFO("lost the point " << p.x << "," << p.y << "," << p.z);
     CHECK(lost == 0);
     uint64_t stray = 0, set = 0;
     for (int z = 0; z < 32; ++z)
@@ -265,7 +280,7 @@ void scrollingEqualsFromScratch(const std::string& backend) {
     VoxelizeHarness scrolled(td, testDesc());
     std::string error;
     REQUIRE(scrolled.clipmap().update(kAnchor, &error));
-    scrolled.draw(sceneAt(glm::vec3(0.0f)), vct::VoxelMaterial{}, &radiance);
+    scrolled.draw(sceneAt(glm::vec3(0.0f)), thinMaterial(), &radiance);
     scrolled.clipmap().finishVoxelization();
     const glm::vec3 anchor2 = kAnchor + glm::vec3(5.2f, -3.9f, 2.1f);
     // The cube moves: invalidate where it was and where it is.
@@ -273,12 +288,12 @@ void scrollingEqualsFromScratch(const std::string& backend) {
     auto updates = scrolled.clipmap().update(anchor2, &error, invalidated);
     REQUIRE(updates);
     REQUIRE((*updates)[1].origin != glm::ivec3(-8));  // level 1 moved too
-    scrolled.draw(sceneAt(moved), vct::VoxelMaterial{}, &radiance);
+    scrolled.draw(sceneAt(moved), thinMaterial(), &radiance);
     scrolled.clipmap().finishVoxelization();
 
     VoxelizeHarness fresh(td, testDesc());
     REQUIRE(fresh.clipmap().update(anchor2, &error));
-    fresh.draw(sceneAt(moved), vct::VoxelMaterial{}, &radiance);
+    fresh.draw(sceneAt(moved), thinMaterial(), &radiance);
     fresh.clipmap().finishVoxelization();
     expectSameVoxels(scrolled, fresh);
     REQUIRE_NO_MESSAGES(td);
@@ -290,7 +305,7 @@ void refusesBadInput(const std::string& backend) {
     VoxelizeHarness h(td, testDesc());
     std::string error;
     vct::VoxelMaterial bad;
-    bad.thickness = NAN;
+    bad.thickness = NAN;  // 
     CHECK_FALSE(h.clipmap().voxelizationState(bad, &error));
     CHECK(error.find("thickness") != std::string::npos);
     bad = {};
@@ -308,7 +323,7 @@ void refusesBadInput(const std::string& backend) {
     triangles.push_back({{glm::vec3(1e30f), glm::vec3(1.0f), glm::vec3(2.0f, 1.0f, 1.0f)}, glm::vec3(0, 0, 1)});
     triangles.push_back({{glm::vec3(20.5f), glm::vec3(20.5f), glm::vec3(20.5f)}, glm::vec3(0, 0, 1)});  // degenerate
     const glm::vec3 radiance(NAN, -1.0f, 2.0f);  // NaN and negative light add nothing
-    h.draw(triangles, vct::VoxelMaterial{}, &radiance);
+    h.draw(triangles, thinMaterial(), &radiance);
     const std::vector<uint32_t> opacity = h.opacity();
     uint64_t set = 0;
     for (int z = 0; z < 32; ++z)
@@ -323,8 +338,41 @@ void refusesBadInput(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The emittance function is called with the fragment's point on the triangle, its normal and its level.
+void hookSeesTheFragment(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    VoxelizeHarness h(td, testDesc());
+    std::string error;
+    REQUIRE(h.clipmap().update(kAnchor, &error));
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("vct_tests/voxelize_position.frag");
+    REQUIRE(sd.blob);
+    vct::VoxelMaterial m = thinMaterial();
+    m.fragmentShader = td.device->createShader(sd);
+    REQUIRE(m.fragmentShader);
+    // A square at z = 10.25 over x, y in [4.25, 5.75]: 3 × 3 of the 4 × 4 samples of each of 2 × 2 pixels.
+    const glm::vec3 a(4.25f, 4.25f, 10.25f), b(5.75f, 4.25f, 10.25f), c(5.75f, 5.75f, 10.25f), d(4.25f, 5.75f, 10.25f);
+    const glm::vec3 up(0.0f, 0.0f, 1.0f), unused(1.0f);
+    h.draw({{{a, b, c}, up}, {{a, c, d}, up}}, m, &unused);
+    const std::vector<uint32_t> emittance = h.emittance();
+    for (int y = 4; y <= 5; ++y)
+        for (int x = 4; x <= 5; ++x) {
+            const size_t base = h.texelIndex(0, {x, y, 10}) * 18 + 2 * 3;  // +Z
+            const float units = 9.0f * 4096.0f;
+            const glm::vec3 seen{float(emittance[base]) / units, float(emittance[base + 1]) / units, float(emittance[base + 2]) / units};
+            INFO("voxel " << x << "," << y << ": the hook saw " << seen.x << "," << seen.y << "," << seen.z);
+            CHECK(seen.x == Approx(x + 0.5f).margin(1e-3));
+            CHECK(seen.y == Approx(y + 0.5f).margin(1e-3));
+            CHECK(seen.z == Approx(10.25f).margin(1e-3));
+        }
+    td.device->destroy(m.fragmentShader);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
+BACKEND_TEST("voxelization hands the emittance function the fragment's position", "[vct]", hookSeesTheFragment)
 BACKEND_TEST("voxelization of the emissive test cube gives exactly the expected voxels", "[vct]", emissiveCubeVoxelizesExactly)
 BACKEND_TEST("voxelization loses no small or thin triangle", "[vct]", smallTrianglesAreNotLost)
 BACKEND_TEST("voxelization after scrolling and a moved object equals one from scratch", "[vct]", scrollingEqualsFromScratch)

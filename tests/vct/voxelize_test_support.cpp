@@ -59,7 +59,7 @@ void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::Vo
     REQUIRE(buffer);
     buffers_.push_back(buffer);
     vct::VoxelMaterial material = base;
-    material.fragmentShader = radiance ? emissive_ : rhi::ShaderHandle{};
+    if (!material.fragmentShader) material.fragmentShader = radiance ? emissive_ : rhi::ShaderHandle{};
     std::string error;
     std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &error);
     INFO(error);
@@ -69,7 +69,7 @@ void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::Vo
     state->vertexInputs.push(rhi::VertexInput{1, rhi::VertexFormat::Float3, 0, 12});
     state->vertexBuffers.push(rhi::VertexBufferBinding{buffer, 0, 24, false});
     const glm::vec4 emission(radiance ? *radiance : glm::vec3(0.0f), 0.0f);
-    if (radiance) state->bindings.constants.push(rhi::constants(0, emission));
+    if (radiance && material.fragmentShader == emissive_) state->bindings.constants.push(rhi::constants(0, emission));
     rhi::DrawArgs args;
     args.vertexCount = uint32_t(triangles.size() * 3);
     REQUIRE(td_.device->draw(*state, args));

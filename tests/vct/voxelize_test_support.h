@@ -26,7 +26,8 @@ public:
     VoxelizeHarness(TestDevice& td, const vct::ClipmapDesc& desc);
     ~VoxelizeHarness();
     vct::Clipmap& clipmap() { return *clipmap_; }
-    // Draws the triangles with the opacity-only shader (radiance null) or the emissive test shader.
+    // Draws the triangles with material.fragmentShader, or else the opacity-only shader (radiance null) or the
+    // emissive test shader.
     void draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& material, const glm::vec3* radiance);
     std::vector<uint32_t> opacity();    // the whole volume, texel order
     std::vector<uint32_t> emittance();  // the whole buffer

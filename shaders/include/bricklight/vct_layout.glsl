@@ -7,8 +7,22 @@
 #ifndef BRICKLIGHT_VCT_LAYOUT_GLSL
 #define BRICKLIGHT_VCT_LAYOUT_GLSL
 
-// Opacity words: 16-bit fixed point, BL_VCT_OPACITY_ONE = fully opaque.
-const uint BL_VCT_OPACITY_ONE = 65535u;
+// Opacity words: how much of a voxel's cross-section blocks light travelling along x, y and z, 10-bit fixed
+// point each (bits 0–9, 10–19, 20–29; VXGI 1.0's directional opacity). A surface blocks light along each axis
+// by the normal's component on it (a wall across x blocks x fully and y, z not at all); downsampling keeps the
+// axes apart, so that a wall across a coarse voxel still blocks a cone crossing it.
+const uint BL_VCT_OPACITY_AXIS_ONE = 1023u;
+uint vctPackOpacity(vec3 a) {
+    uvec3 q = uvec3(clamp(a, 0.0, 1.0) * float(BL_VCT_OPACITY_AXIS_ONE) + 0.5);
+    return q.x | (q.y << 10u) | (q.z << 20u);
+}
+uint vctMaxOpacity(uint a, uint b) {
+    uvec3 m = max(uvec3(a, a >> 10u, a >> 20u) & 1023u, uvec3(b, b >> 10u, b >> 20u) & 1023u);
+    return m.x | (m.y << 10u) | (m.z << 20u);
+}
+vec3 vctUnpackOpacity(uint w) {
+    return vec3(uvec3(w, w >> 10u, w >> 20u) & uvec3(BL_VCT_OPACITY_AXIS_ONE)) / float(BL_VCT_OPACITY_AXIS_ONE);
+}
 // Counters (Clipmap::readCounters): which word counts what.
 const uint BL_VCT_COUNT_FRAGMENTS = 0u;          // voxelization fragments shaded
 const uint BL_VCT_COUNT_OFF_TRIANGLE = 1u;       // fragments of the dilated quad whose pixel misses the triangle

@@ -14,9 +14,10 @@
 //
 // Per pixel: the pixel's square is tested against the triangle's edges (conservatively: any overlap counts),
 // every voxel along the projection axis that the triangle's plane crosses within the square (and the triangle's
-// own depth range, widened by the material's thickness) becomes opaque; emittance goes to the voxel of each of
+// own depth range, widened behind the surface by the material's thickness) becomes opaque; emittance goes to the voxel of each of
 // 4 × 4 samples inside the triangle (edges owned by one side only, so that shared edges count once), weighted
-// by the surface area it stands for and split over the six directions by the face normal.
+// by the surface area it stands for and split over the six directions by the face normal; what leaves along
+// the projection axis goes to the column's outermost voxel on that side and the one behind it.
 #ifndef BRICKLIGHT_VOXELIZE_GLSL
 #define BRICKLIGHT_VOXELIZE_GLSL
 
@@ -93,6 +94,19 @@ bool blVoxelWritable(uint level, ivec3 voxel, uint resolution, uint boxCount, ou
     return false;
 }
 
+// Each axis's opacity becomes the largest written, whatever the order (compare-and-swap on the packed word; each
+// retry follows another writer's increase, so the loop ends).
+void blVoxelMaxOpacity(ivec3 texel, uint opacity) {
+    uint seen = imageAtomicOr(blVctOpacity, texel, 0u);
+    for (int i = 0; i < 64; ++i) {
+        uint merged = vctMaxOpacity(seen, opacity);
+        if (merged == seen) return;
+        uint before = imageAtomicCompSwap(blVctOpacity, texel, seen, merged);
+        if (before == seen) return;
+        seen = before;
+    }
+}
+
 void main() {
     blVoxelCount(BL_VCT_COUNT_FRAGMENTS, 1u);
     ivec2 pixelInLevel = ivec2(floor(gl_FragCoord.xy));
@@ -119,12 +133,17 @@ void main() {
     // The depths the plane takes over the square, within the triangle's own range, widened by the thickness.
     precise float wCentre = blVoxelPlane.x + blVoxelPlane.y * centre.x + blVoxelPlane.z * centre.y;
     float wSpread = 0.5 * (abs(blVoxelPlane.y) + abs(blVoxelPlane.z));
-    float wLo = max(wCentre - wSpread, blVoxelDepth.x) - 0.5 * blVoxelDepth.z;
-    float wHi = min(wCentre + wSpread, blVoxelDepth.y) + 0.5 * blVoxelDepth.z;
+    // Thickness goes behind the surface (away from the side its normal says is the front), so that no opaque,
+    // dark voxel lies in front of the voxel that holds its light; a two-sided surface grows half each way.
+    float facing = dot(blVoxelFaceNormal, blVoxelNormalGs) >= 0.0 ? 1.0 : -1.0;
+    bool frontIsUp = facing * blVoxelFaceNormal[axis] > 0.0;  // the front looks towards +w
+    float behind = blVoxelLevelAxis.z != 0 ? 0.5 : (frontIsUp ? 1.0 : 0.0);
+    float wLo = max(wCentre - wSpread, blVoxelDepth.x) - behind * blVoxelDepth.z;
+    float wHi = min(wCentre + wSpread, blVoxelDepth.y) + (1.0 - behind) * blVoxelDepth.z;
     int k0 = max(int(floor(wLo)) + blVoxelOffset.z, 0);
     int k1 = min(min(int(floor(wHi)) + blVoxelOffset.z, int(resolution) - 1), k0 + BL_VOXEL_MAX_SPAN - 1);
 
-    uint opacity = uint(blVoxelDepth.w * float(BL_VCT_OPACITY_ONE) + 0.5);
+    uint opacity = vctPackOpacity(blVoxelDepth.w * abs(blVoxelFaceNormal));
     uint writable = 0u;  // bit k - k0
     uint written = 0u, killedByFiner = 0u, killedNotDirty = 0u;
     for (int k = k0; k <= k1; ++k) {
@@ -136,7 +155,7 @@ void main() {
             continue;
         }
         writable |= 1u << uint(k - k0);
-        imageAtomicMax(blVctOpacity, vctTexel(level, voxel, resolution), opacity);
+        blVoxelMaxOpacity(vctTexel(level, voxel, resolution), opacity);
         ++written;
     }
     blVoxelCount(BL_VCT_COUNT_VOXELS_WRITTEN, written);
@@ -155,9 +174,8 @@ void main() {
             if (!blVoxelOwns(blVoxelEdge0, s) || !blVoxelOwns(blVoxelEdge1, s) || !blVoxelOwns(blVoxelEdge2, s)) continue;
             precise float w = clamp(blVoxelPlane.x + blVoxelPlane.y * s.x + blVoxelPlane.z * s.y, blVoxelDepth.x, blVoxelDepth.y);
             int k = int(floor(w)) + blVoxelOffset.z - k0;
-            if (k < 0 || k >= BL_VOXEL_MAX_SPAN || (writable & (1u << uint(k))) == 0u) continue;
-            ++samples[k];
-            ++inside;
+            ++inside;  // every sample in the triangle counts, whatever this update may write (see below)
+            if (k >= 0 && k < BL_VOXEL_MAX_SPAN) ++samples[k];
         }
     if (inside == 0u) return;
 
@@ -188,18 +206,29 @@ void main() {
         vec3 radiance = blVoxelEmittance(g);
         // Negative and NaN light adds nothing; one fragment adds at most FP16's largest value.
         radiance = mix(vec3(0.0), min(radiance, vec3(65504.0)), greaterThan(radiance, vec3(0.0)));
-        for (int k = 0; k < BL_VOXEL_MAX_SPAN; ++k) {
-            if (samples[k] == 0u) continue;
-            ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
-            uint base = vctTexelIndex(level, voxel, resolution) * channels;
-            for (uint d = 0u; d < directions; ++d) {
-                precise float weight = directions == 1u ? 1.0 : max(dot(facing, vctDirection(d)), 0.0);
-                precise vec3 amount = radiance * (weight * float(samples[k]) * unitsPerSample);
+        for (uint d = 0u; d < directions; ++d) {
+            precise float weight = directions == 1u ? 1.0 : max(dot(facing, vctDirection(d)), 0.0);
+            if (weight == 0.0) continue;
+            // Light leaving along the projection axis goes to the column's last voxel on that side and the one
+            // behind it, so that no voxel of the same column (thickness, or a tilted plane's spread) covers it and
+            // a filtered sample between the two still sees the surface's radiance; light leaving sideways stays
+            // in each sample's own voxel.
+            // The column's ends come from the geometry alone (not from what this update may write), so that a
+            // voxel gets the same light whichever update writes it.
+            bool axial = directions > 1u && d % 3u == uint(axis);
+            int end = d < 3u ? k1 - k0 : 0;
+            int behind = d < 3u ? end - 1 : end + 1;
+            for (int k = 0; k < BL_VOXEL_MAX_SPAN; ++k) {
+                uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : samples[k];
+                if (count == 0u || (writable & (1u << uint(k))) == 0u) continue;
+                ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
+                uint base = vctTexelIndex(level, voxel, resolution) * channels + d * 3u;
+                precise vec3 amount = radiance * (weight * float(count) * unitsPerSample);
                 uvec3 units = uvec3(min(amount + 0.5, vec3(4.0e9)));
                 for (uint c = 0u; c < 3u; ++c)
-                    if (units[c] != 0u) atomicAdd(blVctEmittance.words[base + d * 3u + c], units[c]);
+                    if (units[c] != 0u) atomicAdd(blVctEmittance.words[base + c], units[c]);
+                ++emittanceWrites;
             }
-            ++emittanceWrites;
         }
     }
     blVoxelCount(BL_VCT_COUNT_EMITTANCE_WRITES, emittanceWrites);

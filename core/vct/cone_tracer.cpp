@@ -1,0 +1,250 @@
+// vct::ConeTracer: diffuse, specular and ambient light from the clip-map for every pixel of a G-buffer
+// (include/bricklight/vct.h; the passes are shaders/vct/trace_diffuse.comp, resolve_diffuse.comp and
+// trace_specular.comp).
+#include <cmath>
+#include <cstring>
+
+#include "bricklight/vct.h"
+#include "../core_shaders.h"
+
+namespace bricklight::vct {
+
+bool checkConeTraceParams(const ConeTraceParams& p, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "cone trace parameters: " + why;
+        return false;
+    };
+    auto within = [](float v, float lo, float hi) { return v >= lo && v <= hi; };  // false for NaN
+    if (p.diffuseCones < 1 || p.diffuseCones > 32) return fail("diffuseCones " + std::to_string(p.diffuseCones) + " is outside 1..32");
+    if (!within(p.diffuseConeAngle, 0.0f, 3.0f)) return fail("diffuseConeAngle " + std::to_string(p.diffuseConeAngle) + " is outside 0..3 radians");
+    if (p.tracingSparsity < 1 || p.tracingSparsity > 4) return fail("tracingSparsity " + std::to_string(p.tracingSparsity) + " is outside 1..4");
+    if (!within(p.tracingStep, 0.25f, 1.0f)) return fail("tracingStep " + std::to_string(p.tracingStep) + " is outside 0.25..1");
+    if (!within(p.opacityCorrection, 0.1f, 10.0f)) return fail("opacityCorrection " + std::to_string(p.opacityCorrection) + " is outside 0.1..10");
+    if (p.lightLeakLag > 2) return fail("lightLeakLag " + std::to_string(p.lightLeakLag) + " is outside 0..2");
+    if (!within(p.initialOffset, 0.0f, 16.0f)) return fail("initialOffset " + std::to_string(p.initialOffset) + " is outside 0..16 voxels");
+    if (!(p.maxDistance >= 0.0f) || !std::isfinite(p.maxDistance)) return fail("maxDistance must be finite and ≥ 0");
+    if (!(p.ambientRange >= 0.0f) || !std::isfinite(p.ambientRange)) return fail("ambientRange must be finite and ≥ 0");
+    if (!within(p.temporalWeight, 0.0f, 0.98f)) return fail("temporalWeight " + std::to_string(p.temporalWeight) + " is outside 0..0.98");
+    if (!within(p.maxSpecularRoughness, 0.0f, 1.0f)) return fail("maxSpecularRoughness is outside 0..1");
+    return true;
+}
+
+namespace {
+
+// The passes' parameters (TraceParams in shaders/vct/trace_common.glsl, std430).
+struct TraceParamsBlock {
+    glm::mat4 inverseViewProjection, previousViewProjection;
+    glm::vec4 eye;
+    glm::uvec4 size, lowSize;
+    glm::vec4 normalUnpackScale, normalUnpackOffset, cone, limits;
+    glm::uvec4 sparseOffset;
+};
+static_assert(sizeof(TraceParamsBlock) == 256);
+
+rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader(name);
+    return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+}
+
+rhi::TextureHandle makeTexture(rhi::IDevice& device, uint32_t w, uint32_t h, rhi::Format format, const char* name) {
+    rhi::TextureDesc td;
+    td.width = w;
+    td.height = h;
+    td.format = format;
+    td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
+    td.debugName = name;
+    return device.createTexture(td);
+}
+
+const uint32_t kNoGuide = 0x7FC00000u;  // NO_GUIDE in trace_common.glsl
+
+}  // namespace
+
+std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipmap& clipmap, uint32_t width, uint32_t height,
+                                               std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "cone tracer: " + why;
+        return nullptr;
+    };
+    if (width == 0 || height == 0 || width > device.capabilities().limits.maxTextureSize2D || height > device.capabilities().limits.maxTextureSize2D)
+        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is zero or exceeds the device's 2D texture size");
+    shaders::link_bricklight_core();
+    std::unique_ptr<ConeTracer> t(new ConeTracer(device, clipmap));
+    t->width_ = width;
+    t->height_ = height;
+    t->traceDiffuse_ = makeShader(device, "vct/trace_diffuse.comp");
+    t->resolveDiffuse_ = makeShader(device, "vct/resolve_diffuse.comp");
+    t->traceSpecular_ = makeShader(device, "vct/trace_specular.comp");
+    const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
+                               {"vct specular history 0", "vct specular history 1"},
+                               {"vct guide 0", "vct guide 1"}};
+    for (int i = 0; i < 2; ++i) {
+        t->diffuseHistory_[i] = makeTexture(device, width, height, rhi::Format::RGBA16_FLOAT, names[0][i]);
+        t->specularHistory_[i] = makeTexture(device, width, height, rhi::Format::RGBA16_FLOAT, names[1][i]);
+        t->guide_[i] = makeTexture(device, width, height, rhi::Format::RGBA32_UINT, names[2][i]);
+    }
+    rhi::BufferDesc bd;
+    bd.size = sizeof(TraceParamsBlock);
+    bd.usage = rhi::BufferUsage::ShaderRead;
+    bd.debugName = "vct trace parameters";
+    t->params_ = device.createBuffer(bd);
+    rhi::SamplerDesc sd;
+    sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
+    sd.debugName = "vct point";
+    t->point_ = device.createSampler(sd);
+    bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->params_ && t->point_;
+    for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
+    if (!ok) return fail("the device could not create the tracing passes or their history");
+    rhi::ClearValue none{};
+    none.u[0] = kNoGuide;
+    for (int i = 0; i < 2; ++i) device.clearTexture(t->guide_[i], 0, 1, none);
+    return t;
+}
+
+ConeTracer::~ConeTracer() {
+    for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1], guide_[0], guide_[1]})
+        if (t) device_.destroy(t);
+    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_})
+        if (s) device_.destroy(s);
+    if (params_) device_.destroy(params_);
+    if (point_) device_.destroy(point_);
+}
+
+bool ConeTracer::bindLowResolution(uint32_t sparsity, std::string* error) {
+    if (sparsity == sparsity_ && lowDiffuse_) return true;
+    for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_})
+        if (t) device_.destroy(t);
+    const uint32_t w = (width_ + sparsity - 1) / sparsity, h = (height_ + sparsity - 1) / sparsity;
+    lowDiffuse_ = makeTexture(device_, w, h, rhi::Format::RGBA16_FLOAT, "vct sparse diffuse");
+    lowGuide_ = makeTexture(device_, w, h, rhi::Format::RGBA32_UINT, "vct sparse guide");
+    sparsity_ = sparsity;
+    if (!lowDiffuse_ || !lowGuide_) {
+        if (error) *error = "cone tracer: the device could not create the sparse tracing targets";
+        sparsity_ = 0;
+        return false;
+    }
+    return true;
+}
+
+bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "cone tracer: " + why;
+        return false;
+    };
+    if (!checkConeTraceParams(d.params, error)) return false;
+    struct Input {
+        const char* name;
+        rhi::TextureHandle texture;
+        bool required, output;
+    };
+    const Input inputs[] = {{"depth", d.depth, true, false},           {"normals", d.normals, true, false},
+                            {"roughness", d.roughness, true, false},   {"motionVectors", d.motionVectors, false, false},
+                            {"outputDiffuse", d.outputDiffuse, true, true}, {"outputSpecular", d.outputSpecular, false, true}};
+    for (const Input& in : inputs) {
+        if (!in.texture) {
+            if (in.required) return fail(std::string(in.name) + " is missing");
+            continue;
+        }
+        const rhi::TextureDesc* td = device_.describe(in.texture);
+        if (!td) return fail(std::string(in.name) + " is not a live texture");
+        if (td->width != width_ || td->height != height_)
+            return fail(std::string(in.name) + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", not the tracer's " +
+                        std::to_string(width_) + "x" + std::to_string(height_));
+        if (in.output && (td->format != rhi::Format::RGBA16_FLOAT || !(td->usage & rhi::TextureUsage::Storage)))
+            return fail(std::string(in.name) + " must be RGBA16_FLOAT with Storage usage");
+    }
+    if (d.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is outside 0..3");
+    if (!bindLowResolution(d.params.tracingSparsity, error)) return false;
+
+    const ClipmapDesc& cd = clipmap_.desc();
+    const ConeTraceParams& p = d.params;
+    const uint32_t s = p.tracingSparsity;
+    const uint32_t lowW = (width_ + s - 1) / s, lowH = (height_ + s - 1) / s;
+    float angle = p.diffuseConeAngle;
+    if (angle == 0.0f) angle = 2.0f * std::min(std::acos(1.0f - 1.0f / float(p.diffuseCones)), 1.4f);  // 2π / cones sr each
+    // The pixel of each block traced this frame: every one of the s² in turn, in a scattered order.
+    const uint32_t phase = (frame_ * 3u) % (s * s);
+    TraceParamsBlock b{};
+    b.inverseViewProjection = glm::inverse(d.projection * d.view);
+    b.previousViewProjection = d.previousProjection * d.previousView;
+    b.eye = glm::vec4(d.cameraPosition, 0.0f);
+    b.size = glm::uvec4(width_, height_, s, frame_);
+    b.lowSize = glm::uvec4(lowW, lowH, p.diffuseCones, (d.resetHistory || frame_ == 0 ? 1u : 0u) | (d.motionVectors ? 2u : 0u));
+    b.normalUnpackScale = glm::vec4(d.normalsUnpackScale, float(d.roughnessChannel));
+    b.normalUnpackOffset = glm::vec4(d.normalsUnpackOffset, p.maxSpecularRoughness);
+    b.cone = glm::vec4(2.0f * std::tan(0.5f * angle), p.tracingStep, p.opacityCorrection, p.initialOffset);
+    b.limits = glm::vec4(p.maxDistance, p.ambientRange > 0.0f ? p.ambientRange : 8.0f * cd.finestVoxelSize, p.temporalWeight, float(p.lightLeakLag));
+    b.sparseOffset = glm::uvec4(phase % s, phase / s, 0u, 0u);
+    device_.writeBuffer(params_, 0, &b, sizeof(b));
+
+    const uint32_t cur = frame_ & 1u, prev = cur ^ 1u;
+    auto common = [&](rhi::Bindings& bindings) {
+        uint8_t slot = 0;
+        for (rhi::TextureHandle t : {d.depth, d.normals, d.roughness, d.motionVectors ? d.motionVectors : d.depth})
+            bindings.textures.push(rhi::TextureBinding{slot++, rhi::wholeTexture(t), point_});
+        clipmap_.traceBindings(bindings, 8, 7);
+        bindings.readBuffers.push(rhi::ReadBufferBinding{6, params_, {}});
+    };
+    auto image = [](rhi::Bindings& bindings, uint8_t slot, rhi::TextureHandle t) {
+        rhi::StorageImageBinding i;
+        i.slot = slot;
+        i.view = rhi::textureMip(t, 0);
+        i.access = rhi::Access::Write;
+        bindings.storageImages.push(i);
+    };
+    device_.beginMarker("vct diffuse");
+    rhi::DispatchState trace;
+    trace.shader = traceDiffuse_;
+    trace.label = "vct trace diffuse";
+    common(trace.bindings);
+    image(trace.bindings, 0, lowDiffuse_);
+    image(trace.bindings, 1, lowGuide_);
+    device_.dispatch(trace, (lowW + 7) / 8, (lowH + 7) / 8, 1);
+
+    rhi::DispatchState resolve;
+    resolve.shader = resolveDiffuse_;
+    resolve.label = "vct resolve diffuse";
+    common(resolve.bindings);
+    resolve.bindings.textures.push(rhi::TextureBinding{4, rhi::wholeTexture(lowDiffuse_), point_});
+    resolve.bindings.textures.push(rhi::TextureBinding{5, rhi::wholeTexture(lowGuide_), point_});
+    resolve.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(diffuseHistory_[prev]), point_});
+    resolve.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
+    image(resolve.bindings, 0, d.outputDiffuse);
+    image(resolve.bindings, 1, diffuseHistory_[cur]);
+    image(resolve.bindings, 2, guide_[cur]);
+    device_.dispatch(resolve, (width_ + 7) / 8, (height_ + 7) / 8, 1);
+    device_.endMarker();
+
+    if (d.outputSpecular) {
+        device_.beginMarker("vct specular");
+        rhi::DispatchState spec;
+        spec.shader = traceSpecular_;
+        spec.label = "vct trace specular";
+        common(spec.bindings);
+        spec.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(specularHistory_[prev]), point_});
+        spec.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
+        image(spec.bindings, 0, d.outputSpecular);
+        image(spec.bindings, 1, specularHistory_[cur]);
+        device_.dispatch(spec, (width_ + 7) / 8, (height_ + 7) / 8, 1);
+        device_.endMarker();
+    }
+    ++frame_;
+    return true;
+}
+
+MemoryUse ConeTracer::memoryUse() const {
+    MemoryUse use;
+    for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1], guide_[0], guide_[1]})
+        if (const rhi::TextureDesc* d = device_.describe(t)) {
+            use.resources.push_back({d->debugName, rhi::subresourceBytes(*d, {})});
+            use.totalBytes += use.resources.back().bytes;
+        }
+    if (const rhi::BufferDesc* d = device_.describe(params_)) {
+        use.resources.push_back({d->debugName, d->size});
+        use.totalBytes += d->size;
+    }
+    return use;
+}
+
+}  // namespace bricklight::vct

@@ -1,0 +1,109 @@
+// The fast path with voxel cone tracing (--gi vxgi, --ao vxao): the scene voxelized through
+// vct::Clipmap::voxelizationState with the renderer's vertex shader and emittance (shaders/render/voxelize.vert,
+// voxel_emittance.frag: its direct lighting, BVH-shadowed, times the diffuse albedo), then vct::ConeTracer into
+// the same diffuse and specular outputs the SDF GI writes, so the composite is the same.
+#include <algorithm>
+
+#include "bricklight/half.h"
+#include "raster_renderer.h"
+
+namespace bricklight::render {
+
+bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* error) {
+    auto fail = [&](const std::string& m) {
+        if (error) *error = "raster renderer: voxel cone tracing: " + m;
+        return false;
+    };
+    const glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+    const float side = std::max(extent.x, std::max(extent.y, extent.z));
+    vct::ClipmapDesc desc;
+    desc.resolution = options_.vctResolution;
+    desc.levels = options_.vctLevels;
+    desc.emittance = options_.gi && options_.giTechnique == GiTechnique::Vct ? options_.vctEmittance : vct::EmittanceMode::None;
+    options_.vctEmittance = desc.emittance;
+    // The finest level holds the scene with a margin (the anchor snaps to even voxels: two voxels each side).
+    desc.finestVoxelSize = std::max(side * 1.1f, 1e-6f) / float(std::max(desc.resolution, 8u) - 4);
+    std::string why;
+    clipmap_ = vct::Clipmap::create(device_, desc, &why);
+    if (!clipmap_) return fail(why);
+    coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, options_.width, options_.height, &why);
+    if (!coneTracer_) return fail(why);
+    if (!vct::checkConeTraceParams(options_.vctTrace, &why)) return fail(why);
+    auto shader = [&](const char* name) {
+        rhi::ShaderDesc sd;
+        sd.blob = rhi::findShader(name);
+        return sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
+    };
+    vctVertex_ = shader("render/voxelize.vert");
+    vctEmittance_ = shader("render/voxel_emittance.frag");
+    if (!vctVertex_ || !vctEmittance_) return fail("the device could not create the voxelization shaders");
+    return true;
+}
+
+void RasterRenderer::renderVct() {
+    device_.beginMarker("vct voxelize");
+    std::string why;
+    if (!clipmap_->update(sceneCenter_, &why)) {
+        if (options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+        device_.endMarker();
+        return;
+    }
+    if (!clipmap_->rewriteBoxes().empty()) {
+        vct::VoxelMaterial material;
+        material.twoSided = true;  // the renderer lights both sides of every surface, as the path tracer does
+        material.fragmentShader = options_.vctEmittance == vct::EmittanceMode::None ? rhi::ShaderHandle{} : vctEmittance_;
+        std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &why);
+        if (state) {
+            state->label = "vct voxelize scene";
+            state->vertexShader = vctVertex_;
+            state->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
+            state->vertexInputs.push({1, rhi::VertexFormat::Float3, 0, 12});
+            state->vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
+            state->vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
+            state->vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
+            const glm::uvec4 lighting(options_.vctLightSamples, 0u, 0u, 0u);
+            const SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
+            state->bindings.constants.push(rhi::constants(0, lighting));
+            state->bindings.constants.push(rhi::constants(1, light));
+            scene_->bind(state->bindings, true);
+            rhi::DrawArgs args;
+            args.vertexCount = 3 * scene_->triangleCount();
+            device_.draw(*state, args);
+        }
+        clipmap_->finishVoxelization();
+    }
+    device_.endMarker();
+
+    vct::TraceDesc t;
+    t.view = view_;
+    t.projection = projection_;
+    t.previousView = previousView_;
+    t.previousProjection = previousProjection_;
+    t.cameraPosition = camera_.eye;
+    t.depth = depth_;
+    t.normals = normal_;
+    t.roughness = albedo_;
+    t.roughnessChannel = 3;
+    t.motionVectors = motion_;
+    t.outputDiffuse = giDiffuse_;
+    t.outputSpecular = options_.vctEmittance == vct::EmittanceMode::None ? rhi::TextureHandle{} : giSpecular_;
+    t.params = options_.vctTrace;
+    t.resetHistory = cut_;
+    cut_ = false;
+    if (!coneTracer_->dispatch(t, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+}
+
+Image RasterRenderer::readAmbientOcclusion() {
+    Image img;
+    if (!coneTracer_) return img;
+    img.width = options_.width;
+    img.height = options_.height;
+    const size_t pixels = size_t(img.width) * img.height;
+    std::vector<uint16_t> h(pixels * 4);
+    device_.readTexture(giDiffuse_, {}, h.data());
+    img.rgb.resize(pixels * 3);
+    for (size_t i = 0; i < pixels; ++i) img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = halfToFloat(h[4 * i + 3]);
+    return img;
+}
+
+}  // namespace bricklight::render

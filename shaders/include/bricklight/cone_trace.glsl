@@ -1,0 +1,148 @@
+// Cone tracing through the voxel clip-map (include/bricklight/vct.h), for our GI passes and for an
+// application's own shaders (refraction, reflections, probes): bind Clipmap::traceBindings() and call
+// blTraceCone. Slots: the textures BL_CONE_TRACE_TEXTURE_BASE .. + 6 (default 8..14) and the read buffer
+// BL_CONE_TRACE_FRAME_SLOT (default 7); define either before the include to move them.
+//
+// Units: a cone's distances are in finest voxels from its origin unless said otherwise. A cone is a string of
+// samples, each as wide as the cone there (sample diameter = t × coneFactor, at least one finest voxel),
+// spaced tracingStep × that width; each sample reads the two levels around its width (quadrilinear), at least
+// the finest level that holds it with a margin. Front to back: radiance += T_lagged × emittance × (α_step / α),
+// T ×= 1 − α_step, with α_step the voxel's opacity corrected to the step length (Beer). The lag (0..2 samples)
+// is VXGI's light-leaking control: the light of a sample is weighed by the transmittance that many samples
+// back, so a thin wall's far-side light leaks through less with 0 (and a thin lit surface behind a thin wall
+// dims less with 2).
+#ifndef BRICKLIGHT_CONE_TRACE_GLSL
+#define BRICKLIGHT_CONE_TRACE_GLSL
+
+#include "bricklight/bindings.glsl"
+#include "bricklight/vct_layout.glsl"
+
+#ifndef BL_CONE_TRACE_TEXTURE_BASE
+#define BL_CONE_TRACE_TEXTURE_BASE 8
+#endif
+#ifndef BL_CONE_TRACE_FRAME_SLOT
+#define BL_CONE_TRACE_FRAME_SLOT 7
+#endif
+
+BL_VCT_FRAME_BLOCK(BL_CONE_TRACE_FRAME_SLOT);
+// Opacity along x, y, z (rgb) and emittance radiance per direction (+X, +Y, +Z, −X, −Y, −Z; all six the same volume when
+// isotropic), levels stacked in z with a one-slice border each side (Clipmap's traced volumes).
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE) uniform sampler3D blVctOpacityVolume;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 1) uniform sampler3D blVctEmittancePX;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 2) uniform sampler3D blVctEmittancePY;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 3) uniform sampler3D blVctEmittancePZ;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 4) uniform sampler3D blVctEmittanceNX;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 5) uniform sampler3D blVctEmittanceNY;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 6) uniform sampler3D blVctEmittanceNZ;
+
+struct BlCone {
+    vec3 origin;              // world space
+    vec3 direction;           // unit
+    float coneFactor;         // sample diameter / distance = 2 tan(half angle)
+    float firstSampleT;       // finest voxels from the origin to the first sample
+    float maxDistance;        // world units; 0: until the cone leaves the clip-map or is opaque
+    float tracingStep;        // sample spacing / sample diameter (0.25..1)
+    float opacityCorrection;  // scales the opacity's Beer exponent (1: as voxelized)
+    uint lightLeakLag;        // 0..2 samples the transmittance lags
+    float ambientRange;       // world units: `ambient` is the transmittance at this distance
+};
+
+struct BlConeResult {
+    vec3 radiance;       // the light the cone gathers (radiance arriving along it, averaged over its width)
+    float ambient;       // the transmittance at ambientRange (1: open)
+    float finalOpacity;  // 1 − the transmittance where the cone stopped
+    uint sampleCount;
+};
+
+BlCone blDefaultCone(vec3 origin, vec3 direction, float coneFactor) {
+    BlCone c;
+    c.origin = origin;
+    c.direction = direction;
+    c.coneFactor = coneFactor;
+    c.firstSampleT = 1.0;
+    c.maxDistance = 0.0;
+    c.tracingStep = 0.5;
+    c.opacityCorrection = 1.0;
+    c.lightLeakLag = 0u;
+    c.ambientRange = 0.0;
+    return c;
+}
+
+// The cone factor of a cone of full angle `angle` (radians).
+float blConeFactor(float angle) { return 2.0 * tan(0.5 * angle); }
+
+// A level's volumes at a point (finest-voxel coordinates): opacity in w, emittance towards −dir in xyz.
+vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, float slices) {
+    vec3 p = pFinest / float(1u << level);  // the level's voxel coordinates
+    float z = p.z - resolution * floor(p.z / resolution);  // toroidal in z (x and y wrap in the sampler)
+    vec3 uvw = vec3(p.xy / resolution, (float(level) * (resolution + 2.0) + 1.0 + z) / slices);
+    // Opacity along the cone and the light the faces facing back along it send, each axis weighted by the
+    // direction's component on it: the share of the voxel's silhouette that face makes (VXGI's weighting). A
+    // wall seen at an angle blocks and sends less per voxel, and the cone crosses more of its voxels.
+    vec3 w = abs(dir);
+    float alpha = min(dot(w, textureLod(blVctOpacityVolume, uvw, 0.0).rgb), 1.0);
+    vec3 e = w.x * (dir.x > 0.0 ? textureLod(blVctEmittanceNX, uvw, 0.0).rgb : textureLod(blVctEmittancePX, uvw, 0.0).rgb) +
+             w.y * (dir.y > 0.0 ? textureLod(blVctEmittanceNY, uvw, 0.0).rgb : textureLod(blVctEmittancePY, uvw, 0.0).rgb) +
+             w.z * (dir.z > 0.0 ? textureLod(blVctEmittanceNZ, uvw, 0.0).rgb : textureLod(blVctEmittancePZ, uvw, 0.0).rgb);
+    return vec4(e, alpha);
+}
+
+// The finest level ≥ `level` that holds the point (finest-voxel coordinates) with `margin` of its voxels to
+// spare; the level count if none does.
+uint blVctHoldingLevel(uint level, vec3 pFinest, float marginFinest, uint levels, float resolution) {
+    for (; level < levels; ++level) {
+        float scale = float(1u << level);
+        vec3 p = pFinest / scale;
+        vec3 lo = vec3(blVctFrame.origin[level].xyz);
+        float m = marginFinest / scale + 1.0;
+        if (all(greaterThanEqual(p, lo + m)) && all(lessThanEqual(p, lo + resolution - m))) break;
+    }
+    return level;
+}
+
+BlConeResult blTraceCone(BlCone cone) {
+    BlConeResult r;
+    r.radiance = vec3(0.0);
+    r.ambient = -1.0;
+    r.sampleCount = 0u;
+    float finest = blVctFrame.scales.x;
+    float resolution = float(blVctFrame.params.x);
+    uint levels = blVctFrame.params.y;
+    float slices = float(levels) * (resolution + 2.0);
+    vec3 origin = cone.origin / finest;
+    float maxT = cone.maxDistance > 0.0 ? cone.maxDistance / finest : 1.0e30;
+    float rangeT = cone.ambientRange / finest;
+    float exponent = clamp(cone.tracingStep, 0.05, 1.0) * max(cone.opacityCorrection, 0.0);
+    uint lag = min(cone.lightLeakLag, 2u);
+    float transmittance = 1.0, lag1 = 1.0, lag2 = 1.0;  // now, one and two samples back
+    float t = max(cone.firstSampleT, 0.0);
+    for (int i = 0; i < 256; ++i) {
+        float size = max(t * cone.coneFactor, 1.0);  // the sample's diameter in finest voxels
+        vec3 p = origin + cone.direction * t;
+        // Wider than the coarsest level's voxels: that level still (undersampled, as no mips lie above it yet).
+        float fLevel = min(log2(size), float(levels - 1u));
+        uint level = blVctHoldingLevel(uint(fLevel), p, 0.5 * size, levels, resolution);
+        if (level >= levels) break;  // left the clip-map
+        float f = max(fLevel - float(level), 0.0);
+        vec4 s = blVctSampleLevel(level, p, cone.direction, resolution, slices);
+        if (f > 0.0 && level + 1u < levels) s = mix(s, blVctSampleLevel(level + 1u, p, cone.direction, resolution, slices), f);
+        float alpha = clamp(s.w, 0.0, 1.0);
+        float alphaStep = 1.0 - pow(1.0 - alpha, exponent);
+        float lagged = lag == 0u ? transmittance : (lag == 1u ? lag1 : lag2);
+        r.radiance += lagged * s.rgb * (alpha > 1.0e-4 ? alphaStep / alpha : exponent);
+        float step = max(size * cone.tracingStep, 0.25);
+        float before = transmittance;
+        lag2 = lag1;
+        lag1 = transmittance;
+        transmittance *= 1.0 - alphaStep;
+        if (r.ambient < 0.0 && t + step >= rangeT) r.ambient = mix(before, transmittance, clamp((rangeT - t) / step, 0.0, 1.0));
+        t += step;
+        ++r.sampleCount;
+        if (transmittance < 1.0e-3 || t > maxT) break;
+    }
+    if (r.ambient < 0.0) r.ambient = transmittance;
+    r.finalOpacity = 1.0 - transmittance;
+    return r;
+}
+
+#endif

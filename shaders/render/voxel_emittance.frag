@@ -1,0 +1,40 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The renderer's emittance for voxel cone tracing (blVoxelEmittance, bricklight/voxelize.glsl): the light a
+// surface sends, as the renderer's direct lighting computes it — the emitters (next-event estimation), point
+// and spot lights, the sun and the sky, shadowed by rays through the scene's BVH — times the diffuse albedo.
+// Like the lit image GI feeds on, it leaves the emitters' own emission out (direct lighting samples them; cone
+// tracing is the indirect light). Deterministic per point, so voxels do not flicker from frame to frame.
+#include "bricklight/voxelize.glsl"
+BL_CONSTANTS(0) uniform VoxelLighting {
+    uvec4 params;  // x light samples per fragment
+} voxelLighting;
+#define BL_SCENE_TEXTURES
+#include "scene_trace.glsl"
+
+vec3 blVoxelEmittance(BlVoxelFragment f) {
+    uint material = uint(f.user0.x + 0.5);
+    vec3 albedo = materials[3u * material].rgb;
+    float layer = materials[3u * material + 2u].x;
+    if (layer >= 0.0) albedo *= textureLod(baseColorTextures, vec3(f.user0.yz, layer), 0.0).rgb;
+    Surface s;
+    s.baseColor = albedo * (1.0 - materials[3u * material + 1u].w);  // metals send (almost) no diffuse light
+    s.roughness = 1.0;
+    s.metalness = 0.0;
+    s.dielectricF0 = 0.0;  // Lambertian: the light leaves the same way in every direction
+    vec3 n = f.normal;
+    // The fragment's point lies on the triangle's plane within a voxel of the triangle: start the shadow rays
+    // half a voxel above it.
+    vec3 p = f.position + n * (0.5 * f.voxelSize);
+    rngState = pcg(floatBitsToUint(p.x) ^ pcg(floatBitsToUint(p.y) ^ pcg(floatBitsToUint(p.z) ^ sceneLight.counts.y)));
+    float eps = sceneLight.lightWeight.y;
+    uint samples = clamp(voxelLighting.params.x, 1u, 64u);
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < samples; ++i) {
+        sum += directLight(p, n, n, s, eps);
+        vec3 d = cosineDirection(n);
+        Hit h;
+        if (any(greaterThan(sceneLight.sky.rgb, vec3(0.0))) && !traceRay(p, d, eps, 1e30, true, h)) sum += s.baseColor * sceneLight.sky.rgb;
+    }
+    return sum / float(samples);
+}

@@ -1,0 +1,62 @@
+// Turns one box of one level's accumulation words into the volumes cones sample (included by
+// resolve_opacity.comp, resolve_isotropic.comp and resolve_anisotropic.comp, which define BL_VCT_DIRECTIONS 0,
+// 1 or 6): opacity as a
+// float, emittance as radiance (RGBA16F), in the traced layout — levels stacked in z with one border slice on
+// each side holding the level's opposite (toroidally adjacent) slice, so that hardware filtering wraps in z
+// as the sampler's repeat mode does in x and y.
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+BL_CONSTANTS(0) uniform Box {
+    ivec4 minLevel;  // xyz: the box's lowest world voxel, w: the level
+    ivec4 size;      // xyz: the box's extent in voxels
+    uvec4 params;    // x: the resolution, y: words per voxel (3 × BL_VCT_DIRECTIONS)
+    vec4 scales;     // x: radiance per fixed-point unit
+} box;
+BL_IMAGE(0, r32ui) uniform readonly uimage3D opacityWords;
+BL_READ_BUFFER(0) Emittance { uint words[]; } emittance;
+BL_IMAGE(1, rgba8) uniform writeonly image3D tracedOpacity;  // rgb: along x, y, z
+#if BL_VCT_DIRECTIONS >= 1
+BL_IMAGE(2, rgba16f) uniform writeonly image3D tracedEmittance0;
+#endif
+#if BL_VCT_DIRECTIONS == 6
+BL_IMAGE(3, rgba16f) uniform writeonly image3D tracedEmittance1;
+BL_IMAGE(4, rgba16f) uniform writeonly image3D tracedEmittance2;
+BL_IMAGE(5, rgba16f) uniform writeonly image3D tracedEmittance3;
+BL_IMAGE(6, rgba16f) uniform writeonly image3D tracedEmittance4;
+BL_IMAGE(7, rgba16f) uniform writeonly image3D tracedEmittance5;
+#endif
+
+vec4 radianceOf(uint base, uint direction) {
+    uint i = base + direction * 3u;
+    return vec4(float(emittance.words[i]), float(emittance.words[i + 1u]), float(emittance.words[i + 2u]), 0.0) * box.scales.x;
+}
+
+void store(ivec3 t, vec3 opacity, uint base) {
+    imageStore(tracedOpacity, t, vec4(opacity, 0.0));
+#if BL_VCT_DIRECTIONS >= 1
+    imageStore(tracedEmittance0, t, radianceOf(base, 0u));
+#endif
+#if BL_VCT_DIRECTIONS == 6
+    imageStore(tracedEmittance1, t, radianceOf(base, 1u));
+    imageStore(tracedEmittance2, t, radianceOf(base, 2u));
+    imageStore(tracedEmittance3, t, radianceOf(base, 3u));
+    imageStore(tracedEmittance4, t, radianceOf(base, 4u));
+    imageStore(tracedEmittance5, t, radianceOf(base, 5u));
+#endif
+}
+
+void main() {
+    ivec3 local = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(local, box.size.xyz))) return;
+    uint level = uint(box.minLevel.w), resolution = box.params.x;
+    ivec3 voxel = box.minLevel.xyz + local;
+    ivec3 texel = vctTexel(level, voxel, resolution);
+    vec3 opacity = vctUnpackOpacity(imageLoad(opacityWords, texel).x);
+    uint base = vctTexelIndex(level, voxel, resolution) * box.params.y;
+    int r = int(resolution);
+    ivec3 t = vctTexel(0u, voxel, resolution);  // within the level
+    int slab = int(level) * (r + 2) + 1;
+    store(ivec3(t.xy, slab + t.z), opacity, base);
+    // The border slices: the level's first slice again after its last, and its last before its first.
+    if (t.z == 0) store(ivec3(t.xy, slab + r), opacity, base);
+    if (t.z == r - 1) store(ivec3(t.xy, slab - 1), opacity, base);
+}

@@ -1,0 +1,68 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Full-resolution diffuse light from the sparse samples: each pixel weighs the four nearest blocks' samples by
+// distance, normal agreement and distance from their surface's plane; a pixel none of them fits traces its own
+// cones (VXGI's refinement). Then the temporal blend with the reprojected history, where the surface there
+// last frame is the same one.
+#include "trace_common.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+BL_TEXTURE(4) uniform sampler2D lowDiffuse;
+BL_TEXTURE(5) uniform usampler2D lowGuide;
+BL_TEXTURE(6) uniform sampler2D previousHistory;
+BL_TEXTURE(7) uniform usampler2D previousGuide;
+BL_IMAGE(0, rgba16f) uniform writeonly image2D outputDiffuse;
+BL_IMAGE(1, rgba16f) uniform writeonly image2D history;
+BL_IMAGE(2, rgba32ui) uniform writeonly uimage2D guide;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(trace.size.xy)))) return;
+    float depth = texelFetch(gDepth, pixel, 0).r;
+    if (isSky(depth)) {
+        imageStore(outputDiffuse, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(history, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(guide, pixel, NO_GUIDE);
+        return;
+    }
+    vec3 position = worldPosition(pixel, depth);
+    vec3 normal = surfaceNormal(pixel);
+    float voxel = voxelSizeAt(position);
+
+    float s = float(trace.size.z);
+    vec2 lowCoord = (vec2(pixel) + 0.5 - vec2(trace.sparseOffset.xy) - 0.5) / s;  // in blocks, at sample centres
+    ivec2 base = ivec2(floor(lowCoord));
+    vec2 f = lowCoord - vec2(base);
+    vec4 sum = vec4(0.0);
+    float total = 0.0;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            ivec2 b = base + ivec2(i, j);
+            if (any(lessThan(b, ivec2(0))) || any(greaterThanEqual(b, ivec2(trace.lowSize.xy)))) continue;
+            vec3 p, n;
+            if (!unpackGuide(texelFetch(lowGuide, b, 0), p, n)) continue;
+            float bilinear = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y) + 1.0e-3;
+            float normalWeight = pow(max(dot(normal, n), 0.0), 8.0);
+            float planeWeight = max(1.0 - abs(dot(n, position - p)) / voxel, 0.0);
+            float w = bilinear * normalWeight * planeWeight;
+            sum += w * texelFetch(lowDiffuse, b, 0);
+            total += w;
+        }
+    vec4 current;
+    if (total > 1.0e-4) {
+        current = sum / total;
+    } else {  // no sample fits this pixel: trace it
+        float rotation = float(hashUint(uint(pixel.x) * 7919u + uint(pixel.y) * 104729u + trace.size.w * 15485863u) & 0xFFFFu) / 65536.0 * 6.2831853;
+        current = diffuseAt(position, normal, rotation);
+    }
+
+    ivec2 previous;
+    vec4 result = current;
+    if ((trace.lowSize.w & FLAG_RESET) == 0u && previousPixel(pixel, position, previous)) {
+        vec3 p, n;
+        if (unpackGuide(texelFetch(previousGuide, previous, 0), p, n) && distance(p, position) < 0.5 * voxel && dot(n, normal) > 0.9)
+            result = mix(current, texelFetch(previousHistory, previous, 0), clamp(trace.limits.z, 0.0, 0.98));
+    }
+    imageStore(outputDiffuse, pixel, result);
+    imageStore(history, pixel, result);
+    imageStore(guide, pixel, packGuide(position, normal));
+}
