@@ -318,6 +318,8 @@ void Clipmap::traceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_
     bindings.textures.push(rhi::TextureBinding{textureBase, rhi::wholeTexture(tracedOpacity_), tracedSampler_});
     for (uint8_t d = 0; d < 6; ++d)
         bindings.textures.push(rhi::TextureBinding{uint8_t(textureBase + 1 + d), rhi::wholeTexture(tracedEmittance(d)), tracedSampler_});
+    for (const rhi::ReadBufferBinding& b : bindings.readBuffers)
+        if (b.slot == frameSlot && b.buffer == frame_) return;  // a voxelization record has it already
     bindings.readBuffers.push(rhi::ReadBufferBinding{frameSlot, frame_, {}});
 }
 

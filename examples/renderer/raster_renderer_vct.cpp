@@ -21,6 +21,8 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
     desc.levels = options_.vctLevels;
     desc.emittance = options_.gi && options_.giTechnique == GiTechnique::Vct ? options_.vctEmittance : vct::EmittanceMode::None;
     options_.vctEmittance = desc.emittance;
+    // With bounces the emittance holds last frame's indirect light, which changes every frame: revoxelize whole.
+    desc.persistent = !options_.giFeedback;
     // The finest level holds the scene with a margin (the anchor snaps to even voxels: two voxels each side).
     desc.finestVoxelSize = std::max(side * 1.1f, 1e-6f) / float(std::max(desc.resolution, 8u) - 4);
     std::string why;
@@ -61,11 +63,12 @@ void RasterRenderer::renderVct() {
             state->vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
             state->vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
             state->vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
-            const glm::uvec4 lighting(options_.vctLightSamples, 0u, 0u, 0u);
+            const glm::uvec4 lighting(options_.vctLightSamples, options_.giFeedback ? 1u : 0u, 0u, 0u);
             const SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
             state->bindings.constants.push(rhi::constants(0, lighting));
             state->bindings.constants.push(rhi::constants(1, light));
             scene_->bind(state->bindings, true);
+            if (material.fragmentShader) clipmap_->traceBindings(state->bindings);  // blVoxelIndirect (bounces)
             rhi::DrawArgs args;
             args.vertexCount = 3 * scene_->triangleCount();
             device_.draw(*state, args);

@@ -195,7 +195,8 @@ public:
 
     // For an application's shader that includes bricklight/cone_trace.glsl: the traced volumes at texture slots
     // textureBase .. textureBase + 6 (with a linear sampler that wraps in x and y) and the frame buffer at read
-    // buffer slot frameSlot (the include's defaults: 8 and 7). Added to `bindings`.
+    // buffer slot frameSlot (the include's defaults: 8 and 7). Added to `bindings` (the frame buffer only if
+    // absent: a voxelization record whose fragment shader uses BL_VOXEL_MULTI_BOUNCE has it already).
     void traceBindings(rhi::Bindings& bindings, uint8_t textureBase = 8, uint8_t frameSlot = 7) const;
 
     // The boxes this frame's draws may write (fragments elsewhere are dropped), and the same as world boxes

@@ -4,10 +4,13 @@
 // surface sends, as the renderer's direct lighting computes it — the emitters (next-event estimation), point
 // and spot lights, the sun and the sky, shadowed by rays through the scene's BVH — times the diffuse albedo.
 // Like the lit image GI feeds on, it leaves the emitters' own emission out (direct lighting samples them; cone
-// tracing is the indirect light). Deterministic per point, so voxels do not flicker from frame to frame.
+// tracing is the indirect light). Deterministic per point, so voxels do not flicker from frame to frame. With
+// bounces on, the light the voxels gathered last frame (blVoxelIndirect) is reflected too, one bounce more each
+// frame.
+#define BL_VOXEL_MULTI_BOUNCE
 #include "bricklight/voxelize.glsl"
 BL_CONSTANTS(0) uniform VoxelLighting {
-    uvec4 params;  // x light samples per fragment
+    uvec4 params;  // x light samples per fragment, y 1: add last frame's indirect light
 } voxelLighting;
 #define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
@@ -36,5 +39,9 @@ vec3 blVoxelEmittance(BlVoxelFragment f) {
         Hit h;
         if (any(greaterThan(sceneLight.sky.rgb, vec3(0.0))) && !traceRay(p, d, eps, 1e30, true, h)) sum += s.baseColor * sceneLight.sky.rgb;
     }
-    return sum / float(samples);
+    vec3 radiance = sum / float(samples);
+    // The bounce flag with per-fragment data in the condition: lavapipe would otherwise compile a variant per draw
+    // (docs/notes/soak.md).
+    if (voxelLighting.params.y != 0u && f.voxelSize > 0.0) radiance += s.baseColor * blVoxelIndirect(f);
+    return radiance;
 }

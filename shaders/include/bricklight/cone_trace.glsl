@@ -24,7 +24,10 @@
 #define BL_CONE_TRACE_FRAME_SLOT 7
 #endif
 
+#ifndef BL_VCT_FRAME_DECLARED  // bricklight/voxelize.glsl declares the same block (slot 7)
+#define BL_VCT_FRAME_DECLARED
 BL_VCT_FRAME_BLOCK(BL_CONE_TRACE_FRAME_SLOT);
+#endif
 // Opacity along x, y, z (rgb) and emittance radiance per direction (+X, +Y, +Z, −X, −Y, −Z; all six the same volume when
 // isotropic), levels stacked in z with a one-slice border each side (Clipmap's traced volumes).
 BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE) uniform sampler3D blVctOpacityVolume;

@@ -37,6 +37,7 @@ vec3 blVoxelEmittance(BlVoxelFragment f);
 #endif
 
 BL_VCT_FRAME_BLOCK(7);
+#define BL_VCT_FRAME_DECLARED
 BL_STORAGE_BUFFER(6) BlVctEmittance { uint words[]; } blVctEmittance;
 BL_STORAGE_BUFFER(7) BlVctCounters { uint counts[]; } blVctCounters;
 BL_IMAGE(7, r32ui) uniform coherent uimage3D blVctOpacity;
@@ -55,6 +56,33 @@ layout(location = 10) flat in vec3 blVoxelFaceNormal;
 layout(location = 11) flat in ivec3 blVoxelOffset;
 
 const int BL_VOXEL_MAX_SPAN = 6;  // voxels one pixel can cover along the axis: 3 for the plane, +2 for thickness
+
+#ifdef BL_VOXEL_MULTI_BOUNCE
+// Multiple bounces: define BL_VOXEL_MULTI_BOUNCE before the include, add Clipmap::traceBindings() to the draw
+// (textures 8..14), and the emittance function may add albedo × blVoxelIndirect(f): the diffuse light (irradiance
+// / π) at the fragment from the previous frame's traced volumes, six cones over its normal's hemisphere. Each
+// frame then carries light one bounce further (revoxelize every frame: ClipmapDesc::persistent = false).
+#include "bricklight/cone_trace.glsl"
+
+vec3 blVoxelIndirect(BlVoxelFragment f) {
+    vec3 n = f.normal;
+    vec3 helper = abs(n.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+    vec3 tangent = normalize(cross(helper, n));
+    vec3 bitangent = cross(n, tangent);
+    const uint cones = 6u;
+    float factor = blConeFactor(2.0 * acos(1.0 - 1.0 / float(cones)));
+    vec3 sum = vec3(0.0);
+    for (uint k = 0u; k < cones; ++k) {
+        float u = (float(k) + 0.5) / float(cones);
+        float phi = float(k) * 2.39996323;
+        vec3 d = normalize(sqrt(u) * (cos(phi) * tangent + sin(phi) * bitangent) + sqrt(1.0 - u) * n);
+        BlCone c = blDefaultCone(f.position + n * (2.0 * f.voxelSize), d, factor);
+        c.firstSampleT = 0.0;
+        sum += blTraceCone(c).radiance;
+    }
+    return sum / float(cones);
+}
+#endif
 
 void blVoxelCount(uint counter, uint amount) {
     if (blVctFrame.flags.x != 0u && amount != 0u) atomicAdd(blVctCounters.counts[counter], amount);
