@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 #include "scene_geometry.h"
@@ -27,6 +29,9 @@ struct Options {
     uint32_t giProbeTile = 0;    // gi: ContextDesc::probeTile (0: automatic)
     bool giNoCameraCheck = false;  // gi: ContextFlags::NoCameraCheck
     bool giTotalOnly = false;    // gi: time only the whole GI (passes may overlap; no per-pass figures)
+    uint32_t vctResolution = 128, vctLevels = 5;  // vct: the clip-map
+    std::string vctEmittance = "aniso";           // vct: aniso, iso or none
+    uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
 };
 
 // Sums of GPU milliseconds per marker label over the frames of one phase.
@@ -47,6 +52,25 @@ inline PhaseTimes collect(rhi::IDevice& device, uint32_t frames) {
     return t;
 }
 
+// The benchmark's camera: the scene's, turned by `yawDegrees` about y (the runs pan slowly so that reprojection
+// and disocclusion do real work); projection with depth [0, 1] and NDC y = −1 at the top row.
+struct BenchCamera {
+    glm::mat4 view, projection;
+    glm::vec3 eye;
+};
+BenchCamera cameraAt(const scenes::Camera& c, float yawDegrees, float aspect, float size);
+
+// The G-buffer both GI benchmarks trace through the scene's distance field (shaders/bench/sdf_gbuffer.comp):
+// device depth (R32F), normal + roughness, UV motion, a lit image; recorded under the marker "bench gbuffer".
+struct BenchGBuffer {
+    rhi::TextureHandle depth, normals, motion, lit;
+    rhi::ShaderHandle shader;
+    bool create(rhi::IDevice& device, uint32_t width, uint32_t height);
+    void destroy(rhi::IDevice& device);
+    void record(rhi::IDevice& device, sdf::SdfScene& scene, const BenchCamera& now, const BenchCamera& previous, uint32_t width,
+                uint32_t height) const;
+};
+
 // The device of --backend (null with a message on stderr).
 std::unique_ptr<rhi::IDevice> makeDevice(const Options& o);
 // Barriers the device of --backend has recorded so far: the points where the GPU may wait for earlier work
@@ -66,5 +90,6 @@ std::unique_ptr<sdf::SdfScene> makeBenchScene(rhi::IDevice& device, const scenes
 
 int runSdf(const Options& o);
 int runGi(const Options& o);
+int runVct(const Options& o);
 
 }  // namespace bricklight::bench

@@ -35,22 +35,6 @@ gi::InternalResolution resolutionOf(uint32_t percent) {
     }
 }
 
-struct Camera {
-    glm::mat4 view, projection;
-    glm::vec3 eye;
-};
-
-Camera cameraAt(const scenes::Camera& c, float yawDegrees, float aspect, float size) {
-    Camera k;
-    const glm::vec3 forward = c.at - c.eye;
-    const glm::vec3 turned = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yawDegrees), glm::vec3(0, 1, 0)) * glm::vec4(forward, 0.0f));
-    k.eye = c.eye;
-    k.view = glm::lookAtRH(c.eye, c.eye + turned, c.up);
-    k.projection = glm::perspectiveRH_ZO(glm::radians(c.verticalFovDegrees), aspect, 0.001f * size, 8.0f * size);
-    k.projection[1][1] = -k.projection[1][1];  // NDC y = -1 at the top row
-    return k;
-}
-
 }  // namespace
 
 int runGi(const Options& o) {
@@ -88,9 +72,10 @@ int runGi(const Options& o) {
         d.debugName = name;
         return device->createTexture(d);
     };
-    rhi::TextureHandle depth = target(rhi::Format::R32_FLOAT, "bench depth"), normals = target(rhi::Format::RGBA16_FLOAT, "bench normals"),
-                       motion = target(rhi::Format::RG16_FLOAT, "bench motion"), lit = target(rhi::Format::RGBA16_FLOAT, "bench lit"),
-                       diffuse = target(rhi::Format::RGBA16_FLOAT, "bench diffuse GI"),
+    BenchGBuffer gbuffer;
+    const bool gbufferMade = gbuffer.create(*device, o.width, o.height);
+    const rhi::TextureHandle depth = gbuffer.depth, normals = gbuffer.normals, motion = gbuffer.motion, lit = gbuffer.lit;
+    rhi::TextureHandle diffuse = target(rhi::Format::RGBA16_FLOAT, "bench diffuse GI"),
                        specular = target(rhi::Format::RGBA16_FLOAT, "bench specular GI");
     // The surfaces' albedo (the G-buffer shader's grey) and its sun, for GI's off-screen relighting.
     rhi::TextureHandle albedo;
@@ -108,10 +93,7 @@ int runGi(const Options& o) {
     sun.type = gi::LightType::Directional;
     sun.direction = glm::normalize(glm::vec3(-0.4f, 1.0f, 0.3f));
     sun.color = glm::vec3(3.0f * 3.14159265f);  // the G-buffer shader's 0.6 · 3 cos θ = albedo / π · E
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader("bench/sdf_gbuffer.comp");
-    rhi::ShaderHandle gbufferShader = device->createShader(sd);
-    if (!depth || !normals || !motion || !lit || !albedo || !diffuse || !specular || !gbufferShader) {
+    if (!gbufferMade || !albedo || !diffuse || !specular) {
         std::fprintf(stderr, "bricklight-bench: the device could not create the benchmark's G-buffer\n");
         return 1;
     }
@@ -125,15 +107,9 @@ int runGi(const Options& o) {
                 iterations, coarsen);
 
     const float aspect = float(o.width) / float(o.height);
-    Camera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
+    BenchCamera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
     auto frame = [&](uint32_t f) {
-        const Camera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);
-        struct {
-            glm::mat4 viewProjection, inverseViewProjection, previousViewProjection;
-            glm::vec4 eye;
-            uint32_t size[4];
-        } p{now.projection * now.view, glm::inverse(now.projection * now.view), previous.projection * previous.view,
-            glm::vec4(now.eye, 0.4f), {o.width, o.height, 0, 0}};
+        const BenchCamera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);
         scene->update(centre);
         // This frame's G-buffer, then GI on it (the lit image stands in for last frame's: same cost).
         gi::DispatchDesc d;
@@ -157,21 +133,7 @@ int runGi(const Options& o) {
         if (o.giCoarsen >= 0.0f) d.trace.coarsenAfterVoxels = o.giCoarsen;
         d.outputDiffuse = diffuse;
         d.outputSpecular = specular;
-        rhi::DispatchState s;
-        s.shader = gbufferShader;
-        s.label = "bench gbuffer";
-        s.bindings.constants.push(rhi::constants(0, p));
-        for (uint8_t i = 0; i < 4; ++i) {
-            rhi::StorageImageBinding b;
-            b.slot = i;
-            b.view = rhi::textureMip(std::array<rhi::TextureHandle, 4>{depth, normals, motion, lit}[i], 0);
-            b.access = rhi::Access::Write;
-            s.bindings.storageImages.push(b);
-        }
-        scene->traceBindings(s.bindings, {});
-        device->beginMarker("bench gbuffer");
-        device->dispatch(s, (o.width + 7) / 8, (o.height + 7) / 8, 1);
-        device->endMarker();
+        gbuffer.record(*device, *scene, now, previous, o.width, o.height);
         if (!context->dispatch(d)) std::exit(1);
         device->endFrame();
         previous = now;
@@ -224,8 +186,8 @@ int runGi(const Options& o) {
         }
         std::printf("wrote %s\n", o.json.c_str());
     }
-    for (rhi::TextureHandle h : {depth, normals, motion, lit, albedo, diffuse, specular}) device->destroy(h);
-    device->destroy(gbufferShader);
+    for (rhi::TextureHandle h : {albedo, diffuse, specular}) device->destroy(h);
+    gbuffer.destroy(*device);
     return 0;
 }
 

@@ -22,6 +22,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bricklight/gi.h"
+#include "bricklight/vct.h"
 #include "bricklight/version.h"
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_vulkan.h"
@@ -47,7 +48,10 @@ namespace {
                  "                            [--probe-tile 0|8|16]  (internal pixels per probe tile side; 0 automatic)\n"
                  "                            [--no-camera-check]  (ContextFlags::NoCameraCheck: its cost measured apart)\n"
                  "                            [--timing passes|total]  (total: time only the whole GI, so that its passes\n"
-                 "                             may overlap as they do untimed; default passes)\n");
+                 "                             may overlap as they do untimed; default passes)\n"
+                 "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
+                 "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
+                 "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n");
     std::exit(2);
 }
 
@@ -64,7 +68,7 @@ Options parse(int argc, char** argv) {
     if (argc < 2) usage("");
     if (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
         std::fflush(stderr);
-        std::printf("bricklight-bench sdf|gi [options]: per-pass GPU timings and memory (docs/performance.md); "
+        std::printf("bricklight-bench sdf|gi|vct [options]: per-pass GPU timings and memory (docs/performance.md); "
                     "exit status 0 measured, 1 the run failed, 2 usage error (bricklight-bench with no arguments lists the options)\n");
         std::exit(0);
     }
@@ -73,8 +77,9 @@ Options parse(int argc, char** argv) {
         std::exit(0);
     }
     o.technique = argv[1];
-    if (o.technique != "sdf" && o.technique != "gi") usage("unknown technique '" + o.technique + "' (available: sdf, gi)");
-    o.scene = o.technique == "gi" ? "atrium" : "field";
+    if (o.technique != "sdf" && o.technique != "gi" && o.technique != "vct")
+        usage("unknown technique '" + o.technique + "' (available: sdf, gi, vct)");
+    o.scene = o.technique == "sdf" ? "field" : "atrium";
     for (int i = 2; i < argc; ++i) {
         std::string a = argv[i];
         auto value = [&]() -> const char* {
@@ -104,6 +109,15 @@ Options parse(int argc, char** argv) {
             if (o.scalePercent != 100 && o.scalePercent != 75 && o.scalePercent != 50 && o.scalePercent != 25)
                 usage("--scale must be 100, 75, 50 or 25");
         }
+        else if (a == "--resolution") {
+            o.vctResolution = number(value(), "--resolution", 32, 256);
+            if (o.vctResolution & (o.vctResolution - 1)) usage("--resolution must be 32, 64, 128 or 256");
+        } else if (a == "--levels") o.vctLevels = number(value(), "--levels", vct::kMinLevels, vct::kMaxLevels);
+        else if (a == "--emittance") {
+            o.vctEmittance = value();
+            if (o.vctEmittance != "aniso" && o.vctEmittance != "iso" && o.vctEmittance != "none") usage("--emittance must be aniso, iso or none");
+        } else if (a == "--cones") o.vctCones = number(value(), "--cones", 1, 32);
+        else if (a == "--sparsity") o.vctSparsity = number(value(), "--sparsity", 1, 4);
         else usage("unknown option '" + a + "'");
     }
     if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl");
@@ -344,5 +358,5 @@ int bricklight::bench::runSdf(const Options& o) {
 
 int main(int argc, char** argv) {
     Options o = parse(argc, argv);
-    return o.technique == "gi" ? runGi(o) : runSdf(o);
+    return o.technique == "gi" ? runGi(o) : o.technique == "vct" ? runVct(o) : runSdf(o);
 }
