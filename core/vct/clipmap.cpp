@@ -156,12 +156,32 @@ std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor,
     detail::FrameRegions regions = detail::frameRegions(d, before, placedBefore, *updates, invalidated);
     rewrite_ = std::move(regions.rewrite);
     downsampleBoxes_ = std::move(regions.downsample);
-    for (const LevelBox& b : rewrite_) clearBox(b);
+    // Whole levels clear with the device's fills (a level's emittance words are one contiguous range); other boxes
+    // with the clear passes.
+    const uint32_t r = d.resolution;
+    auto whole = [&](const LevelBox& b) { return b.box.min == placement_.origin(b.level) && b.box.max == placement_.origin(b.level) + glm::ivec3(int(r)); };
+    size_t wholeLevels = 0;
+    for (const LevelBox& b : rewrite_) wholeLevels += whole(b);
+    const bool everything = wholeLevels == d.levels && rewrite_.size() == d.levels;
+    // Word-major layout (vct_layout.glsl): word w of level L is one range.
+    const uint64_t levelTexels = uint64_t(r) * r * r, texelCount = levelTexels * d.levels;
+    const uint32_t words = emittanceWordsPerVoxel(d.emittance);
+    if (everything && words) device_.clearBuffer(emittance_, rhi::BufferRange{0, texelCount * words * 4}, 0u);
+    for (const LevelBox& b : rewrite_) {
+        if (!whole(b)) {
+            clearBox(b, true);
+            continue;
+        }
+        clearBox(b, false);  // the opacity (a pass: faster than a 3D image clear on some devices)
+        if (!everything)
+            for (uint32_t w = 0; w < words; ++w)
+                device_.clearBuffer(emittance_, rhi::BufferRange{(w * texelCount + b.level * levelTexels) * 4, levelTexels * 4}, 0u);
+    }
     writeFrame();
     return updates;
 }
 
-void Clipmap::clearBox(const LevelBox& b) {
+void Clipmap::clearBox(const LevelBox& b, bool emittance) {
     const uint32_t resolution = desc().resolution, words = emittanceWordsPerVoxel(desc().emittance);
     const glm::ivec3 size = b.box.max - b.box.min;
     BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(resolution, 0u, 0u, 0u)};
@@ -175,8 +195,9 @@ void Clipmap::clearBox(const LevelBox& b) {
     volume.access = rhi::Access::Write;
     s.bindings.storageImages.push(volume);
     device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
-    if (!words) return;
+    if (!words || !emittance) return;
     c.params.y = words;
+    c.params.z = desc().levels;
     rhi::DispatchState e;
     e.shader = clearEmittance_;
     e.label = "vct clear emittance";
@@ -259,7 +280,7 @@ std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial
 void Clipmap::downsampleBox(const LevelBox& b) {
     const glm::ivec3 size = b.box.max - b.box.min;
     BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0),
-                   glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), 0u, 0u)};
+                   glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), desc().levels, 0u)};
     rhi::DispatchState s;
     s.shader = downsample_;
     s.label = "vct downsample";
@@ -283,7 +304,7 @@ void Clipmap::resolveBox(const LevelBox& b) {
         glm::ivec4 minLevel, size;
         glm::uvec4 params;
         glm::vec4 scales;
-    } c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), 0u, 0u),
+    } c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), desc().levels, 0u),
         glm::vec4(1.0f / (detail::kEmittanceUnits * desc().emittanceStorageScale), 0.0f, 0.0f, 0.0f)};
     rhi::DispatchState s;
     s.shader = resolve_;

@@ -19,6 +19,8 @@ bool checkConeTraceParams(const ConeTraceParams& p, std::string* error) {
     if (!within(p.diffuseConeAngle, 0.0f, 3.0f)) return fail("diffuseConeAngle " + std::to_string(p.diffuseConeAngle) + " is outside 0..3 radians");
     if (p.tracingSparsity < 1 || p.tracingSparsity > 4) return fail("tracingSparsity " + std::to_string(p.tracingSparsity) + " is outside 1..4");
     if (!within(p.tracingStep, 0.25f, 1.0f)) return fail("tracingStep " + std::to_string(p.tracingStep) + " is outside 0.25..1");
+    if (!within(p.specularTracingStep, 0.25f, 1.0f))
+        return fail("specularTracingStep " + std::to_string(p.specularTracingStep) + " is outside 0.25..1");
     if (!within(p.opacityCorrection, 0.1f, 10.0f)) return fail("opacityCorrection " + std::to_string(p.opacityCorrection) + " is outside 0.1..10");
     if (p.lightLeakLag > 2) return fail("lightLeakLag " + std::to_string(p.lightLeakLag) + " is outside 0..2");
     if (!within(p.initialOffset, 0.0f, 16.0f)) return fail("initialOffset " + std::to_string(p.initialOffset) + " is outside 0..16 voxels");
@@ -175,7 +177,12 @@ bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
     b.normalUnpackOffset = glm::vec4(d.normalsUnpackOffset, p.maxSpecularRoughness);
     b.cone = glm::vec4(2.0f * std::tan(0.5f * angle), p.tracingStep, p.opacityCorrection, p.initialOffset);
     b.limits = glm::vec4(p.maxDistance, p.ambientRange > 0.0f ? p.ambientRange : 8.0f * cd.finestVoxelSize, p.temporalWeight, float(p.lightLeakLag));
-    b.sparseOffset = glm::uvec4(phase % s, phase / s, 0u, 0u);
+    // The diffuse cones turn by the golden angle's fraction of a turn each frame (a low-discrepancy sequence).
+    const float rotation = std::fmod(float(frame_) * 0.61803399f, 1.0f) * 6.2831853f;
+    uint32_t stepBits, rotationBits;
+    std::memcpy(&stepBits, &p.specularTracingStep, 4);
+    std::memcpy(&rotationBits, &rotation, 4);
+    b.sparseOffset = glm::uvec4(phase % s, phase / s, stepBits, rotationBits);
     device_.writeBuffer(params_, 0, &b, sizeof(b));
 
     const uint32_t cur = frame_ & 1u, prev = cur ^ 1u;

@@ -128,7 +128,7 @@ int runVct(const Options& o) {
             const BenchCamera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);
             scene->update(geometry.camera.eye);
             gbuffer.record(*device, *scene, now, previous, o.width, o.height);
-            device->beginMarker("vct");
+            // Top-level markers only: a nested marker's label would be "outer/inner".
             device->beginMarker("vct update");
             clipmap->update(now.eye, &error);
             device->endMarker();
@@ -156,7 +156,6 @@ int runVct(const Options& o) {
                 std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
                 std::exit(1);
             }
-            device->endMarker();
             device->endFrame();
             previous = now;
         };

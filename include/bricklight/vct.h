@@ -156,7 +156,7 @@ uint64_t clipmapBytes(const ClipmapDesc& desc);
 //                        (resolution × levels)                    level L in z slices [L·res, (L+1)·res), a world
 //                                                                 voxel at its coordinates modulo res (toroidal)
 //   vct emittance        buffer, words per voxel × voxels,        fixed-point radiance per voxel (RGB, or RGB ×
-//                        in the opacity volume's texel order      six directions), accumulated with atomics
+//                        word-major, each word in texel order     six directions), accumulated with atomics
 //   vct frame            read buffer (origins, boxes)             what update() decided, read by the draws
 //   vct counters         storage buffer, 8 words                  VoxelizationCounters
 //   vct raster size      D32 resolution², never written           sets the draws' raster size (no colour targets)
@@ -220,7 +220,7 @@ public:
 
 private:
     Clipmap(rhi::IDevice& device, const ClipmapPlacement& placement) : device_(device), placement_(placement) {}
-    void clearBox(const LevelBox& box);
+    void clearBox(const LevelBox& box, bool emittance);
     void downsampleBox(const LevelBox& box);
     void resolveBox(const LevelBox& box);
     void writeFrame();
@@ -244,7 +244,8 @@ struct ConeTraceParams {
     uint32_t diffuseCones = 8;      // 1..32 cones over the hemisphere, cosine-weighted
     float diffuseConeAngle = 0.0f;  // full angle in radians; 0: from the count (each cone covers 2π / cones sr)
     uint32_t tracingSparsity = 2;   // 1..4: diffuse cones traced for one pixel per N×N block (another each frame)
-    float tracingStep = 0.5f;       // 0.25..1: sample spacing / sample diameter (smaller: smoother, slower)
+    float tracingStep = 0.5f;       // 0.25..1: diffuse cones' sample spacing / sample diameter (smaller: smoother, slower)
+    float specularTracingStep = 1.0f;  // the same for the specular cone (VXGI's defaults: 0.5 diffuse, 1 specular)
     float opacityCorrection = 1.0f; // 0.1..10: scales opacity's Beer exponent (higher: darker, more contrast)
     uint32_t lightLeakLag = 0;      // 0..2: samples the transmittance lags (VXGI 1.0 used 2; 0 leaks least)
     float initialOffset = 2.0f;     // voxels (of the level at the surface) along the normal before the first sample

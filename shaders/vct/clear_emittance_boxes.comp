@@ -8,7 +8,7 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
     ivec4 minLevel;  // xyz: the box's lowest world voxel, w: the level
     ivec4 size;      // xyz: the box's extent in voxels
-    uvec4 params;    // x: the resolution, y: words per voxel
+    uvec4 params;    // x: the resolution, y: words per voxel, z: the levels
 } box;
 BL_STORAGE_BUFFER(0) Emittance { uint words[]; } emittance;
 
@@ -18,6 +18,6 @@ void main() {
     uint voxelX = flat_ / channels, word = flat_ % channels;
     ivec3 local = ivec3(int(voxelX), int(gl_GlobalInvocationID.y), int(gl_GlobalInvocationID.z));
     if (any(greaterThanEqual(local, box.size.xyz))) return;
-    uint index = vctTexelIndex(uint(box.minLevel.w), box.minLevel.xyz + local, box.params.x) * channels + word;
-    emittance.words[index] = 0u;
+    uint texelCount = box.params.x * box.params.x * box.params.x * box.params.z;
+    emittance.words[vctWordIndex(vctTexelIndex(uint(box.minLevel.w), box.minLevel.xyz + local, box.params.x), word, texelCount)] = 0u;
 }

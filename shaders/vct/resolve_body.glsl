@@ -8,7 +8,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 BL_CONSTANTS(0) uniform Box {
     ivec4 minLevel;  // xyz: the box's lowest world voxel, w: the level
     ivec4 size;      // xyz: the box's extent in voxels
-    uvec4 params;    // x: the resolution, y: words per voxel (3 × BL_VCT_DIRECTIONS)
+    uvec4 params;    // x: the resolution, y: words per voxel (3 × BL_VCT_DIRECTIONS), z: the levels
     vec4 scales;     // x: radiance per fixed-point unit
 } box;
 BL_IMAGE(0, r32ui) uniform readonly uimage3D opacityWords;
@@ -25,9 +25,11 @@ BL_IMAGE(6, rgba16f) uniform writeonly image3D tracedEmittance4;
 BL_IMAGE(7, rgba16f) uniform writeonly image3D tracedEmittance5;
 #endif
 
-vec4 radianceOf(uint base, uint direction) {
-    uint i = base + direction * 3u;
-    return vec4(float(emittance.words[i]), float(emittance.words[i + 1u]), float(emittance.words[i + 2u]), 0.0) * box.scales.x;
+vec4 radianceOf(uint texel, uint direction) {
+    uint texelCount = box.params.x * box.params.x * box.params.x * box.params.z;
+    uint w = direction * 3u;
+    return vec4(float(emittance.words[vctWordIndex(texel, w, texelCount)]), float(emittance.words[vctWordIndex(texel, w + 1u, texelCount)]),
+                float(emittance.words[vctWordIndex(texel, w + 2u, texelCount)]), 0.0) * box.scales.x;
 }
 
 void store(ivec3 t, vec3 opacity, uint base) {
@@ -51,7 +53,7 @@ void main() {
     ivec3 voxel = box.minLevel.xyz + local;
     ivec3 texel = vctTexel(level, voxel, resolution);
     vec3 opacity = vctUnpackOpacity(imageLoad(opacityWords, texel).x);
-    uint base = vctTexelIndex(level, voxel, resolution) * box.params.y;
+    uint base = vctTexelIndex(level, voxel, resolution);
     int r = int(resolution);
     ivec3 t = vctTexel(0u, voxel, resolution);  // within the level
     int slab = int(level) * (r + 2) + 1;

@@ -51,8 +51,7 @@ void main() {
     if (total > 1.0e-4) {
         current = sum / total;
     } else {  // no sample fits this pixel: trace it
-        float rotation = float(hashUint(uint(pixel.x) * 7919u + uint(pixel.y) * 104729u + trace.size.w * 15485863u) & 0xFFFFu) / 65536.0 * 6.2831853;
-        current = diffuseAt(position, normal, rotation);
+        current = diffuseAt(position, normal, uintBitsToFloat(trace.sparseOffset.w));
     }
 
     ivec2 previous;

@@ -12,9 +12,10 @@ BL_READ_BUFFER(6) TraceParams {
     uvec4 lowSize;            // xy sparse grid, z diffuse cones, w flags (1: reset history, 2: motion vectors given)
     vec4 normalUnpackScale;   // xyz; w: roughness channel
     vec4 normalUnpackOffset;  // xyz; w: the largest roughness a specular cone takes
-    vec4 cone;                // x diffuse cone factor, y tracing step, z opacity correction, w initial offset (voxels)
+    vec4 cone;                // x diffuse cone factor, y diffuse tracing step, z opacity correction, w initial offset (voxels)
     vec4 limits;              // x max distance (world), y ambient range (world), z temporal weight, w light-leak lag
-    uvec4 sparseOffset;       // xy: the pixel of each block traced this frame
+    uvec4 sparseOffset;       // xy: the pixel of each block traced this frame; z: the specular tracing step (float bits);
+                              // w: this frame's turn of the diffuse cones (float bits, radians)
 } trace;
 
 BL_TEXTURE(0) uniform sampler2D gDepth;
@@ -53,12 +54,6 @@ bool unpackGuide(uvec4 g, out vec3 position, out vec3 normal) {
     return g.x != NO_GUIDE.x;
 }
 
-uint hashUint(uint v) {
-    v = v * 747796405u + 2891336453u;
-    uint w = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
-    return (w >> 22u) ^ w;
-}
-
 // The finest voxel size of the level that holds a world point (cones start that many voxels off the surface).
 float voxelSizeAt(vec3 position) {
     uint level = blVctHoldingLevel(0u, position / blVctFrame.scales.x, 1.0, blVctFrame.params.y, float(blVctFrame.params.x));
@@ -71,14 +66,18 @@ BlCone coneAt(vec3 position, vec3 normal, vec3 direction, float coneFactor) {
     c.firstSampleT = 0.0;
     c.tracingStep = trace.cone.y;
     c.opacityCorrection = trace.cone.z;
-    c.maxDistance = trace.limits.x;
+    // Without emittance (voxel AO) nothing beyond the ambient range matters: the cone stops there.
+    bool occlusionOnly = blVctFrame.params.z == 0u;
+    c.maxDistance = occlusionOnly ? (trace.limits.x > 0.0 ? min(trace.limits.x, trace.limits.y) : trace.limits.y) : trace.limits.x;
     c.ambientRange = trace.limits.y;
     c.lightLeakLag = uint(trace.limits.w);
     return c;
 }
 
 // Diffuse light at a surface: `cones` cones spread cosine-weighted over the hemisphere (a Fibonacci spiral,
-// turned by `rotation` radians), so the mean of their radiance is irradiance / π. w: the mean transmittance
+// turned by `rotation` radians: the same for every pixel of a frame, so that neighbouring pixels' cones take the
+// same faces and branches; another each frame for the temporal blend), so the mean of their radiance is
+// irradiance / π. w: the mean transmittance
 // at the ambient range (ambient occlusion).
 vec4 diffuseAt(vec3 position, vec3 normal, float rotation) {
     vec3 helper = abs(normal.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);

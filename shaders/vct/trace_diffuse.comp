@@ -19,7 +19,6 @@ void main() {
     }
     vec3 position = worldPosition(pixel, depth);
     vec3 normal = surfaceNormal(pixel);
-    float rotation = float(hashUint(uint(pixel.x) * 7919u + uint(pixel.y) * 104729u + trace.size.w * 15485863u) & 0xFFFFu) / 65536.0 * 6.2831853;
-    imageStore(lowDiffuse, block, diffuseAt(position, normal, rotation));
+    imageStore(lowDiffuse, block, diffuseAt(position, normal, uintBitsToFloat(trace.sparseOffset.w)));
     imageStore(lowGuide, block, packGuide(position, normal));
 }

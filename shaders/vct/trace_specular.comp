@@ -27,7 +27,9 @@ void main() {
     vec3 view = normalize(trace.eye.xyz - position);
     vec3 direction = reflect(-view, normal);
     float coneFactor = max(roughness * roughness * 1.7724539, 0.01);
-    BlConeResult r = blTraceCone(coneAt(position, normal, direction, coneFactor));
+    BlCone cone = coneAt(position, normal, direction, coneFactor);
+    cone.tracingStep = uintBitsToFloat(trace.sparseOffset.z);
+    BlConeResult r = blTraceCone(cone);
     vec4 current = vec4(r.radiance, 1.0);
 
     ivec2 previous;

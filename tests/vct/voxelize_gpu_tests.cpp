@@ -89,7 +89,7 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
                         area = coverage(v[(axis + 1) % 3], lo.x, hi.x) * coverage(v[(axis + 2) % 3], lo.x, hi.x);
                     for (int c = 0; c < 3; ++c) {
                         const uint32_t expected = uint32_t(std::lround(area * radiance[c] * kUnits));
-                        const uint32_t word = emittance[h.texelIndex(0, v) * 18 + size_t(d) * 3 + size_t(c)];
+                        const uint32_t word = emittance[h.wordIndex(0, v, uint32_t(d * 3 + c))];
                         if (word != expected && ++mismatches < 8)
                             UNSCOPED_INFO("level 0 voxel " << x << "," << y << "," << z << " direction " << d << " channel " << c
                                                            << ": " << word << ", expected " << expected);
@@ -257,13 +257,13 @@ void expectSameVoxels(VoxelizeHarness& a, VoxelizeHarness& b) {
                     const size_t t = a.texelIndex(level, v);
                     opaque += oa[t] != 0;
                     bool same = oa[t] == ob[t];
-                    for (size_t w = 0; w < 18; ++w) same = same && ea[t * 18 + w] == eb[t * 18 + w];
+                    for (uint32_t w = 0; w < 18; ++w) same = same && ea[a.wordIndex(level, v, w)] == eb[a.wordIndex(level, v, w)];
                     if (!same && ++differ < 8) {
-                        size_t w = 0;
-                        while (w < 18 && ea[t * 18 + w] == eb[t * 18 + w]) ++w;
+                        uint32_t w = 0;
+                        while (w < 18 && ea[a.wordIndex(level, v, w)] == eb[a.wordIndex(level, v, w)]) ++w;
                         UNSCOPED_INFO("level " << level << " voxel " << v.x << "," << v.y << "," << v.z << ": opacity " << oa[t] << " vs "
                                                << ob[t] << "; first differing emittance word " << w << ": "
-                                               << (w < 18 ? ea[t * 18 + w] : 0u) << " vs " << (w < 18 ? eb[t * 18 + w] : 0u));
+                                               << (w < 18 ? ea[a.wordIndex(level, v, w)] : 0u) << " vs " << (w < 18 ? eb[a.wordIndex(level, v, w)] : 0u));
                     }
                 }
     CHECK(differ == 0);
@@ -331,10 +331,9 @@ void refusesBadInput(const std::string& backend) {
             for (int x = 0; x < 32; ++x) set += h.opacityAt(opacity, 0, {x, y, z}) != 0;
     CHECK(set == 8);  // the unit cube at [4.5, 5.5]³ touches 2³ voxels
     const std::vector<uint32_t> emittance = h.emittance();
-    const size_t t = h.texelIndex(0, {5, 5, 5});
-    CHECK(emittance[t * 18 + 0] == 0u);  // +X, red (NaN)
-    CHECK(emittance[t * 18 + 1] == 0u);  // +X, green (negative)
-    CHECK(emittance[t * 18 + 2] == uint32_t(2.0f * 0.25f * kUnits));  // a quarter of the +X face, blue 2
+    CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 0)] == 0u);  // +X, red (NaN)
+    CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 1)] == 0u);  // +X, green (negative)
+    CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 2)] == uint32_t(2.0f * 0.25f * kUnits));  // a quarter of the +X face, blue 2
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -358,9 +357,9 @@ void hookSeesTheFragment(const std::string& backend) {
     const std::vector<uint32_t> emittance = h.emittance();
     for (int y = 4; y <= 5; ++y)
         for (int x = 4; x <= 5; ++x) {
-            const size_t base = h.texelIndex(0, {x, y, 10}) * 18 + 2 * 3;  // +Z
             const float units = 9.0f * 4096.0f;
-            const glm::vec3 seen{float(emittance[base]) / units, float(emittance[base + 1]) / units, float(emittance[base + 2]) / units};
+            auto word = [&](uint32_t c) { return float(emittance[h.wordIndex(0, {x, y, 10}, 2 * 3 + c)]) / units; };  // +Z
+            const glm::vec3 seen{word(0), word(1), word(2)};
             INFO("voxel " << x << "," << y << ": the hook saw " << seen.x << "," << seen.y << "," << seen.z);
             CHECK(seen.x == Approx(x + 0.5f).margin(1e-3));
             CHECK(seen.y == Approx(y + 0.5f).margin(1e-3));

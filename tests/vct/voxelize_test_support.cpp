@@ -96,6 +96,11 @@ size_t VoxelizeHarness::texelIndex(uint32_t level, glm::ivec3 voxel) const {
     return (size_t(level * r + uint32_t(t.z)) * r + size_t(t.y)) * r + size_t(t.x);
 }
 
+size_t VoxelizeHarness::wordIndex(uint32_t level, glm::ivec3 voxel, uint32_t word) const {
+    const vct::ClipmapDesc& d = clipmap_->desc();
+    return size_t(word) * d.resolution * d.resolution * d.resolution * d.levels + texelIndex(level, voxel);
+}
+
 uint32_t VoxelizeHarness::opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const {
     return volume[texelIndex(level, voxel)];
 }

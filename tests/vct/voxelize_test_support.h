@@ -33,6 +33,8 @@ public:
     std::vector<uint32_t> emittance();  // the whole buffer
     uint32_t opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const;
     size_t texelIndex(uint32_t level, glm::ivec3 voxel) const;
+    // Where word `word` of a voxel lies in emittance() (word-major, shaders/include/bricklight/vct_layout.glsl).
+    size_t wordIndex(uint32_t level, glm::ivec3 voxel, uint32_t word) const;
     rhi::ShaderHandle emissiveShader() const { return emissive_; }
 
 private:

@@ -3,7 +3,8 @@
 //
 // Level L's voxels live in z slices [L × resolution, (L + 1) × resolution) of the opacity volume, a world voxel
 // at its coordinates modulo the resolution (toroidal), so that a level keeps what it still covers while it
-// scrolls. The emittance accumulation buffer holds `channels` words per voxel in the same texel order.
+// scrolls. The emittance accumulation buffer holds `channels` words per voxel, word-major: word w of every texel
+// (in the volume's texel order), then word w + 1 — so that neighbouring threads touch neighbouring words.
 #ifndef BRICKLIGHT_VCT_LAYOUT_GLSL
 #define BRICKLIGHT_VCT_LAYOUT_GLSL
 
@@ -58,6 +59,9 @@ uint vctTexelIndex(uint level, ivec3 worldVoxel, uint resolution) {
     uvec3 t = uvec3(vctTexel(level, worldVoxel, resolution));
     return (t.z * resolution + t.y) * resolution + t.x;
 }
+
+// Where word `word` of the texel `texelIndex` lies in the emittance buffer (texelCount: resolution³ × levels).
+uint vctWordIndex(uint texelIndex, uint word, uint texelCount) { return word * texelCount + texelIndex; }
 
 // The six emittance directions of the anisotropic mode, in storage order.
 vec3 vctDirection(uint d) {

@@ -123,9 +123,10 @@ bool blVoxelWritable(uint level, ivec3 voxel, uint resolution, uint boxCount, ou
 }
 
 // Each axis's opacity becomes the largest written, whatever the order (compare-and-swap on the packed word; each
-// retry follows another writer's increase, so the loop ends).
+// retry follows another writer's increase, so the loop ends). Most fragments find the voxel already at least as
+// opaque and leave with a plain load: many small triangles share a voxel, and atomics on one word serialize.
 void blVoxelMaxOpacity(ivec3 texel, uint opacity) {
-    uint seen = imageAtomicOr(blVctOpacity, texel, 0u);
+    uint seen = imageLoad(blVctOpacity, texel).x;
     for (int i = 0; i < 64; ++i) {
         uint merged = vctMaxOpacity(seen, opacity);
         if (merged == seen) return;
@@ -250,11 +251,12 @@ void main() {
                 uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : samples[k];
                 if (count == 0u || (writable & (1u << uint(k))) == 0u) continue;
                 ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
-                uint base = vctTexelIndex(level, voxel, resolution) * channels + d * 3u;
+                uint texel = vctTexelIndex(level, voxel, resolution);
+                uint texelCount = resolution * resolution * resolution * blVctFrame.params.y;
                 precise vec3 amount = radiance * (weight * float(count) * unitsPerSample);
                 uvec3 units = uvec3(min(amount + 0.5, vec3(4.0e9)));
                 for (uint c = 0u; c < 3u; ++c)
-                    if (units[c] != 0u) atomicAdd(blVctEmittance.words[base + c], units[c]);
+                    if (units[c] != 0u) atomicAdd(blVctEmittance.words[vctWordIndex(texel, d * 3u + c, texelCount)], units[c]);
                 ++emittanceWrites;
             }
         }
