@@ -194,7 +194,7 @@ void Clipmap::clearBox(const LevelBox& b, bool emittance) {
     volume.view = rhi::textureMip(opacity_, 0);
     volume.access = rhi::Access::Write;
     s.bindings.storageImages.push(volume);
-    device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
+    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
     if (!words || !emittance) return;
     c.params.y = words;
     c.params.z = desc().levels;
@@ -295,7 +295,7 @@ void Clipmap::downsampleBox(const LevelBox& b) {
     buffer.buffer = emittance_;
     buffer.access = rhi::Access::ReadWrite;
     s.bindings.storageBuffers.push(buffer);
-    device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
+    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
 }
 
 void Clipmap::resolveBox(const LevelBox& b) {
@@ -322,7 +322,7 @@ void Clipmap::resolveBox(const LevelBox& b) {
     if (desc().emittance != EmittanceMode::None)
         for (size_t d = 0; d < tracedEmittance_.size(); ++d) image(uint8_t(2 + d), tracedEmittance_[d], rhi::Access::Write);
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, emittance_, {}});
-    device_.dispatch(s, uint32_t(size.x + 3) / 4, uint32_t(size.y + 3) / 4, uint32_t(size.z + 3) / 4);
+    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
 }
 
 void Clipmap::finishVoxelization() {

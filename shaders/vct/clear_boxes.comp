@@ -4,7 +4,8 @@
 #include "bricklight/vct_layout.glsl"
 // Clears one box of world voxels of one level (what entered the level when the anchor moved), in place in
 // the toroidal volume.
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// Rows of 32 along x: neighbouring threads touch neighbouring texels and emittance words (coalesced).
+layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
     ivec4 minLevel;  // xyz: the box's lowest world voxel, w: the level
     ivec4 size;      // xyz: the box's extent in voxels

@@ -12,7 +12,8 @@
 //    mean of that over the six directions.
 // Every loop has constant bounds and every array a constant index once unrolled, so all of it stays in
 // registers.
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// Rows of 32 along x: neighbouring threads touch neighbouring texels and emittance words (coalesced).
+layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
     ivec4 minLevel;  // xyz: the box's lowest world voxel of level L, w: L (≥ 1)
     ivec4 size;      // xyz: the box's extent in voxels
@@ -29,9 +30,12 @@ void main() {
     // Children in x-fastest order: child i is at 2·voxel + (i & 1, (i >> 1) & 1, i >> 2).
     vec3 alpha[8];
     uint base[8];
+    bool empty = true;
     for (int i = 0; i < 8; ++i) {
         ivec3 child = voxel * 2 + ivec3(i & 1, (i >> 1) & 1, i >> 2);
-        alpha[i] = vctUnpackOpacity(imageLoad(opacityVolume, vctTexel(level - 1u, child, resolution)).x);
+        uint word = imageLoad(opacityVolume, vctTexel(level - 1u, child, resolution)).x;
+        empty = empty && word == 0u;
+        alpha[i] = vctUnpackOpacity(word);
         base[i] = vctTexelIndex(level - 1u, child, resolution);
     }
     precise vec3 opacity = vec3(0.0);  // precise: Vulkan and GL round alike
@@ -52,6 +56,10 @@ void main() {
     bool anisotropic = channels == 18u && inBox;
     uint parent = vctTexelIndex(level, voxel, resolution);
     uint texelCount = resolution * resolution * resolution * box.params.z;
+    if (empty) {  // no surface among the children, so no light: zeros without reading their words (most voxels)
+        for (uint w = 0u; w < channels; ++w) emittance.words[vctWordIndex(parent, w, texelCount)] = 0u;
+        return;
+    }
     precise vec3 mean = vec3(0.0);
     for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {

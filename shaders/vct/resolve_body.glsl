@@ -4,7 +4,8 @@
 // float, emittance as radiance (RGBA16F), in the traced layout — levels stacked in z with one border slice on
 // each side holding the level's opposite (toroidally adjacent) slice, so that hardware filtering wraps in z
 // as the sampler's repeat mode does in x and y.
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// Rows of 32 along x: neighbouring threads touch neighbouring texels and emittance words (coalesced).
+layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
     ivec4 minLevel;  // xyz: the box's lowest world voxel, w: the level
     ivec4 size;      // xyz: the box's extent in voxels
@@ -26,23 +27,27 @@ BL_IMAGE(7, rgba16f) uniform writeonly image3D tracedEmittance5;
 #endif
 
 vec4 radianceOf(uint texel, uint direction) {
+    if (texel == ~0u) return vec4(0.0);  // an empty voxel
     uint texelCount = box.params.x * box.params.x * box.params.x * box.params.z;
     uint w = direction * 3u;
     return vec4(float(emittance.words[vctWordIndex(texel, w, texelCount)]), float(emittance.words[vctWordIndex(texel, w + 1u, texelCount)]),
                 float(emittance.words[vctWordIndex(texel, w + 2u, texelCount)]), 0.0) * box.scales.x;
 }
 
+// With six directions each face's alpha also holds the opacity along its axis, so that a cone's sample reads
+// light and opacity in the same three fetches (bricklight/cone_trace.glsl).
 void store(ivec3 t, vec3 opacity, uint base) {
     imageStore(tracedOpacity, t, vec4(opacity, 0.0));
-#if BL_VCT_DIRECTIONS >= 1
+#if BL_VCT_DIRECTIONS == 1
     imageStore(tracedEmittance0, t, radianceOf(base, 0u));
 #endif
 #if BL_VCT_DIRECTIONS == 6
-    imageStore(tracedEmittance1, t, radianceOf(base, 1u));
-    imageStore(tracedEmittance2, t, radianceOf(base, 2u));
-    imageStore(tracedEmittance3, t, radianceOf(base, 3u));
-    imageStore(tracedEmittance4, t, radianceOf(base, 4u));
-    imageStore(tracedEmittance5, t, radianceOf(base, 5u));
+    imageStore(tracedEmittance0, t, vec4(radianceOf(base, 0u).rgb, opacity.x));
+    imageStore(tracedEmittance1, t, vec4(radianceOf(base, 1u).rgb, opacity.y));
+    imageStore(tracedEmittance2, t, vec4(radianceOf(base, 2u).rgb, opacity.z));
+    imageStore(tracedEmittance3, t, vec4(radianceOf(base, 3u).rgb, opacity.x));
+    imageStore(tracedEmittance4, t, vec4(radianceOf(base, 4u).rgb, opacity.y));
+    imageStore(tracedEmittance5, t, vec4(radianceOf(base, 5u).rgb, opacity.z));
 #endif
 }
 
@@ -52,8 +57,11 @@ void main() {
     uint level = uint(box.minLevel.w), resolution = box.params.x;
     ivec3 voxel = box.minLevel.xyz + local;
     ivec3 texel = vctTexel(level, voxel, resolution);
-    vec3 opacity = vctUnpackOpacity(imageLoad(opacityWords, texel).x);
-    uint base = vctTexelIndex(level, voxel, resolution);
+    uint opacityWord = imageLoad(opacityWords, texel).x;
+    vec3 opacity = vctUnpackOpacity(opacityWord);
+    // An empty voxel holds no light either (the voxelization writes light only into voxels it makes opaque), so
+    // its words are not read: most voxels are empty, and those reads were most of this pass's traffic.
+    uint base = opacityWord == 0u ? ~0u : vctTexelIndex(level, voxel, resolution);
     int r = int(resolution);
     ivec3 t = vctTexel(0u, voxel, resolution);  // within the level
     int slab = int(level) * (r + 2) + 1;

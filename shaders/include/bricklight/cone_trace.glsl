@@ -83,11 +83,15 @@ vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, floa
     // direction's component on it: the share of the voxel's silhouette that face makes (VXGI's weighting). A
     // wall seen at an angle blocks and sends less per voxel, and the cone crosses more of its voxels.
     vec3 w = abs(dir);
-    float alpha = min(dot(w, textureLod(blVctOpacityVolume, uvw, 0.0).rgb), 1.0);
-    vec3 e = w.x * (dir.x > 0.0 ? textureLod(blVctEmittanceNX, uvw, 0.0).rgb : textureLod(blVctEmittancePX, uvw, 0.0).rgb) +
-             w.y * (dir.y > 0.0 ? textureLod(blVctEmittanceNY, uvw, 0.0).rgb : textureLod(blVctEmittancePY, uvw, 0.0).rgb) +
-             w.z * (dir.z > 0.0 ? textureLod(blVctEmittanceNZ, uvw, 0.0).rgb : textureLod(blVctEmittancePZ, uvw, 0.0).rgb);
-    return vec4(e, alpha);
+    uint words = blVctFrame.params.z;  // 0: no emittance (opacity only), 3: isotropic, 18: six directions
+    if (words == 0u) return vec4(0.0, 0.0, 0.0, min(dot(w, textureLod(blVctOpacityVolume, uvw, 0.0).rgb), 1.0));
+    vec4 ex = dir.x > 0.0 ? textureLod(blVctEmittanceNX, uvw, 0.0) : textureLod(blVctEmittancePX, uvw, 0.0);
+    vec4 ey = dir.y > 0.0 ? textureLod(blVctEmittanceNY, uvw, 0.0) : textureLod(blVctEmittancePY, uvw, 0.0);
+    vec4 ez = dir.z > 0.0 ? textureLod(blVctEmittanceNZ, uvw, 0.0) : textureLod(blVctEmittancePZ, uvw, 0.0);
+    // Six directions: each face's alpha is the opacity along its axis (three fetches in all); isotropic: the
+    // opacity volume.
+    vec3 axes = words == 18u ? vec3(ex.a, ey.a, ez.a) : textureLod(blVctOpacityVolume, uvw, 0.0).rgb;
+    return vec4(w.x * ex.rgb + w.y * ey.rgb + w.z * ez.rgb, min(dot(w, axes), 1.0));
 }
 
 // The finest level ≥ `level` that holds the point (finest-voxel coordinates) with `margin` of its voxels to
