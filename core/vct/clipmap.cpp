@@ -59,6 +59,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     c->clearBoxes_ = makeShader(device, "vct/clear_boxes.comp");
     c->clearEmittance_ = makeShader(device, "vct/clear_emittance_boxes.comp");
     c->downsample_ = makeShader(device, "vct/downsample.comp");
+    c->debugView_ = makeShader(device, "vct/debug_view.comp");
     const char* resolve = desc.emittance == EmittanceMode::Anisotropic ? "vct/resolve_anisotropic.comp"
                           : desc.emittance == EmittanceMode::Isotropic ? "vct/resolve_isotropic.comp"
                                                                        : "vct/resolve_opacity.comp";
@@ -118,7 +119,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     c->counters_ = device.createBuffer(bd);
     bool traced = c->tracedOpacity_ && c->tracedSampler_;
     for (rhi::TextureHandle t : c->tracedEmittance_) traced = traced && t;
-    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->opacity_ || !c->rasterSize_ ||
+    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->debugView_ || !c->opacity_ || !c->rasterSize_ ||
         !c->emittance_ || !c->frame_ || !c->counters_ || !traced)
         return fail("the device could not create the clip-map's volumes, buffers or passes");
     return c;
@@ -132,7 +133,7 @@ Clipmap::~Clipmap() {
     if (tracedSampler_) device_.destroy(tracedSampler_);
     for (rhi::BufferHandle b : {emittance_, frame_, counters_})
         if (b) device_.destroy(b);
-    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_})
+    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_, debugView_})
         if (s) device_.destroy(s);
 }
 
@@ -333,6 +334,40 @@ void Clipmap::finishVoxelization() {
     for (const LevelBox& b : rewrite_) resolveBox(b);
     for (const LevelBox& b : downsampleBoxes_) resolveBox(b);
     device_.endMarker();
+}
+
+bool Clipmap::debugView(const DebugViewDesc& d, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "clip-map debug view: " + why;
+        return false;
+    };
+    if (uint32_t(d.mode) > uint32_t(DebugMode::Rewritten)) return fail("mode " + std::to_string(uint32_t(d.mode)) + " is not a DebugMode");
+    if (d.level < -1 || d.level >= int32_t(desc().levels))
+        return fail("level " + std::to_string(d.level) + " is outside -1.." + std::to_string(desc().levels - 1));
+    if (d.direction < -1 || d.direction > 5) return fail("direction " + std::to_string(d.direction) + " is outside -1..5");
+    if (!(d.exposure > 0.0f) || !std::isfinite(d.exposure)) return fail("exposure must be a positive finite number");
+    const rhi::TextureDesc* out = device_.describe(d.output);
+    if (!out || out->format != rhi::Format::RGBA8_UNORM || !(out->usage & rhi::TextureUsage::Storage))
+        return fail("the output must be a live RGBA8_UNORM texture with Storage usage");
+    if (!placement_.placed()) return fail("the clip-map has not been placed yet (update() first)");
+    struct {
+        glm::mat4 inverseViewProjection;
+        glm::vec4 eye;
+        glm::uvec4 size;
+        glm::ivec4 face;
+    } c{glm::inverse(d.projection * d.view), glm::vec4(d.cameraPosition, d.exposure),
+        glm::uvec4(out->width, out->height, uint32_t(d.mode), d.level < 0 ? 0xFFFFFFFFu : uint32_t(d.level)), glm::ivec4(d.direction, 0, 0, 0)};
+    rhi::DispatchState s;
+    s.shader = debugView_;
+    s.label = "vct debug view";
+    s.bindings.constants.push(rhi::constants(0, c));
+    traceBindings(s.bindings);
+    rhi::StorageImageBinding o;
+    o.slot = 0;
+    o.view = rhi::textureMip(d.output, 0);
+    o.access = rhi::Access::Write;
+    s.bindings.storageImages.push(o);
+    return device_.dispatch(s, (out->width + 7) / 8, (out->height + 7) / 8, 1);
 }
 
 void Clipmap::traceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_t frameSlot) const {

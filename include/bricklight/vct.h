@@ -146,6 +146,21 @@ struct VoxelizationCounters {
     uint64_t emittanceWrites = 0;  // voxels that received emittance
 };
 
+// Debug views of the clip-map (Clipmap::debugView): the first voxel at least a quarter opaque along each pixel's
+// ray, shown as its opacity along x, y, z (rgb); the light it sends (back along the ray, or towards
+// `direction`); its level (red, orange, yellow, green, cyan, blue, violet, white from the finest); or whether
+// this update rewrote it (red) or kept it (grey).
+enum class DebugMode : uint32_t { Opacity, Emittance, Level, Rewritten };
+struct DebugViewDesc {
+    DebugMode mode = DebugMode::Opacity;
+    int32_t level = -1;      // the level to show; −1: the finest that holds each point
+    int32_t direction = -1;  // emittance: 0..5 (+X, +Y, +Z, −X, −Y, −Z); −1: back along the ray
+    glm::mat4 view{1.0f}, projection{1.0f};  // the camera (GiContext's conventions)
+    glm::vec3 cameraPosition{0.0f};
+    rhi::TextureHandle output;  // RGBA8_UNORM with Storage usage
+    float exposure = 1.0f;      // emittance: radiance scale before tone mapping
+};
+
 // Bytes a description needs on the device (what memoryUse() will report), for sizing before creating.
 uint64_t clipmapBytes(const ClipmapDesc& desc);
 
@@ -204,6 +219,10 @@ public:
     const std::vector<LevelBox>& rewriteBoxes() const { return rewrite_; }
     std::vector<WorldBox> dirtyRegions() const;
 
+    // Records a debug view (DebugMode) into desc.output; false with *error, recording nothing, for a bad
+    // description.
+    bool debugView(const DebugViewDesc& desc, std::string* error);
+
     void setCountersEnabled(bool enabled);
     void resetCounters();
     VoxelizationCounters readCounters();  // waits for the GPU (tests and tools)
@@ -229,7 +248,7 @@ private:
     };
     rhi::IDevice& device_;
     ClipmapPlacement placement_;
-    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_;
+    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_, debugView_;
     rhi::TextureHandle opacity_, rasterSize_, tracedOpacity_;
     std::vector<rhi::TextureHandle> tracedEmittance_;
     rhi::SamplerHandle tracedSampler_;
