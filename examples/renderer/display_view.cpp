@@ -6,7 +6,7 @@ namespace {
 const char* const kNames[] = {"final", "direct", "indirect-diffuse", "specular-gi", "albedo", "normal", "depth", "motion",
                               "sdf-distance", "sdf-normal", "sdf-iterations", "sdf-brick-id", "sdf-cascade-id", "sdf-uvw",
                               "gi-radiance-cache", "gi-irradiance-cache", "gi-probes", "gi-probe-sh", "gi-disocclusion",
-                              "gi-samples"};
+                              "gi-samples", "vct-opacity", "vct-emittance", "vct-level", "vct-rewritten"};
 static_assert(sizeof(kNames) / sizeof(kNames[0]) == size_t(View::Count), "a name for every view");
 }  // namespace
 
@@ -20,6 +20,8 @@ bool viewFromName(const std::string& name, View* out) {
         }
     return false;
 }
+
+bool viewIsVct(View view) { return view >= View::VctOpacity && view < View::Count; }
 
 bool viewNeedsGi(View view) { return view == View::IndirectDiffuse || view == View::SpecularGi || view >= View::SdfDistance; }
 

@@ -1,5 +1,5 @@
-// What a window can show of the renderer's latest frame: the final image, each AOV, and every SDF and GI
-// debug view (the viewer lists them; a picture-in-picture shows a second one in a corner).
+// What a window can show of the renderer's latest frame: the final image, each AOV, and every SDF, GI and voxel
+// cone tracing debug view (the viewer lists them; a picture-in-picture shows a second one in a corner).
 #pragma once
 
 #include <cstdint>
@@ -28,12 +28,17 @@ enum class View : uint32_t {
     GiProbeSh,
     GiDisocclusion,
     GiSamples,
+    VctOpacity,  // vct::DebugMode, in its order
+    VctEmittance,
+    VctLevel,
+    VctRewritten,
     Count
 };
 
 const char* viewName(View view);  // "final", "direct", ..., "sdf-normal", ..., "gi-probes", ...
 bool viewFromName(const std::string& name, View* out);
-bool viewNeedsGi(View view);  // the SDF and GI views and the GI AOVs exist only with GI on
+bool viewNeedsGi(View view);  // the SDF, GI and VCT views and the GI AOVs exist only with GI on
+bool viewIsVct(View view);    // the voxel cone tracing views (--gi vxgi); the SDF and GI views need --gi sdf
 
 // A rectangle of the display texture, in pixels, row 0 at the top.
 struct DisplayRect {

@@ -77,6 +77,8 @@ public:
     // Voxel ambient occlusion (1 open) in every channel: from the cone tracer's diffuse alpha (--gi vxgi or
     // vxao); empty without voxel cone tracing.
     Image readAmbientOcclusion();
+    // A voxel cone tracing debug view of the latest frame (0..1, from the camera); empty without a clip-map.
+    Image vctDebugView(vct::DebugMode mode, float exposure);
     // A GI debug view of the latest frame (tone-mapped, 0..1); empty without GI.
     Image giDebugView(gi::DebugMode mode, float exposure);
     GBufferView gbuffer() const;
@@ -93,6 +95,8 @@ public:
         options_.giTrace = trace;
         options_.giRoughnessThreshold = roughnessThreshold;
     }
+    // Voxel cone tracing's parameters from the next frame on (refused ones are reported and skipped then).
+    void setVctTuning(const vct::ConeTraceParams& trace) { options_.vctTrace = trace; }
     const RasterOptions& options() const { return options_; }
     glm::vec3 sdfCenter() const { return sdfCenter_; }
     // The distance field's cascades follow this point from the next frame on (default: the scene's centre).

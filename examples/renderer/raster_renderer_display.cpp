@@ -25,7 +25,21 @@ bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error
         }
     }
     bool drawn = false;
-    if (view >= View::GiRadianceCache) {
+    if (viewIsVct(view)) {
+        vct::DebugViewDesc desc;
+        desc.mode = vct::DebugMode(uint32_t(view) - uint32_t(View::VctOpacity));
+        desc.view = view_;
+        desc.projection = projection_;
+        desc.cameraPosition = camera_.eye;
+        desc.output = debugView_;
+        desc.exposure = exposure;
+        std::string why;
+        drawn = clipmap_->debugView(desc, &why);
+        if (!drawn) {
+            *error = why;
+            return false;
+        }
+    } else if (view >= View::GiRadianceCache) {
         gi::DebugViewDesc desc;
         desc.mode = gi::DebugMode(uint32_t(view) - uint32_t(View::GiRadianceCache));
         desc.output = debugView_;
@@ -51,7 +65,9 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
         return false;
     };
     if (view >= View::Count) return fail("not a view");
-    if (viewNeedsGi(view) && !gi_) return fail("needs GI, which is off");
+    if (viewIsVct(view) && !clipmap_) return fail("needs voxel cone tracing (--gi vxgi or --ao vxao)");
+    if (viewNeedsGi(view) && !viewIsVct(view) && view >= View::SdfDistance && !gi_) return fail("needs the SDF GI (--gi sdf)");
+    if (viewNeedsGi(view) && !giOn() && !gi_) return fail("needs GI, which is off");
     const rhi::TextureDesc* d = device_.describe(display);
     if (!d || d->format != rhi::Format::RGBA8_UNORM || !(d->usage & rhi::TextureUsage::Storage))
         return fail("the display texture must be a live RGBA8_UNORM texture with Storage usage");

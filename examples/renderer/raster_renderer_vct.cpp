@@ -109,4 +109,19 @@ Image RasterRenderer::readAmbientOcclusion() {
     return img;
 }
 
+Image RasterRenderer::vctDebugView(vct::DebugMode mode, float exposure) {
+    Image img;
+    std::string why;
+    const View view = View(uint32_t(View::VctOpacity) + uint32_t(mode));
+    if (!clipmap_ || !viewIsVct(view) || !drawDebugView(view, exposure, &why)) return img;
+    std::vector<uint8_t> bytes(size_t(options_.width) * options_.height * 4);
+    device_.readTexture(debugView_, {}, bytes.data());
+    img.width = options_.width;
+    img.height = options_.height;
+    img.rgb.resize(size_t(img.width) * img.height * 3);
+    for (size_t i = 0; i < img.rgb.size() / 3; ++i)
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = float(bytes[4 * i + size_t(c)]) / 255.0f;
+    return img;
+}
+
 }  // namespace bricklight::render

@@ -138,6 +138,10 @@ bool ViewerApp::buildRenderer(std::string* error) {
     ro.giRelight = gi_.relight;
     ro.sdfCascades = gi_.sdfCascades;
     ro.sdfBudgets = gi_.sdfBudgets;
+    ro.vctResolution = gi_.vctResolution;
+    ro.vctLevels = gi_.vctLevels;
+    ro.vctEmittance = gi_.vctEmittance;
+    ro.vctTrace = gi_.vctTrace;
     ro.errorCallback = [this](rhi::Severity s, const std::string& m) { report(s, m); };
     renderer_ = render::RasterRenderer::create(backend_->device(), scene_, ro, error);
     if (!renderer_) return false;
@@ -319,6 +323,7 @@ bool ViewerApp::renderFrame(bool stepAnimation, std::string* error) {
         cameraMoved_ = false;
     }
     renderer_->setGiTuning(gi_.trace, gi_.roughnessThreshold);
+    renderer_->setVctTuning(gi_.vctTrace);
     renderer_->setSdfCenter(renderer_->sceneCenter() + gi_.sdfCenterOffset);
     renderer_->render();
     const uint32_t dw = backend_->displayWidth(), dh = backend_->displayHeight();

@@ -53,6 +53,10 @@ struct GiSettings {
     uint32_t sdfCascades = 3;
     sdf::Budgets sdfBudgets;
     glm::vec3 sdfCenterOffset{0.0f};  // the cascades' centre from the scene's centre (live)
+    // Voxel cone tracing (--gi vxgi, --ao vxao): the clip-map (rebuild) and the tracing (live).
+    uint32_t vctResolution = 64, vctLevels = 5;
+    vct::EmittanceMode vctEmittance = vct::EmittanceMode::Anisotropic;
+    vct::ConeTraceParams vctTrace;
 };
 
 class ViewerApp {
