@@ -2,7 +2,7 @@
 //
 //   bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]
 //                     [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr] [--aov NAME ...] [--reference --spp N]
-//                     [--exposure E] [--gi sdf|none] [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]
+//                     [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none] [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]
 //                     [--single-bounce] [--validate] [--record FILE.jsonl] [--help] [--version]
 //
 // Exit status: 0 the image(s) were written; 1 the render failed (the scene, the device, an error any layer
@@ -51,11 +51,19 @@ struct Options : render::RenderOptions {
 };
 
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
+// Voxel cone tracing's views (vct::DebugMode, in its order), for --gi vxgi or --ao vxao.
+const char* const kVctDebugNames[] = {"vct-opacity", "vct-emittance", "vct-level", "vct-rewritten"};
+
+bool isVctDebug(const std::string& view) {
+    for (const char* n : kVctDebugNames)
+        if (view == n) return true;
+    return false;
+}
 
 void printUsage(FILE* to) {
     std::fprintf(to,
                  "usage: bricklight-render [options]\n%s"
-                 "  [--out FILE.png|.exr] [--aov combined|direct|indirect-diffuse|albedo|normal|depth ...]\n"
+                 "  [--out FILE.png|.exr] [--aov combined|direct|indirect-diffuse|albedo|normal|depth|ao ...]\n"
                  "  [--reference --spp N] [--gi-debug VIEW ...] [--record FILE.jsonl] [--help] [--version]\n"
                  "scenes: %s\n"
                  "exit status: 0 written; 1 the render failed; 2 usage error (docs/render.md)\n",
@@ -98,7 +106,10 @@ Options parse(int argc, char** argv) {
             const std::string v = value();
             bool known = false;
             for (const char* n : kGiDebugNames) known = known || v == n;
-            if (!known) usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (got '" + v + "')");
+            known = known || isVctDebug(v);
+            if (!known)
+                usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (the SDF GI's) "
+                      "or vct-opacity, vct-emittance, vct-level or vct-rewritten (voxel cone tracing's) (got '" + v + "')");
             o.giDebug.push_back(v);
         }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
@@ -116,7 +127,16 @@ Options parse(int argc, char** argv) {
     }
     std::string error;
     if (!render::checkSharedOptions(o, &error)) usage(error);
-    if (!o.giDebug.empty() && (o.reference || !o.gi)) usage("--gi-debug needs the fast path with GI (not --reference or --gi none)");
+    const bool vct = o.vxao || (o.gi && o.giTechnique == render::GiTechnique::Vct);
+    for (const std::string& view : o.giDebug) {
+        if (o.reference) usage("--gi-debug needs the fast path (not --reference)");
+        if (isVctDebug(view) && !vct) usage("--gi-debug " + view + " needs voxel cone tracing (--gi vxgi or --ao vxao)");
+        if (!isVctDebug(view) && !(o.gi && o.giTechnique == render::GiTechnique::Sdf))
+            usage("--gi-debug " + view + " needs the SDF GI (--gi sdf, the default)");
+    }
+    for (render::Aov aov : o.aovs)
+        if (aov == render::Aov::Ao && !o.reference && !vct)
+            usage("--aov ao needs --reference (the path tracer's) or voxel cone tracing (--ao vxao or --gi vxgi)");
     return o;
 }
 
@@ -271,9 +291,15 @@ int main(int argc, char** argv) {
                 scene.name.c_str(), tracer ? tracer->triangleCount() : raster->triangleCount(), how.c_str(), o.backend.c_str(),
                 seconds);
     for (const std::string& view : o.giDebug) {
+        render::Image img;
         uint32_t mode = 0;
-        while (view != kGiDebugNames[mode]) ++mode;
-        render::Image img = raster->giDebugView(gi::DebugMode(mode), o.exposure);
+        if (isVctDebug(view)) {
+            while (view != kVctDebugNames[mode]) ++mode;
+            img = raster->vctDebugView(vct::DebugMode(mode), o.exposure);
+        } else {
+            while (view != kGiDebugNames[mode]) ++mode;
+            img = raster->giDebugView(gi::DebugMode(mode), o.exposure);
+        }
         const std::string path = giDebugPath(o.out, view);
         if (img.rgb.empty() || !render::writeImage(path, img, 1.0f, &error))
             return failRun("the GI debug view " + view + " failed" + (error.empty() ? "" : ": " + error));

@@ -7,7 +7,8 @@
 namespace bricklight::render {
 
 namespace {
-const char* kAovNames[] = {"combined", "direct", "indirect-diffuse", "albedo", "normal", "depth"};
+const char* kAovNames[] = {"combined", "direct", "indirect-diffuse", "albedo", "normal", "depth", "ao"};
+static_assert(sizeof(kAovNames) / sizeof(kAovNames[0]) == size_t(Aov::Count), "a name for every AOV");
 }  // namespace
 
 const char* aovName(Aov aov) { return aov < Aov::Count ? kAovNames[uint32_t(aov)] : "?"; }
@@ -24,6 +25,8 @@ std::unique_ptr<PathTracer> PathTracer::create(rhi::IDevice& device, const scene
         if (error) *error = "path tracer: " + m;
         return std::unique_ptr<PathTracer>();
     };
+    if (!std::isfinite(options.aoRange) || options.aoRange < 0.0f)
+        return fail("aoRange must be finite and >= 0 (0: a tenth of the scene's diagonal), got " + std::to_string(options.aoRange));
     std::string sceneError;
     if (!checkImageSize(options.width, options.height, &sceneError)) return fail(sceneError);
     const uint64_t accumulationBytes = uint64_t(options.width) * options.height * 16 * uint32_t(Aov::Count);
@@ -36,6 +39,13 @@ std::unique_ptr<PathTracer> PathTracer::create(rhi::IDevice& device, const scene
     std::unique_ptr<PathTracer> pt(new PathTracer(device));
     pt->options_ = options;
     pt->scene_ = std::move(gpuScene);
+    pt->aoRange_ = options.aoRange;
+    if (pt->aoRange_ == 0.0f) {
+        // The bounds of what is traced (scene.boundsMin/Max are only as fresh as its last computeBounds()).
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const glm::vec3& v : pt->scene_->worldPositions()) lo = glm::min(lo, v), hi = glm::max(hi, v);
+        pt->aoRange_ = 0.1f * glm::length(hi - lo);
+    }
     rhi::BufferDesc d;
     d.size = accumulationBytes;
     d.debugName = "path tracer accumulation";
@@ -74,7 +84,7 @@ void PathTracer::addSamples(uint32_t samples) {
         glm::vec4 eye, forward, right, up;
         uint32_t size[4];
     } p{};
-    p.eye = glm::vec4(camera_.eye, 0.0f);
+    p.eye = glm::vec4(camera_.eye, aoRange_);
     p.forward = glm::vec4(forward, std::tan(glm::radians(camera_.verticalFovDegrees) * 0.5f));
     p.right = glm::vec4(right, float(options_.width) / float(options_.height));
     p.up = glm::vec4(up, 0.0f);

@@ -1,6 +1,7 @@
 // The reference path tracer (shaders/render/path_trace.comp) as records through rhi::IDevice: uploads a
 // SceneGeometry (world triangles in BVH order, materials, emitters), then adds samples per pixel to running
-// sums of the AOVs, progressively. The ground truth that rasterized and GI results are measured against.
+// sums of the AOVs, progressively. The ground truth that rasterized and GI results are measured against
+// (and, through the ao AOV, the reference for voxel ambient occlusion).
 #pragma once
 
 #include <memory>
@@ -13,8 +14,11 @@
 
 namespace bricklight::render {
 
-enum class Aov : uint32_t { Combined, Direct, IndirectDiffuse, Albedo, Normal, Depth, Count };
-const char* aovName(Aov aov);               // "combined", "direct", "indirect-diffuse", ...
+// Ao: ambient occlusion at the primary hit, the fraction of cosine-weighted hemisphere rays (about the
+// shading normal, one per sample) that hit nothing within PathTracerOptions::aoRange, in all three
+// channels: 1 open, 0 fully occluded; 1 where the camera ray hits nothing. Only the path tracer has it.
+enum class Aov : uint32_t { Combined, Direct, IndirectDiffuse, Albedo, Normal, Depth, Ao, Count };
+const char* aovName(Aov aov);               // "combined", "direct", "indirect-diffuse", ..., "ao"
 bool aovFromName(const std::string& name, Aov* out);
 
 // A linear float image, 3 channels per pixel, row 0 at the top.
@@ -35,12 +39,15 @@ struct PathTracerOptions {
     // Samples spread over the pixel (anti-aliasing). Off: every camera ray through the pixel centre, as a
     // rasterizer samples (the primary-hit AOVs then equal a G-buffer's).
     bool pixelJitter = true;
+    // The ao AOV's range in world units: occluders farther than this from the primary hit do not count.
+    // 0: a tenth of the diagonal of the scene's bounding box. Finite and >= 0.
+    float aoRange = 0.0f;
 };
 
 class PathTracer {
 public:
-    // Null with `error` set for an empty scene, non-finite positions, negative albedo/emission or a camera
-    // that does not make a view.
+    // Null with `error` set for an empty scene, non-finite positions, negative albedo/emission, a camera
+    // that does not make a view or an aoRange that is negative or not finite.
     static std::unique_ptr<PathTracer> create(rhi::IDevice& device, const scenes::SceneGeometry& scene,
                                               const PathTracerOptions& options, std::string* error);
     ~PathTracer();
@@ -49,6 +56,7 @@ public:
     uint32_t samples() const { return samples_; }
     Image read(Aov aov);                // blocking; the mean of the samples so far
     uint32_t triangleCount() const { return scene_->triangleCount(); }
+    float aoRange() const { return aoRange_; }  // the ao AOV's range: options.aoRange or its default
 
 private:
     PathTracer(rhi::IDevice& device) : device_(device) {}
@@ -59,6 +67,7 @@ private:
     rhi::BufferHandle accumulation_;
     scenes::Camera camera_;
     uint32_t samples_ = 0;
+    float aoRange_ = 0.0f;
 };
 
 }  // namespace bricklight::render

@@ -381,6 +381,8 @@ Image RasterRenderer::read(Aov aov) {
             for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = v[i][c];
     } else if (aov == Aov::IndirectDiffuse) {
         return readGi(giDiffuse_);
+    } else if (aov == Aov::Ao) {
+        if (coneTracer_) return readAmbientOcclusion();  // zero without voxel cone tracing
     } else if (aov == Aov::Albedo || aov == Aov::Normal) {
         std::vector<uint16_t> h;
         readTarget(aov == Aov::Albedo ? albedo_ : normal_, 4, h);

@@ -41,6 +41,7 @@ struct RasterOptions {
     uint32_t vctResolution = 64, vctLevels = 5;
     vct::EmittanceMode vctEmittance = vct::EmittanceMode::Anisotropic;
     uint32_t vctLightSamples = 4;  // light samples per voxelization fragment
+    float vctThickness = 1.0f;     // vct::VoxelMaterial::thickness of every surface (two-sided: half each side)
     vct::ConeTraceParams vctTrace;
     // Voxel ambient occlusion (an opacity-only clip-map) when GI does not already trace cones: the AO image is
     // readAmbientOcclusion(); it does not change the lit image (direct lighting already shadows the sky).

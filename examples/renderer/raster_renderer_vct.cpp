@@ -53,6 +53,7 @@ void RasterRenderer::renderVct() {
     if (!clipmap_->rewriteBoxes().empty()) {
         vct::VoxelMaterial material;
         material.twoSided = true;  // the renderer lights both sides of every surface, as the path tracer does
+        material.thickness = options_.vctThickness;
         material.fragmentShader = options_.vctEmittance == vct::EmittanceMode::None ? rhi::ShaderHandle{} : vctEmittance_;
         std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &why);
         if (state) {
@@ -65,10 +66,12 @@ void RasterRenderer::renderVct() {
             state->vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
             const glm::uvec4 lighting(options_.vctLightSamples, options_.giFeedback ? 1u : 0u, 0u, 0u);
             const SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
-            state->bindings.constants.push(rhi::constants(0, lighting));
-            state->bindings.constants.push(rhi::constants(1, light));
-            scene_->bind(state->bindings, true);
-            if (material.fragmentShader) clipmap_->traceBindings(state->bindings);  // blVoxelIndirect (bounces)
+            if (material.fragmentShader) {  // the emittance function's resources (voxel AO draws opacity only)
+                state->bindings.constants.push(rhi::constants(0, lighting));
+                state->bindings.constants.push(rhi::constants(1, light));
+                scene_->bind(state->bindings, true);
+                clipmap_->traceBindings(state->bindings);  // blVoxelIndirect (bounces)
+            }
             rhi::DrawArgs args;
             args.vertexCount = 3 * scene_->triangleCount();
             device_.draw(*state, args);

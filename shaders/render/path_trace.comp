@@ -12,18 +12,20 @@
 //   2 indirect   indirect diffuse at the primary hit: incoming radiance that has bounced at least once,
 //                as irradiance / pi (a white Lambertian surface's outgoing radiance), before albedo
 //   3 albedo     4 normal (world, facing the camera)     5 depth (view-space distance along the camera axis)
+//   6 ao         ambient occlusion at the primary hit: 1 if a cosine-weighted ray about the shading normal
+//                hits nothing within eye.w (world units), else 0; 1 where the camera ray escapes
 // so that combined = direct + albedo * indirect for Lambertian scenes.
 // (For glossy surfaces the indirect AOV is still the diffuse irradiance estimate, weighted cos/(pi pdf).)
 layout(local_size_x = 8, local_size_y = 8) in;
 
 BL_CONSTANTS(0) uniform Params {
-    vec4 eye;            // xyz
+    vec4 eye;            // xyz; w: the ao AOV's range
     vec4 forward;        // xyz camera axis; w: tan(vertical fov / 2)
     vec4 right;          // xyz; w: aspect (width / height)
     vec4 up;             // xyz; w: 1 = jitter samples over the pixel, 0 = pixel centres
     uvec4 size;          // xy image size, z first sample index, w samples in this dispatch
 } params;
-BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 6 AOVs x pixels: sums, w = samples
+BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 7 AOVs x pixels: sums, w = samples
 #define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
 
@@ -33,7 +35,7 @@ void main() {
     uint pixelIndex = pixel.y * params.size.x + pixel.x;
     uint pixelCount = params.size.x * params.size.y;
     float eps = sceneLight.lightWeight.y;
-    vec3 sums[6] = vec3[6](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+    vec3 sums[7] = vec3[7](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
     for (uint s = 0u; s < params.size.w; ++s) {
         rngState = pcg(pixelIndex ^ pcg(params.size.z + s + pcg(sceneLight.counts.y)));
         // Camera ray through a jittered point of the pixel (image origin top-left).
@@ -47,6 +49,7 @@ void main() {
         if (!traceRay(origin, dir, 0.0, 1e30, false, hit)) {
             sums[0] += sceneLight.sky.rgb;
             sums[1] += sceneLight.sky.rgb;
+            sums[6] += vec3(1.0);
             continue;
         }
         vec3 p = origin + dir * hit.t;
@@ -59,6 +62,13 @@ void main() {
         sums[3] += surface.baseColor;
         sums[4] += n;
         sums[5] += vec3(dot(p - origin, params.forward.xyz));
+        // AO from a stream of its own, so that the other AOVs draw the same numbers as without it. Always
+        // traced (no flag: a short any-hit ray); a range of 0 or below eps makes it 1.
+        uint pathRng = rngState;
+        rngState = pcg(pathRng ^ 0x9E3779B9u);
+        Hit occluder;
+        sums[6] += vec3(traceRay(p, cosineDirection(n), eps, params.eye.w, true, occluder) ? 0.0 : 1.0);
+        rngState = pathRng;
         vec3 v = -dir;
         vec3 direct = emission + directLight(p, n, v, surface, eps);
         vec3 radiance = direct;
@@ -101,5 +111,5 @@ void main() {
         sums[1] += direct;
         sums[2] += indirect;
     }
-    for (uint a = 0u; a < 6u; ++a) accumulated[a * pixelCount + pixelIndex] += vec4(sums[a], float(params.size.w));
+    for (uint a = 0u; a < 7u; ++a) accumulated[a * pixelCount + pixelIndex] += vec4(sums[a], float(params.size.w));
 }

@@ -29,10 +29,13 @@ expect_failure "unknown AOV 'shadows'" "${common[@]}" --aov shadows
 expect_failure "--camera expects six numbers" "${common[@]}" --camera 1,2,3
 expect_failure "--backend must be vulkan or gl" "${common[@]}" --backend metal
 expect_failure "unknown option '--frobnicate'" --frobnicate
-expect_failure "--gi must be sdf or none" --gi voxels
+expect_failure "--gi must be sdf, vxgi or none" --gi voxels
 expect_failure "--gi-scale must be 100, 75, 50 or 25" --gi-scale 60
 expect_failure "--gi-debug must be radiance-cache" --gi-debug everything
-expect_failure "--gi-debug needs the fast path with GI" "${common[@]}" --gi-debug probes --out "$out/x.png"
+expect_failure "--gi-debug needs the fast path" "${common[@]}" --gi-debug probes --out "$out/x.png"
+expect_failure "--gi-debug probes needs the SDF GI" --gi vxgi --gi-debug probes --out "$out/x.png"
+expect_failure "--gi-debug vct-opacity needs voxel cone tracing" --gi-debug vct-opacity --out "$out/x.png"
+expect_failure "--aov ao needs --reference" --aov ao --out "$out/x.png"
 # Numbers are read as numbers: a negative one cannot wrap around to a valid size.
 expect_failure "--width expects a whole number in 1\.\.8192 \(got '-18446744073709551615'\)" --width -18446744073709551615
 expect_failure "--height expects a whole number" --height 99999999999999999999999
