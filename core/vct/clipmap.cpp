@@ -190,11 +190,7 @@ void Clipmap::clearBox(const LevelBox& b, bool emittance) {
     s.shader = clearBoxes_;
     s.label = "vct clear voxels";
     s.bindings.constants.push(rhi::constants(0, c));
-    rhi::StorageImageBinding volume;
-    volume.slot = 0;
-    volume.view = rhi::textureMip(opacity_, 0);
-    volume.access = rhi::Access::Write;
-    s.bindings.storageImages.push(volume);
+    s.bindings.storageImages.push(rhi::storageImage(0, opacity_, rhi::Access::Write));
     device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
     if (!words || !emittance) return;
     c.params.y = words;
@@ -270,11 +266,7 @@ std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial
     counters.slot = VoxelizationSlots::kCountersBuffer;
     counters.buffer = counters_;
     s.bindings.storageBuffers.push(counters);
-    rhi::StorageImageBinding opacity;
-    opacity.slot = VoxelizationSlots::kOpacityImage;
-    opacity.view = rhi::textureMip(opacity_, 0);
-    opacity.access = rhi::Access::Atomic;
-    s.bindings.storageImages.push(opacity);
+    s.bindings.storageImages.push(rhi::storageImage(VoxelizationSlots::kOpacityImage, opacity_, rhi::Access::Atomic));
     return s;
 }
 
@@ -286,11 +278,7 @@ void Clipmap::downsampleBox(const LevelBox& b) {
     s.shader = downsample_;
     s.label = "vct downsample";
     s.bindings.constants.push(rhi::constants(0, c));
-    rhi::StorageImageBinding volume;
-    volume.slot = 0;
-    volume.view = rhi::textureMip(opacity_, 0);
-    volume.access = rhi::Access::ReadWrite;
-    s.bindings.storageImages.push(volume);
+    s.bindings.storageImages.push(rhi::storageImage(0, opacity_, rhi::Access::ReadWrite));
     rhi::StorageBufferBinding buffer;
     buffer.slot = 0;
     buffer.buffer = emittance_;
@@ -311,17 +299,11 @@ void Clipmap::resolveBox(const LevelBox& b) {
     s.shader = resolve_;
     s.label = "vct resolve";
     s.bindings.constants.push(rhi::constants(0, c));
-    auto image = [&](uint8_t slot, rhi::TextureHandle t, rhi::Access access) {
-        rhi::StorageImageBinding i;
-        i.slot = slot;
-        i.view = rhi::textureMip(t, 0);
-        i.access = access;
-        s.bindings.storageImages.push(i);
-    };
-    image(0, opacity_, rhi::Access::Read);
-    image(1, tracedOpacity_, rhi::Access::Write);
+    s.bindings.storageImages.push(rhi::storageImage(0, opacity_, rhi::Access::Read));
+    s.bindings.storageImages.push(rhi::storageImage(1, tracedOpacity_, rhi::Access::Write));
     if (desc().emittance != EmittanceMode::None)
-        for (size_t d = 0; d < tracedEmittance_.size(); ++d) image(uint8_t(2 + d), tracedEmittance_[d], rhi::Access::Write);
+        for (size_t d = 0; d < tracedEmittance_.size(); ++d)
+            s.bindings.storageImages.push(rhi::storageImage(uint8_t(2 + d), tracedEmittance_[d], rhi::Access::Write));
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, emittance_, {}});
     device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
 }
@@ -362,11 +344,7 @@ bool Clipmap::debugView(const DebugViewDesc& d, std::string* error) {
     s.label = "vct debug view";
     s.bindings.constants.push(rhi::constants(0, c));
     traceBindings(s.bindings);
-    rhi::StorageImageBinding o;
-    o.slot = 0;
-    o.view = rhi::textureMip(d.output, 0);
-    o.access = rhi::Access::Write;
-    s.bindings.storageImages.push(o);
+    s.bindings.storageImages.push(rhi::storageImage(0, d.output, rhi::Access::Write));
     return device_.dispatch(s, (out->width + 7) / 8, (out->height + 7) / 8, 1);
 }
 

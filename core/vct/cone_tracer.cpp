@@ -194,11 +194,7 @@ bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
         bindings.readBuffers.push(rhi::ReadBufferBinding{6, params_, {}});
     };
     auto image = [](rhi::Bindings& bindings, uint8_t slot, rhi::TextureHandle t) {
-        rhi::StorageImageBinding i;
-        i.slot = slot;
-        i.view = rhi::textureMip(t, 0);
-        i.access = rhi::Access::Write;
-        bindings.storageImages.push(i);
+        bindings.storageImages.push(rhi::storageImage(slot, t, rhi::Access::Write));
     };
     device_.beginMarker("vct diffuse");
     rhi::DispatchState trace;

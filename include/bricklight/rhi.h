@@ -526,6 +526,14 @@ inline TextureView textureMip(TextureHandle t, uint8_t mip) {
     v.mipCount = 1;
     return v;
 }
+// A storage image binding of one mip of a texture.
+inline StorageImageBinding storageImage(uint8_t slot, TextureHandle t, Access access, uint8_t mip = 0) {
+    StorageImageBinding b;
+    b.slot = slot;
+    b.view = textureMip(t, mip);
+    b.access = access;
+    return b;
+}
 template <typename T>
 ConstantsBinding constants(uint8_t slot, const T& value) {
     static_assert(sizeof(T) <= kMaxConstantsBytes, "constants larger than kMaxConstantsBytes");

@@ -44,13 +44,6 @@ std::string refusal(TestDevice& td, sdf::SdfScene& scene, gi::ContextDesc cd) {
     return error;
 }
 
-void frames(TestDevice& td, render::RasterRenderer& r, uint32_t n) {
-    for (uint32_t f = 0; f < n; ++f) {
-        r.render();
-        td.device->endFrame();
-    }
-}
-
 // Renders n frames and returns the mean of the last `averaged` frames' image of `aov`. The GI's passes race
 // where threads blend into the same cache texel (last writer wins), so one frame's image carries noise that
 // depends on the driver's thread schedule; a mean over frames measures the light the GI converged to.
@@ -65,18 +58,6 @@ render::Image averagedFrames(TestDevice& td, render::RasterRenderer& r, uint32_t
         for (size_t i = 0; i < img.rgb.size(); ++i) sum.rgb[i] += img.rgb[i] / float(averaged);
     }
     return sum;
-}
-
-double mean(const render::Image& img) {
-    double s = 0.0;
-    for (float v : img.rgb) s += v;
-    return s / double(img.rgb.size());
-}
-
-bool allFinite(const std::vector<float>& v) {
-    for (float x : v)
-        if (!std::isfinite(x)) return false;
-    return true;
 }
 
 void cornellAgainstReference(const std::string& backend) {
@@ -105,7 +86,7 @@ void cornellAgainstReference(const std::string& backend) {
     CHECK(c.relMse < 0.03);
     CHECK(c.ssim > 0.8);
     // GI adds light: the composite is brighter than direct light alone.
-    CHECK(mean(gi->read(render::Aov::Combined)) > 1.1 * mean(gi->read(render::Aov::Direct)));
+    CHECK(imageMean(gi->read(render::Aov::Combined)) > 1.1 * imageMean(gi->read(render::Aov::Direct)));
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -135,7 +116,7 @@ void cornellSingleBounceAgainstReference(const std::string& backend) {
     CHECK(m.meanA > 0.75 * m.meanB);
     CHECK(m.meanA < 1.1 * m.meanB);
     // Fed direct light only, GI still adds light to the composite.
-    CHECK(mean(gi->read(render::Aov::Combined)) > 1.1 * mean(gi->read(render::Aov::Direct)));
+    CHECK(imageMean(gi->read(render::Aov::Combined)) > 1.1 * imageMean(gi->read(render::Aov::Direct)));
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -180,8 +161,8 @@ void glossyFloorAgainstReference(const std::string& backend) {
     INFO("floor relMSE " << f.relMse << " SSIM " << f.ssim << " mean " << f.meanA << " vs " << f.meanB);
     // What GI adds on the floor (combined - direct; a metal has no diffuse term, so this is the specular
     // GI), against what the path tracer's indirect light adds there.
-    const double giAdds = f.meanA - mean(lowerThird(gi->read(render::Aov::Direct)));
-    const double referenceAdds = f.meanB - mean(lowerThird(reference->read(render::Aov::Direct)));
+    const double giAdds = f.meanA - imageMean(lowerThird(gi->read(render::Aov::Direct)));
+    const double referenceAdds = f.meanB - imageMean(lowerThird(reference->read(render::Aov::Direct)));
     INFO("on the floor GI adds " << giAdds << ", the path tracer's indirect light " << referenceAdds);
     CHECK(c.relMse < 0.05);
     CHECK(c.ssim > 0.65);
@@ -206,8 +187,8 @@ void noFlickerWhenConverged(const std::string& backend) {
     double change = 0.0;
     for (size_t i = 0; i < a.rgb.size(); ++i) change += std::fabs(double(a.rgb[i]) - b.rgb[i]);
     change /= double(a.rgb.size());
-    INFO("mean change " << change << " mean " << mean(a));
-    CHECK(change < 0.02 * mean(a));
+    INFO("mean change " << change << " mean " << imageMean(a));
+    CHECK(change < 0.02 * imageMean(a));
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -221,13 +202,13 @@ void noLeakThroughWall(const std::string& backend) {
     scenes::SceneGeometry rooms = scenes::twoRooms(0.25f);
     auto dark = giRenderer(td, rooms);
     frames(td, *dark, 40);
-    const double leak = mean(dark->read(render::Aov::IndirectDiffuse));
+    const double leak = imageMean(dark->read(render::Aov::IndirectDiffuse));
     scenes::SceneGeometry lit = rooms;
     lit.camera.eye = glm::vec3(0.5f, 1.6f, 2.0f);
     lit.camera.at = glm::vec3(4.0f, 1.0f, 2.0f);
     auto bright = giRenderer(td, lit);
     frames(td, *bright, 40);
-    const double light = mean(bright->read(render::Aov::IndirectDiffuse));
+    const double light = imageMean(bright->read(render::Aov::IndirectDiffuse));
     INFO("room B " << leak << " room A " << light);
     CHECK(light > 0.0);
     CHECK(leak < 0.01 * light);
@@ -381,7 +362,7 @@ void fullCacheDegradesGracefully(const std::string& backend) {
     CHECK(r->giContext()->radianceCacheBricksInUse() == 32);
     const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
     CHECK(allFinite(indirect.rgb));
-    CHECK(mean(indirect) > 0.0);
+    CHECK(imageMean(indirect) > 0.0);
     auto full = giRenderer(td, scenes::cornellBox(), 32);
     frames(td, *full, 16);
     const uint32_t used = full->giContext()->radianceCacheBricksInUse();
@@ -485,14 +466,14 @@ void openFurnace(const std::string& backend) {
     // [0.9, 1.1].
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    const double giMean = mean(furnaceGi(td, scenes::cornellBox()));
+    const double giMean = imageMean(furnaceGi(td, scenes::cornellBox()));
     scenes::SceneGeometry white = scenes::cornellBox();
     for (auto& m : white.meshes) {
         m.albedo = glm::vec3(1.0f);
         m.emission = glm::vec3(0.0f);
     }
     white.environment.skyRadiance = glm::vec3(1.0f);
-    const double reference = mean(traced(td, white, 32, 256)->read(render::Aov::IndirectDiffuse));
+    const double reference = imageMean(traced(td, white, 32, 256)->read(render::Aov::IndirectDiffuse));
     INFO("GI " << giMean << " path tracer " << reference);
     CHECK(giMean > 0.9 * reference);
     CHECK(giMean < 1.1 * reference);
@@ -506,7 +487,7 @@ void furnace(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const render::Image indirect = furnaceGi(td, scenes::twoRooms(0.25f));
-    const double m = mean(indirect);
+    const double m = imageMean(indirect);
     size_t off = 0;
     for (float v : indirect.rgb) off += std::fabs(v - 1.0f) > 0.15f;
     INFO("mean " << m << ", " << off << " of " << indirect.rgb.size() << " values off by > 15 %");
@@ -563,7 +544,7 @@ void nanDoesNotPoisonCaches(const std::string& backend) {
     CHECK(allFinite(sh));
     const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
     CHECK(allFinite(indirect.rgb));
-    CHECK(mean(indirect) > 0.0);
+    CHECK(imageMean(indirect) > 0.0);
 }
 
 // A closed room lit only by a spot light aimed at its +z end, behind the camera, which looks at the -z end
@@ -594,18 +575,18 @@ OffscreenLightRun offscreenLightRun(TestDevice& td, bool relight) {
     r->cameraCut();
     frames(td, *r, 32);
     OffscreenLightRun run;
-    run.lit = mean(r->read(render::Aov::IndirectDiffuse));
+    run.lit = imageMean(r->read(render::Aov::IndirectDiffuse));
     const render::Image directLit = r->read(render::Aov::Direct);
     room.pointLights[0].intensity = glm::vec3(0.0f);
     REQUIRE(r->setScene(room, &error));
     frames(td, *r, 40);
-    run.off = mean(r->read(render::Aov::IndirectDiffuse));
+    run.off = imageMean(r->read(render::Aov::IndirectDiffuse));
     // The light never reaches the screen directly: what GI shows is all it knows from off screen.
-    CHECK(mean(directLit) < 1e-3 * run.lit);
+    CHECK(imageMean(directLit) < 1e-3 * run.lit);
     room.pointLights[0].intensity = glm::vec3(40.0f);
     REQUIRE(r->setScene(room, &error));
     frames(td, *r, 40);
-    run.back = mean(r->read(render::Aov::IndirectDiffuse));
+    run.back = imageMean(r->read(render::Aov::IndirectDiffuse));
     return run;
 }
 

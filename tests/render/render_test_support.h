@@ -3,6 +3,7 @@
 // the rasterizer samples).
 #pragma once
 
+#include <cmath>
 #include <memory>
 
 #include "backend_test.h"
@@ -51,6 +52,27 @@ inline std::unique_ptr<render::PathTracer> traced(TestDevice& td, const scenes::
     REQUIRE(pt);
     pt->addSamples(spp);
     return pt;
+}
+
+// n frames of the fast path, each ended on the device.
+inline void frames(TestDevice& td, render::RasterRenderer& r, uint32_t n) {
+    for (uint32_t f = 0; f < n; ++f) {
+        r.render();
+        td.device->endFrame();
+    }
+}
+
+// The mean of every channel of every pixel.
+inline double imageMean(const render::Image& img) {
+    double s = 0.0;
+    for (float v : img.rgb) s += v;
+    return img.rgb.empty() ? 0.0 : s / double(img.rgb.size());
+}
+
+inline bool allFinite(const std::vector<float>& v) {
+    for (float x : v)
+        if (!std::isfinite(x)) return false;
+    return true;
 }
 
 // GI's inputs from the renderer's G-buffer (the renderer's own GI takes the same), into the given outputs.

@@ -33,25 +33,6 @@ std::unique_ptr<render::RasterRenderer> vctRenderer(TestDevice& td, const scenes
     return r;
 }
 
-void frames(TestDevice& td, render::RasterRenderer& r, uint32_t n) {
-    for (uint32_t f = 0; f < n; ++f) {
-        r.render();
-        td.device->endFrame();
-    }
-}
-
-double mean(const render::Image& img) {
-    double s = 0.0;
-    for (float v : img.rgb) s += v;
-    return s / double(img.rgb.size());
-}
-
-bool allFinite(const std::vector<float>& v) {
-    for (float x : v)
-        if (!std::isfinite(x)) return false;
-    return true;
-}
-
 void cornellAgainstReference(const std::string& backend) {
     // 32 frames (bounces accumulate one per frame through blVoxelIndirect) against 512 spp of the path tracer,
     // 128². Measured (lavapipe): indirect relMSE 0.048, SSIM 0.66, mean 0.0276 vs 0.0478 (58 %; the SDF GI
@@ -123,7 +104,7 @@ void glossyFloor(const std::string& backend) {
         return out;
     };
     const render::ImageMetrics f = render::compareImages(lowerThird(combined), lowerThird(refCombined));
-    const double direct = mean(lowerThird(vct->read(render::Aov::Direct)));
+    const double direct = imageMean(lowerThird(vct->read(render::Aov::Direct)));
     INFO("combined relMSE " << c.relMse << " SSIM " << c.ssim << " mean " << c.meanA << " vs " << c.meanB << "; floor relMSE " << f.relMse
                             << " mean " << f.meanA << " vs " << f.meanB << " (direct alone " << direct << ")");
     CHECK(c.relMse < 0.05);
@@ -147,13 +128,13 @@ void leakThroughWall(TestDevice& td, float voxels, double ratio[2]) {
     lit.camera.at = glm::vec3(4.0f, 1.0f, 2.0f);
     auto bright = vctRenderer(td, lit, o);
     frames(td, *bright, 12);
-    const double light = mean(bright->read(render::Aov::IndirectDiffuse));
+    const double light = imageMean(bright->read(render::Aov::IndirectDiffuse));
     REQUIRE(light > 0.0);
     for (uint32_t i = 0; i < 2; ++i) {
         o.vctTrace.lightLeakLag = 2 * i;  // 0 and 2 (VXGI 1.0's)
         auto dark = vctRenderer(td, rooms, o);
         frames(td, *dark, 12);
-        ratio[i] = mean(dark->read(render::Aov::IndirectDiffuse)) / light;
+        ratio[i] = imageMean(dark->read(render::Aov::IndirectDiffuse)) / light;
     }
 }
 
@@ -215,7 +196,7 @@ void aoAgainstReference(const std::string& backend) {
     CHECK(m.meanA > 0.8 * m.meanB);
     CHECK(m.meanA < 1.1 * m.meanB);
     // Without GI the composite is the direct light: voxel AO does not change the image.
-    CHECK(mean(ao->read(render::Aov::IndirectDiffuse)) < 1e-6);
+    CHECK(imageMean(ao->read(render::Aov::IndirectDiffuse)) < 1e-6);
     REQUIRE_NO_MESSAGES(td);
 }
 
