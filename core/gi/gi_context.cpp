@@ -95,6 +95,7 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     shaders_.spawn = shader("gi/spawn_probes.comp");
     shaders_.reprojectProbes = shader("gi/reproject_probes.comp");
     shaders_.fill = shader("gi/fill_probes.comp");
+    shaders_.fillVct = shader("gi/fill_probes_vct.comp");
     shaders_.pretrace = shader("gi/specular_pretrace.comp");
     shaders_.relight = shader("gi/relight_cache.comp");
     shaders_.reprojectGi = shader("gi/reproject_gi.comp");
@@ -200,7 +201,7 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     environment_ = device_.createSampler(sd);
 
     const Shaders& s = shaders_;
-    for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
+    for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill, s.fillVct,
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
@@ -215,7 +216,7 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
 
 GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
-    for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill,
+    for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill, s.fillVct,
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,

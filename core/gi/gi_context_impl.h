@@ -92,7 +92,7 @@ private:
     uint32_t cacheDepth_ = 0;  // radiance cache image depth (texels); the image is 256 × 256 × cacheDepth_
 
     struct Shaders {
-        rhi::ShaderHandle downsample, clearFreed, inject, propagate, spawn, reprojectProbes, fill, pretrace,
+        rhi::ShaderHandle downsample, clearFreed, inject, propagate, spawn, reprojectProbes, fill, fillVct, pretrace,
             relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug, cameraCheck;
     } shaders_;
 

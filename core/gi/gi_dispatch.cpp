@@ -12,6 +12,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "bricklight/vct.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi::detail {
@@ -268,8 +269,9 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
         addEnvironment(s.bindings, d);
+        if (d.unseenLight) d.unseenLight->traceBindings(s.bindings, 0, 1);  // fill_probes_body.glsl's slots
         const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
-        run("fill probes", shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
+        run("fill probes", d.unseenLight ? shaders_.fillVct : shaders_.fill, s, std::min(fillGroups, kMaxGroups), groups(fillGroups, kMaxGroups));
     }
     // 8b. the world cache at each probe (for the projection's blend)
     runOverProbes("probe world cache", shaders_.probeWorld, probeInfo_[cur], brickSH_, probeWorldSH_, Access::Write);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "bricklight/vct.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi::detail {
@@ -90,6 +91,8 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
             if (in && in == out)
                 return fail(ErrorCode::Aliasing, std::string("dispatch: texture '") + device_.describe(in)->debugName + "' is bound as output '" +
                                                      outName + "' and as input '" + inName + "'");
+    if (d.unseenLight && d.unseenLight->desc().emittance == vct::EmittanceMode::None)
+        return fail(ErrorCode::InvalidArgument, "dispatch: unseenLight is a clip-map without emittance (EmittanceMode::None): it holds no light");
     if (d.environmentKind != EnvironmentKind::None) {
         if (!d.environmentMap) return fail(ErrorCode::MissingInput, "dispatch: environmentKind is set but environmentMap is missing");
         const rhi::TextureDesc* td = device_.describe(d.environmentMap);

@@ -28,6 +28,7 @@ bool checkConeTraceParams(const ConeTraceParams& p, std::string* error) {
     if (!(p.ambientRange >= 0.0f) || !std::isfinite(p.ambientRange)) return fail("ambientRange must be finite and ≥ 0");
     if (!within(p.temporalWeight, 0.0f, 0.98f)) return fail("temporalWeight " + std::to_string(p.temporalWeight) + " is outside 0..0.98");
     if (!within(p.maxSpecularRoughness, 0.0f, 1.0f)) return fail("maxSpecularRoughness is outside 0..1");
+    if (!within(p.specularJitter, 0.0f, 1.0f)) return fail("specularJitter " + std::to_string(p.specularJitter) + " is outside 0..1");
     return true;
 }
 
@@ -40,8 +41,9 @@ struct TraceParamsBlock {
     glm::uvec4 size, lowSize;
     glm::vec4 normalUnpackScale, normalUnpackOffset, cone, limits;
     glm::uvec4 sparseOffset;
+    glm::vec4 specular;
 };
-static_assert(sizeof(TraceParamsBlock) == 256);
+static_assert(sizeof(TraceParamsBlock) == 272);
 
 rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
     rhi::ShaderDesc sd;
@@ -78,6 +80,8 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     t->traceDiffuse_ = makeShader(device, "vct/trace_diffuse.comp");
     t->resolveDiffuse_ = makeShader(device, "vct/resolve_diffuse.comp");
     t->traceSpecular_ = makeShader(device, "vct/trace_specular.comp");
+    t->traceDiffuseSdf_ = makeShader(device, "vct/trace_diffuse_sdf.comp");
+    t->traceSpecularSdf_ = makeShader(device, "vct/trace_specular_sdf.comp");
     const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
                                {"vct specular history 0", "vct specular history 1"},
                                {"vct guide 0", "vct guide 1"}};
@@ -95,7 +99,8 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
     sd.debugName = "vct point";
     t->point_ = device.createSampler(sd);
-    bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->params_ && t->point_;
+    bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->params_ &&
+              t->point_;
     for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
     if (!ok) return fail("the device could not create the tracing passes or their history");
     rhi::ClearValue none{};
@@ -107,8 +112,11 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
 ConeTracer::~ConeTracer() {
     for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1], guide_[0], guide_[1]})
         if (t) device_.destroy(t);
-    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_})
+    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_})
         if (s) device_.destroy(s);
+    for (rhi::ShaderHandle s : {coneSamples_, coneSamplesSdf_, coneSamplesView_})
+        if (s) device_.destroy(s);
+    if (coneSampleRecord_) device_.destroy(coneSampleRecord_);
     if (params_) device_.destroy(params_);
     if (point_) device_.destroy(point_);
 }
@@ -183,24 +191,20 @@ bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
     std::memcpy(&stepBits, &p.specularTracingStep, 4);
     std::memcpy(&rotationBits, &rotation, 4);
     b.sparseOffset = glm::uvec4(phase % s, phase / s, stepBits, rotationBits);
+    b.specular = glm::vec4(p.specularJitter, float(frame_ % 4096u), 0.0f, 0.0f);
     device_.writeBuffer(params_, 0, &b, sizeof(b));
 
     const uint32_t cur = frame_ & 1u, prev = cur ^ 1u;
-    auto common = [&](rhi::Bindings& bindings) {
-        uint8_t slot = 0;
-        for (rhi::TextureHandle t : {d.depth, d.normals, d.roughness, d.motionVectors ? d.motionVectors : d.depth})
-            bindings.textures.push(rhi::TextureBinding{slot++, rhi::wholeTexture(t), point_});
-        clipmap_.traceBindings(bindings, 8, 7);
-        bindings.readBuffers.push(rhi::ReadBufferBinding{6, params_, {}});
-    };
+    auto common = [&](rhi::Bindings& bindings) { bindCommon(bindings, d); };
     auto image = [](rhi::Bindings& bindings, uint8_t slot, rhi::TextureHandle t) {
         bindings.storageImages.push(rhi::storageImage(slot, t, rhi::Access::Write));
     };
     device_.beginMarker("vct diffuse");
     rhi::DispatchState trace;
-    trace.shader = traceDiffuse_;
+    trace.shader = d.occlusionField ? traceDiffuseSdf_ : traceDiffuse_;
     trace.label = "vct trace diffuse";
     common(trace.bindings);
+    bindField(trace.bindings, d);
     image(trace.bindings, 0, lowDiffuse_);
     image(trace.bindings, 1, lowGuide_);
     device_.dispatch(trace, (lowW + 7) / 8, (lowH + 7) / 8, 1);
@@ -222,9 +226,10 @@ bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
     if (d.outputSpecular) {
         device_.beginMarker("vct specular");
         rhi::DispatchState spec;
-        spec.shader = traceSpecular_;
+        spec.shader = d.occlusionField ? traceSpecularSdf_ : traceSpecular_;
         spec.label = "vct trace specular";
         common(spec.bindings);
+        bindField(spec.bindings, d);
         spec.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(specularHistory_[prev]), point_});
         spec.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
         image(spec.bindings, 0, d.outputSpecular);
@@ -233,7 +238,21 @@ bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
         device_.endMarker();
     }
     ++frame_;
+    latest_ = d;
     return true;
+}
+
+void ConeTracer::bindField(rhi::Bindings& bindings, const TraceDesc& d) const {
+    // The field's atlas after the clip-map's textures (8..14), its buffers before the parameters (6) and frame (7).
+    if (d.occlusionField) d.occlusionField->traceBindings(bindings, sdf::TraceSlots{15, 0});
+}
+
+void ConeTracer::bindCommon(rhi::Bindings& bindings, const TraceDesc& d) const {
+    uint8_t slot = 0;
+    for (rhi::TextureHandle t : {d.depth, d.normals, d.roughness, d.motionVectors ? d.motionVectors : d.depth})
+        bindings.textures.push(rhi::TextureBinding{slot++, rhi::wholeTexture(t), point_});
+    clipmap_.traceBindings(bindings, 8, 7);
+    bindings.readBuffers.push(rhi::ReadBufferBinding{6, params_, {}});
 }
 
 MemoryUse ConeTracer::memoryUse() const {

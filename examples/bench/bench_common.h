@@ -32,6 +32,7 @@ struct Options {
     uint32_t vctResolution = 128, vctLevels = 5;  // vct: the clip-map
     std::string vctEmittance = "aniso";           // vct: aniso, iso or none
     uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
+    bool vctSdfOcclusion = false;                 // vct: cones stop at the distance field's surfaces
 };
 
 // Sums of GPU milliseconds per marker label over the frames of one phase.

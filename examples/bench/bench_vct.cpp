@@ -152,6 +152,7 @@ int runVct(const Options& o) {
             t.outputDiffuse = diffuse;
             t.outputSpecular = mode == vct::EmittanceMode::None ? rhi::TextureHandle{} : specular;
             t.params = params;
+            t.occlusionField = o.vctSdfOcclusion ? scene.get() : nullptr;
             if (!tracer->dispatch(t, &error)) {
                 std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
                 std::exit(1);
@@ -179,10 +180,10 @@ int runVct(const Options& o) {
     };
 
     std::printf("scene %s: %llu triangles; %s on %s; %ux%u; clip-map %u^3 x %u levels, finest voxel %.4g, emittance %s; %u diffuse "
-                "cones, sparsity %u\n",
+                "cones, sparsity %u, occlusion %s\n",
                 geometry.name.c_str(), (unsigned long long)geometry.triangleCount(), o.backend.c_str(), device->capabilities().deviceName.c_str(),
                 o.width, o.height, o.vctResolution, o.vctLevels, 2.0f * size / float(o.vctResolution * (1u << (o.vctLevels - 1))),
-                o.vctEmittance.c_str(), o.vctCones, o.vctSparsity);
+                o.vctEmittance.c_str(), o.vctCones, o.vctSparsity, o.vctSdfOcclusion ? "sdf" : "voxels");
     PhaseTimes gi, ao;
     vct::MemoryUse giMemory, aoMemory;
     uint64_t giVoxels = 0, aoVoxels = 0;

@@ -51,7 +51,8 @@ namespace {
                  "                             may overlap as they do untimed; default passes)\n"
                  "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
-                 "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n");
+                 "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
+                 "                            [--occlusion voxels|sdf]\n");
     std::exit(2);
 }
 
@@ -118,6 +119,11 @@ Options parse(int argc, char** argv) {
             if (o.vctEmittance != "aniso" && o.vctEmittance != "iso" && o.vctEmittance != "none") usage("--emittance must be aniso, iso or none");
         } else if (a == "--cones") o.vctCones = number(value(), "--cones", 1, 32);
         else if (a == "--sparsity") o.vctSparsity = number(value(), "--sparsity", 1, 4);
+        else if (a == "--occlusion") {
+            const std::string v = value();
+            if (v != "voxels" && v != "sdf") usage("--occlusion must be voxels or sdf");
+            o.vctSdfOcclusion = v == "sdf";
+        }
         else usage("unknown option '" + a + "'");
     }
     if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl");

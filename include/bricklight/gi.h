@@ -15,6 +15,10 @@
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
+namespace bricklight::vct {
+class Clipmap;
+}
+
 namespace bricklight::gi {
 
 // The scale at which GI is computed; the outputs are upsampled to the display size.
@@ -160,6 +164,11 @@ struct DispatchDesc {
 
     rhi::TextureHandle outputDiffuse;     // RGBA16_FLOAT, display size, Storage usage
     rhi::TextureHandle outputSpecular;    // RGBA16_FLOAT, display size, Storage usage (may be null with NoSpecular)
+
+    // Optional: a voxel clip-map of the same scene with emittance (vct.h), voxelized this frame from the app's
+    // draws. Probe rays that hit a surface no view has lit yet (no radiance cached) take the light its voxels hold
+    // instead of their neighbours' as a stand-in. Bound at texture slots 0..6 and read buffer 1 of the probe pass.
+    const vct::Clipmap* unseenLight = nullptr;
 };
 
 enum class DebugMode : uint32_t {

@@ -1,9 +1,10 @@
-// Bricklight voxel cone tracing (VXGI-class) — in progress. So far the clip-map: a stack of levels of equal
-// resolution, each twice the voxel size of the one below, centred on an anchor the application moves,
-// addressed toroidally so that moving the anchor revoxelizes only the slabs that entered; its volumes on the
-// device; and voxelization of opacity and emittance through the application's own draws (a DrawCallState with
-// our geometry and fragment shaders, to which the application adds its vertex shader and meshes), with the
-// coarser levels' inner parts downsampled from the finer ones. Cone tracing comes next (docs/vct.md).
+// Bricklight voxel cone tracing (VXGI-class): the clip-map — a stack of levels of equal resolution, each twice
+// the voxel size of the one below, centred on an anchor the application moves, addressed toroidally so that
+// moving the anchor revoxelizes only the slabs that entered; voxelization of opacity and emittance through the
+// application's own draws (a DrawCallState with our geometry and fragment shaders, to which the application
+// adds its vertex shader and meshes), the coarser levels' inner parts downsampled from the finer ones; and
+// cone tracing of diffuse, specular and ambient light from a G-buffer (ConeTracer) or from the application's
+// shaders (bricklight/cone_trace.glsl). docs/vct.md.
 #pragma once
 
 #include <algorithm>
@@ -272,6 +273,9 @@ struct ConeTraceParams {
     float ambientRange = 0.0f;      // world units: ambient = transmittance at this distance; 0: 8 finest voxels
     float temporalWeight = 0.85f;   // 0..0.98: the reprojected history's share (0: off)
     float maxSpecularRoughness = 0.75f;  // roughness is clamped to this for the specular cone's width
+    // 0..1: the specular cone narrows by half this and its axis wanders over the wide cone's width from frame to
+    // frame (tangent jitter; the temporal blend averages it). 0: off.
+    float specularJitter = 1.0f;
 };
 // False with *error naming the field for parameters no trace can use.
 bool checkConeTraceParams(const ConeTraceParams& params, std::string* error);
@@ -290,6 +294,25 @@ struct TraceDesc {
     rhi::TextureHandle outputDiffuse, outputSpecular;
     ConeTraceParams params;
     bool resetHistory = false;  // a camera cut: forget the reprojected history
+    // Optional: a distance field of the same scene. Each cone then traces one ray along its axis through the
+    // field (exact distances) and stops where that ray meets a surface: samples more than half their width past
+    // it add nothing. That keeps cones from leaking through walls thinner than the coarse voxels they sample,
+    // and costs a wide cone the light an object on its axis does not hide. Where the field has no answer
+    // (outside its cascades, out of iterations) the cone goes on as without it. The field must be updated.
+    const sdf::SdfScene* occlusionField = nullptr;
+};
+
+// One sample of a recorded cone (ConeTracer::debugConeSamples).
+constexpr uint32_t kSpecularCone = 32;      // ConeSample::cone of the specular cone (diffuse cones: 0..31)
+constexpr uint32_t kSurfaceSample = 255;    // ConeSample::level of the surface read where the distance field stopped the cone
+constexpr uint32_t kMaxConeSamples = 64;    // samples recorded per cone (a longer cone's are cut)
+struct ConeSample {
+    glm::vec3 position{0.0f};    // world
+    float diameter = 0.0f;       // world
+    glm::vec3 light{0.0f};       // the radiance the sample added to its cone
+    float transmittance = 1.0f;  // the cone's before the sample
+    uint32_t level = 0;          // the finer of the two levels sampled, or kSurfaceSample
+    uint32_t cone = 0;
 };
 
 // The tracing passes: sparse diffuse cones + geometry-aware upsample with refinement + temporal reprojection
@@ -306,6 +329,14 @@ public:
     ConeTracer& operator=(const ConeTracer&) = delete;
     // Records the passes; false with *error (recording nothing) for missing or mis-sized inputs or bad parameters.
     bool dispatch(const TraceDesc& desc, std::string* error);
+    // Debug: records the cones of pixel (x, y) as the latest dispatch() traced them (its diffuse cones of that
+    // frame's turn, and its specular cone when it had a specular output) and draws their samples over the view —
+    // spheres of each sample's width coloured by cone, darker by transmittance, the surface reads yellow, the pixel
+    // marked — into `output` (RGBA8_UNORM, Storage, the tracer's size). The latest dispatch's inputs must still be
+    // live. False with *error, recording nothing, before any dispatch or for a bad pixel or output.
+    bool debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, std::string* error);
+    // The samples debugConeSamples recorded last, cone by cone (waits for the GPU; tests and tools).
+    std::vector<ConeSample> readConeSamples();
     MemoryUse memoryUse() const;
 
 private:
@@ -315,11 +346,17 @@ private:
     uint32_t width_ = 0, height_ = 0, frame_ = 0;
     uint32_t sparsity_ = 0;  // of the low-resolution textures as created
     rhi::ShaderHandle traceDiffuse_, resolveDiffuse_, traceSpecular_;
+    rhi::ShaderHandle traceDiffuseSdf_, traceSpecularSdf_;  // the variants for TraceDesc::occlusionField
     rhi::TextureHandle lowDiffuse_, lowGuide_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], guide_[2];
     rhi::BufferHandle params_;
     rhi::SamplerHandle point_;
+    std::optional<TraceDesc> latest_;  // the latest dispatch's description (debugConeSamples)
+    rhi::ShaderHandle coneSamples_, coneSamplesSdf_, coneSamplesView_;  // cone_samples.cpp, created at first use
+    rhi::BufferHandle coneSampleRecord_;
     bool bindLowResolution(uint32_t sparsity, std::string* error);
+    void bindCommon(rhi::Bindings& bindings, const TraceDesc& desc) const;  // the G-buffer, the clip-map, the parameters
+    void bindField(rhi::Bindings& bindings, const TraceDesc& desc) const;   // the occlusion field, if any
 };
 
 }  // namespace bricklight::vct

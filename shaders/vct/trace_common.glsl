@@ -3,6 +3,10 @@
 // docs/notes/soak.md), the G-buffer, the guide (world position and normal per pixel), the cones of a pixel.
 #include "bricklight/bindings.glsl"
 #include "bricklight/cone_trace.glsl"
+#ifdef VCT_SDF_OCCLUSION  // the *_sdf.comp variants: cones stop where a ray through the distance field meets a surface
+#define BL_SDF_READ_BUFFER_BASE 0  // 0..3 (6 and 7 are the parameters and the clip-map's frame); atlas at 15
+#include "bricklight/trace.glsl"
+#endif
 
 BL_READ_BUFFER(6) TraceParams {
     mat4 inverseViewProjection;
@@ -16,6 +20,7 @@ BL_READ_BUFFER(6) TraceParams {
     vec4 limits;              // x max distance (world), y ambient range (world), z temporal weight, w light-leak lag
     uvec4 sparseOffset;       // xy: the pixel of each block traced this frame; z: the specular tracing step (float bits);
                               // w: this frame's turn of the diffuse cones (float bits, radians)
+    vec4 specular;            // x: tangent jitter (0..1 of the cone's half width), y: the frame (float)
 } trace;
 
 BL_TEXTURE(0) uniform sampler2D gDepth;
@@ -71,29 +76,75 @@ BlCone coneAt(vec3 position, vec3 normal, vec3 direction, float coneFactor) {
     c.maxDistance = occlusionOnly ? (trace.limits.x > 0.0 ? min(trace.limits.x, trace.limits.y) : trace.limits.y) : trace.limits.x;
     c.ambientRange = trace.limits.y;
     c.lightLeakLag = uint(trace.limits.w);
+#ifdef VCT_SDF_OCCLUSION
+    // As far as the cone may go (the coarsest level's half width when unbounded).
+    float reach = c.maxDistance > 0.0 ? c.maxDistance : 0.5 * blVctFrame.scales.x * float(blVctFrame.params.x << (blVctFrame.params.y - 1u));
+    BlSdfRay ray = blSdfMakeRay(c.origin, direction, 0.0, reach);
+    // Traced as a cone, as the SDF GI traces its probe rays: coarser cascades once the cone outgrows the voxel (never
+    // sooner than 4 voxels), and a bounded budget per cascade (a ray that runs out goes on in the next; one that
+    // runs out in the last gives no stop, and the voxels alone decide).
+    ray.coarsenAfterVoxels = max(4.0, 1.0 / max(coneFactor, 1.0e-3));
+    ray.maxIterations = 32u;
+    BlSdfHit hit = blSdfTrace(ray);
+    c.surfaceDistance = hit.hit ? max(hit.t, 1.0e-6) : 0.0;
+#endif
     return c;
 }
 
-// Diffuse light at a surface: `cones` cones spread cosine-weighted over the hemisphere (a Fibonacci spiral,
-// turned by `rotation` radians: the same for every pixel of a frame, so that neighbouring pixels' cones take the
-// same faces and branches; another each frame for the temporal blend), so the mean of their radiance is
-// irradiance / π. w: the mean transmittance
-// at the ambient range (ambient occlusion).
-vec4 diffuseAt(vec3 position, vec3 normal, float rotation) {
+// Diffuse cone k of `cones` at a surface: spread cosine-weighted over the hemisphere (a Fibonacci spiral, turned by
+// `rotation` radians: the same for every pixel of a frame, so that neighbouring pixels' cones take the same faces
+// and branches; another each frame for the temporal blend), so that the mean of the cones' radiance is irradiance / π.
+BlCone diffuseCone(uint k, uint cones, vec3 position, vec3 normal, float rotation) {
     vec3 helper = abs(normal.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
     vec3 tangent = normalize(cross(helper, normal));
     vec3 bitangent = cross(normal, tangent);
-    uint cones = clamp(trace.lowSize.z, 1u, 32u);
+    float u = (float(k) + 0.5) / float(cones);
+    float radius = sqrt(u);
+    float phi = float(k) * 2.39996323 + rotation;
+    vec3 d = normalize(radius * cos(phi) * tangent + radius * sin(phi) * bitangent + sqrt(max(1.0 - u, 0.0)) * normal);
+    return coneAt(position, normal, d, trace.cone.x);
+}
+
+uint diffuseConeCount() { return clamp(trace.lowSize.z, 1u, 32u); }
+
+// Diffuse light at a surface: rgb irradiance / π, w the mean transmittance at the ambient range (ambient occlusion).
+vec4 diffuseAt(vec3 position, vec3 normal, float rotation) {
+    uint cones = diffuseConeCount();
     vec4 sum = vec4(0.0);
     for (uint k = 0u; k < cones; ++k) {
-        float u = (float(k) + 0.5) / float(cones);
-        float radius = sqrt(u);
-        float phi = float(k) * 2.39996323 + rotation;
-        vec3 d = normalize(radius * cos(phi) * tangent + radius * sin(phi) * bitangent + sqrt(max(1.0 - u, 0.0)) * normal);
-        BlConeResult r = blTraceCone(coneAt(position, normal, d, trace.cone.x));
+        BlConeResult r = blTraceCone(diffuseCone(k, cones, position, normal, rotation));
         sum += vec4(r.radiance, r.ambient);
     }
     return sum / float(cones);
+}
+
+// The specular cone of a pixel: along the mirror direction, as wide as the roughness says (VXGI 1.0: coneFactor =
+// roughness² · √π, roughness clamped to the largest a cone takes).
+BlCone specularCone(ivec2 pixel, vec3 position, vec3 normal) {
+    vec4 r4 = texelFetch(gRoughness, pixel, 0);
+    uint channel = uint(trace.normalUnpackScale.w);
+    float roughness = clamp(channel == 0u ? r4.x : (channel == 1u ? r4.y : (channel == 2u ? r4.z : r4.w)), 0.0, trace.normalUnpackOffset.w);
+    vec3 view = normalize(trace.eye.xyz - position);
+    vec3 direction = reflect(-view, normal);
+    float coneFactor = max(roughness * roughness * 1.7724539, 0.01);
+    // Tangent jitter (VXGI's): a narrower cone whose axis wanders over the wide one's width, a new point per frame
+    // and pixel; the temporal blend averages them into the wide cone's light with the narrow one's detail.
+    float jitter = clamp(trace.specular.x, 0.0, 1.0);
+    uint h = uint(pixel.x) * 73856093u ^ uint(pixel.y) * 19349663u;
+    h = (h ^ (h >> 16)) * 0x45d9f3bu;
+    float u1 = fract(float(h & 0xFFFFu) / 65536.0 + trace.specular.y * 0.61803399);
+    float u2 = fract(float(h >> 16) / 65536.0 + trace.specular.y * 0.75487767);
+    vec3 helper = abs(direction.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+    vec3 tangent = normalize(cross(helper, direction));
+    vec3 bitangent = cross(direction, tangent);
+    float offset = 0.5 * coneFactor * jitter * sqrt(u1);
+    vec3 jittered = normalize(direction + offset * (cos(6.2831853 * u2) * tangent + sin(6.2831853 * u2) * bitangent));
+    // Never below the surface.
+    direction = dot(jittered, normal) > 0.02 ? jittered : direction;
+    coneFactor = max(coneFactor * (1.0 - 0.5 * jitter), 0.01);
+    BlCone cone = coneAt(position, normal, direction, coneFactor);
+    cone.tracingStep = uintBitsToFloat(trace.sparseOffset.z);
+    return cone;
 }
 
 // Where a pixel's surface was last frame, in pixels; false when off screen.

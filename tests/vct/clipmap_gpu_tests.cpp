@@ -97,7 +97,31 @@ void refusesBadDescriptions(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+void coneSamplesRefuseBadRequests(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    vct::ClipmapDesc desc;
+    desc.levels = kLevels;
+    desc.resolution = kResolution;
+    std::string error;
+    auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
+    REQUIRE(clipmap);
+    auto tracer = vct::ConeTracer::create(*td.device, *clipmap, 16, 16, &error);
+    REQUIRE(tracer);
+    rhi::TextureDesc od;
+    od.width = od.height = 16;
+    od.format = rhi::Format::RGBA8_UNORM;
+    od.usage = rhi::TextureUsage::Storage;
+    const rhi::TextureHandle output = td.device->createTexture(od);
+    CHECK_FALSE(tracer->debugConeSamples(0, 0, output, &error));
+    CHECK(error.find("nothing traced yet") != std::string::npos);
+    CHECK(tracer->readConeSamples().empty());
+    td.device->destroy(output);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
+BACKEND_TEST("the cone tracer's sample record refuses requests before any trace", "[vct]", coneSamplesRefuseBadRequests)
 BACKEND_TEST("clip-map clears exactly the voxels that entered its levels", "[vct]", clearsWhatEntered)
 BACKEND_TEST("clip-map refuses a bad description", "[vct]", refusesBadDescriptions)

@@ -48,6 +48,11 @@ struct BlCone {
     float opacityCorrection;  // scales the opacity's Beer exponent (1: as voxelized)
     uint lightLeakLag;        // 0..2 samples the transmittance lags
     float ambientRange;       // world units: `ambient` is the transmittance at this distance
+    // World units from the origin to the first surface along the axis, from an exact source (a ray through the
+    // distance field, bricklight/trace.glsl): the cone's samples count only in front of it, and the cone ends
+    // there with the light the surface's finest voxels send back along it — so it cannot gather light from
+    // behind a wall thinner than its voxels. 0: unknown (the voxels' opacity alone).
+    float surfaceDistance;
 };
 
 struct BlConeResult {
@@ -68,6 +73,7 @@ BlCone blDefaultCone(vec3 origin, vec3 direction, float coneFactor) {
     c.opacityCorrection = 1.0;
     c.lightLeakLag = 0u;
     c.ambientRange = 0.0;
+    c.surfaceDistance = 0.0;
     return c;
 }
 
@@ -107,6 +113,21 @@ uint blVctHoldingLevel(uint level, vec3 pFinest, float marginFinest, uint levels
     return level;
 }
 
+// The light a surface at `position` (world; e.g. where a ray met it) sends back along −`direction`, as its finest
+// voxels hold it: sampled half a finest voxel in front of it, divided by the opacity there. `known` is false
+// outside the clip-map and where the voxels hold (almost) no surface.
+vec3 blVctSurfaceRadiance(vec3 position, vec3 direction, out bool known) {
+    float resolution = float(blVctFrame.params.x);
+    uint levels = blVctFrame.params.y;
+    vec3 p = position / blVctFrame.scales.x - 0.5 * direction;
+    uint level = blVctHoldingLevel(0u, p, 1.0, levels, resolution);
+    known = level < levels;
+    if (!known) return vec3(0.0);
+    vec4 s = blVctSampleLevel(level, p, direction, resolution, float(levels) * (resolution + 2.0));
+    known = s.w > 0.05;
+    return s.rgb / max(s.w, 0.25);
+}
+
 BlConeResult blTraceCone(BlCone cone) {
     BlConeResult r;
     r.radiance = vec3(0.0);
@@ -123,8 +144,25 @@ BlConeResult blTraceCone(BlCone cone) {
     uint lag = min(cone.lightLeakLag, 2u);
     float transmittance = 1.0, lag1 = 1.0, lag2 = 1.0;  // now, one and two samples back
     float t = max(cone.firstSampleT, 0.0);
+    float surfaceT = cone.surfaceDistance > 0.0 ? cone.surfaceDistance / finest : 1.0e30;
     for (int i = 0; i < 256; ++i) {
-        float size = max(t * cone.coneFactor, 1.0);  // the sample's diameter in finest voxels
+        // The sample's diameter in finest voxels. Before the surface the axis met (surfaceDistance) samples narrow
+        // so as to end in front of it: a sample that reached past it would average in what lies behind the wall
+        // (the next room's light) at the coarse level its width asks for.
+        float width = max(t * cone.coneFactor, 1.0);  // the cone's, where the sample is
+        float size = max(min(width, 0.25 * (surfaceT - t)), 1.0);
+        if (surfaceT - t < 1.0) {
+            bool known;
+            vec3 light = blVctSurfaceRadiance((origin + cone.direction * surfaceT) * finest, cone.direction, known);
+            float lagged = lag == 0u ? transmittance : (lag == 1u ? lag1 : lag2);
+            r.radiance += lagged * light;
+#ifdef BL_CONE_TRACE_RECORD  // a debug pass's hook: (world position, world diameter, level (255: the surface read), T, light added)
+            BL_CONE_TRACE_RECORD((origin + cone.direction * surfaceT) * finest, finest, 255u, transmittance, lagged * light);
+#endif
+            if (r.ambient < 0.0 && surfaceT < rangeT) r.ambient = 0.0;
+            transmittance = 0.0;
+            break;
+        }
         vec3 p = origin + cone.direction * t;
         // Wider than the coarsest level's voxels: that level still (undersampled, as no mips lie above it yet).
         float fLevel = min(log2(size), float(levels - 1u));
@@ -134,10 +172,17 @@ BlConeResult blTraceCone(BlCone cone) {
         vec4 s = blVctSampleLevel(level, p, cone.direction, resolution, slices);
         if (f > 0.0 && level + 1u < levels) s = mix(s, blVctSampleLevel(level + 1u, p, cone.direction, resolution, slices), f);
         float alpha = clamp(s.w, 0.0, 1.0);
-        float alphaStep = 1.0 - pow(1.0 - alpha, exponent);
+        // The cone steps as its width says, but never more than half the way to the surface; the opacity is
+        // corrected to the step over the (narrower) sample's size.
+        float step = max(min(width * cone.tracingStep, max(0.5 * (surfaceT - t), size * cone.tracingStep)), 0.25);
+        float stepExponent = exponent * step / max(size * cone.tracingStep, 0.25);
+        float alphaStep = 1.0 - pow(1.0 - alpha, stepExponent);
         float lagged = lag == 0u ? transmittance : (lag == 1u ? lag1 : lag2);
-        r.radiance += lagged * s.rgb * (alpha > 1.0e-4 ? alphaStep / alpha : exponent);
-        float step = max(size * cone.tracingStep, 0.25);
+        vec3 light = lagged * s.rgb * (alpha > 1.0e-4 ? alphaStep / alpha : stepExponent);
+        r.radiance += light;
+#ifdef BL_CONE_TRACE_RECORD
+        BL_CONE_TRACE_RECORD(p * finest, size * finest, level, transmittance, light);
+#endif
         float before = transmittance;
         lag2 = lag1;
         lag1 = transmittance;

@@ -62,6 +62,9 @@ const int BL_VOXEL_MAX_SPAN = 6;  // voxels one pixel can cover along the axis: 
 // (textures 8..14), and the emittance function may add albedo × blVoxelIndirect(f): the diffuse light (irradiance
 // / π) at the fragment from the previous frame's traced volumes, six cones over its normal's hemisphere. Each
 // frame then carries light one bounce further (revoxelize every frame: ClipmapDesc::persistent = false).
+// Define BL_VOXEL_CONE_SURFACE(origin, direction) to a function of yours giving the world distance to the first
+// surface along a cone's axis (0: unknown; e.g. a ray through your BVH or bricklight/trace.glsl) and the cones
+// stop there (BlCone::surfaceDistance), so light does not leak through thin walls from bounce to bounce.
 #include "bricklight/cone_trace.glsl"
 
 vec3 blVoxelIndirect(BlVoxelFragment f) {
@@ -78,6 +81,9 @@ vec3 blVoxelIndirect(BlVoxelFragment f) {
         vec3 d = normalize(sqrt(u) * (cos(phi) * tangent + sin(phi) * bitangent) + sqrt(1.0 - u) * n);
         BlCone c = blDefaultCone(f.position + n * (2.0 * f.voxelSize), d, factor);
         c.firstSampleT = 0.0;
+#ifdef BL_VOXEL_CONE_SURFACE
+        c.surfaceDistance = BL_VOXEL_CONE_SURFACE(c.origin, d);
+#endif
         sum += blTraceCone(c).radiance;
     }
     return sum / float(cones);
