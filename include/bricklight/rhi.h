@@ -228,6 +228,17 @@ struct Bindings {
     FixedVector<StorageBufferBinding, kMaxStorageBufferSlots> storageBuffers;
     FixedVector<StorageImageBinding, kMaxStorageImageSlots> storageImages;
 };
+// Adds every binding of `from` to `to` (a library's record plus the application's own resources); false if one
+// did not fit, which the validation wrapper also reports.
+inline bool appendBindings(Bindings& to, const Bindings& from) {
+    bool ok = true;
+    for (const auto& b : from.constants) ok = to.constants.push(b) && ok;
+    for (const auto& b : from.textures) ok = to.textures.push(b) && ok;
+    for (const auto& b : from.readBuffers) ok = to.readBuffers.push(b) && ok;
+    for (const auto& b : from.storageBuffers) ok = to.storageBuffers.push(b) && ok;
+    for (const auto& b : from.storageImages) ok = to.storageImages.push(b) && ok;
+    return ok;
+}
 
 namespace DispatchFlags {
 enum : uint32_t {
@@ -539,6 +550,9 @@ ConstantsBinding constants(uint8_t slot, const T& value) {
     static_assert(sizeof(T) <= kMaxConstantsBytes, "constants larger than kMaxConstantsBytes");
     return ConstantsBinding{slot, &value, static_cast<uint32_t>(sizeof(T))};
 }
+// The binding points at `value` until the call records it: a temporary would be gone by then.
+template <typename T>
+ConstantsBinding constants(uint8_t slot, const T&& value) = delete;
 
 // Mip dimensions of a texture (never below 1).
 inline uint32_t mipExtent(uint32_t base, uint32_t mip) {

@@ -1,0 +1,320 @@
+// vct::VoxelScene: registered meshes voxelized through Clipmap::voxelizationState with our vertex shader
+// (shaders/vct/voxelize_mesh.vert), culled against the clip-map's rewrite regions.
+#include "bricklight/vct_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "../core_shaders.h"
+#include "../matrix_checks.h"
+
+namespace bricklight::vct {
+
+struct VoxelScene::Mesh {
+    uint32_t id = 0;
+    std::string name;
+    rhi::BufferHandle positions, normals, indices;  // ours (CPU arrays) or the application's
+    uint64_t positionsOffset = 0, normalsOffset = 0, indicesOffset = 0;
+    uint32_t positionsStride = 12, normalsStride = 12;
+    uint32_t indexCount = 0;
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+    bool owned = false;
+    uint32_t users = 0;  // instances
+};
+
+struct VoxelScene::Instance {
+    uint32_t id = 0;
+    Mesh* mesh = nullptr;
+    glm::mat4 transform{1.0f};
+    VoxelMaterial material;
+    glm::vec4 user0{0.0f}, user1{0.0f};
+};
+
+namespace {
+
+bool usableTransform(const glm::mat4& m) {
+    if (!detail::finiteMatrix(m) || m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
+    const float det = glm::determinant(glm::mat3(m));
+    return std::isfinite(det) && std::fabs(det) > 1e-12f;
+}
+
+// The vertex shader's per-instance constants (VoxelInstance in shaders/vct/voxelize_mesh_body.glsl, std140).
+struct InstanceConstants {
+    glm::mat4 transform;
+    glm::vec4 normalRows[3];
+    glm::vec4 user0, user1;
+};
+static_assert(sizeof(InstanceConstants) == 144);
+
+template <typename T>
+auto findById(std::vector<std::unique_ptr<T>>& items, uint32_t id) {
+    return std::find_if(items.begin(), items.end(), [&](const auto& item) { return item->id == id; });
+}
+
+bool overlaps(const WorldBox& a, const WorldBox& b) {
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
+           b.min.z <= a.max.z;
+}
+
+}  // namespace
+
+VoxelScene::VoxelScene(rhi::IDevice& device) : device_(device) {}
+
+std::unique_ptr<VoxelScene> VoxelScene::create(rhi::IDevice& device, std::string* error) {
+    shaders::link_bricklight_core();
+    std::unique_ptr<VoxelScene> s(new VoxelScene(device));
+    auto shader = [&](const char* name) {
+        rhi::ShaderDesc sd;
+        sd.blob = rhi::findShader(name);
+        return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+    };
+    s->vertex_ = shader("vct/voxelize_mesh.vert");
+    s->vertexFlat_ = shader("vct/voxelize_mesh_flat.vert");
+    if (!s->vertex_ || !s->vertexFlat_) {
+        if (error) *error = "voxel scene: the device could not create the voxelization vertex shaders";
+        return nullptr;
+    }
+    return s;
+}
+
+VoxelScene::~VoxelScene() {
+    for (const auto& m : meshes_)
+        if (m->owned)
+            for (rhi::BufferHandle b : {m->positions, m->normals, m->indices})
+                if (b) device_.destroy(b);
+    for (rhi::ShaderHandle h : {vertex_, vertexFlat_})
+        if (h) device_.destroy(h);
+}
+
+VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshArrays& a, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "voxel scene: mesh '" + a.name + "': " + why;
+        return VoxelMeshHandle{};
+    };
+    if (!a.positions || a.vertexCount == 0) return fail("no positions");
+    if (!a.indices || a.indexCount == 0 || a.indexCount % 3 != 0) return fail("the index count must be a positive multiple of 3");
+    auto mesh = std::make_unique<Mesh>();
+    mesh->boundsMin = glm::vec3(INFINITY);
+    mesh->boundsMax = glm::vec3(-INFINITY);
+    for (uint32_t v = 0; v < a.vertexCount; ++v) {
+        const glm::vec3 p(a.positions[3 * v], a.positions[3 * v + 1], a.positions[3 * v + 2]);
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return fail("vertex " + std::to_string(v) + " is not finite");
+        if (a.normals && !(std::isfinite(a.normals[3 * v]) && std::isfinite(a.normals[3 * v + 1]) && std::isfinite(a.normals[3 * v + 2])))
+            return fail("the normal of vertex " + std::to_string(v) + " is not finite");
+        mesh->boundsMin = glm::min(mesh->boundsMin, p);
+        mesh->boundsMax = glm::max(mesh->boundsMax, p);
+    }
+    for (uint32_t i = 0; i < a.indexCount; ++i)
+        if (a.indices[i] >= a.vertexCount)
+            return fail("index " + std::to_string(i) + " is " + std::to_string(a.indices[i]) + ", not below the vertex count " +
+                        std::to_string(a.vertexCount));
+    auto buffer = [&](const void* data, uint64_t bytes, uint32_t usage, const char* what) {
+        rhi::BufferDesc bd;
+        bd.size = bytes;
+        bd.usage = usage;
+        bd.debugName = "voxel scene " + a.name + " " + what;
+        return device_.createBuffer(bd, data);
+    };
+    mesh->positions = buffer(a.positions, uint64_t(a.vertexCount) * 12, rhi::BufferUsage::Vertex, "positions");
+    if (a.normals) mesh->normals = buffer(a.normals, uint64_t(a.vertexCount) * 12, rhi::BufferUsage::Vertex, "normals");
+    mesh->indices = buffer(a.indices, uint64_t(a.indexCount) * 4, rhi::BufferUsage::Index, "indices");
+    mesh->owned = true;
+    if (!mesh->positions || !mesh->indices || (a.normals && !mesh->normals)) {
+        for (rhi::BufferHandle b : {mesh->positions, mesh->normals, mesh->indices})
+            if (b) device_.destroy(b);
+        return fail("the device could not create its buffers");
+    }
+    mesh->indexCount = a.indexCount;
+    mesh->name = a.name;
+    mesh->id = nextId_++;
+    meshes_.push_back(std::move(mesh));
+    return VoxelMeshHandle{meshes_.back()->id};
+}
+
+VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshBuffers& b, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "voxel scene: mesh '" + b.name + "': " + why;
+        return VoxelMeshHandle{};
+    };
+    if (b.vertexCount == 0) return fail("no vertices");
+    if (b.indexCount == 0 || b.indexCount % 3 != 0) return fail("the index count must be a positive multiple of 3");
+    // An empty string when `h` is a live buffer of `usage` holding `bytes` from a 4-aligned `offset`.
+    auto check = [&](rhi::BufferHandle h, uint64_t offset, uint64_t bytes, uint32_t usage, const std::string& what) -> std::string {
+        const rhi::BufferDesc* d = device_.describe(h);
+        if (!d) return what + " is not a live buffer";
+        if (!(d->usage & usage)) return what + " lacks the " + (usage == rhi::BufferUsage::Index ? "Index" : "Vertex") + " usage";
+        if (offset % 4 != 0 || offset + bytes > d->size)
+            return what + " needs " + std::to_string(offset + bytes) + " bytes from a 4-aligned offset; buffer '" + d->debugName + "' has " +
+                   std::to_string(d->size);
+        return {};
+    };
+    if (b.positionsStride < 12 || (b.normals && b.normalsStride < 12)) return fail("a vertex stride is below 12 bytes");
+    std::string why = check(b.positions, b.positionsOffset, uint64_t(b.positionsStride) * (b.vertexCount - 1) + 12, rhi::BufferUsage::Vertex,
+                            "positions");
+    if (why.empty() && b.normals)
+        why = check(b.normals, b.normalsOffset, uint64_t(b.normalsStride) * (b.vertexCount - 1) + 12, rhi::BufferUsage::Vertex, "normals");
+    if (why.empty()) why = check(b.indices, b.indicesOffset, uint64_t(b.indexCount) * 4, rhi::BufferUsage::Index, "indices");
+    if (!why.empty()) return fail(why);
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(b.boundsMin[c]) || !std::isfinite(b.boundsMax[c]) || b.boundsMin[c] > b.boundsMax[c])
+            return fail("the bounds must be finite with min <= max");
+    auto mesh = std::make_unique<Mesh>();
+    mesh->positions = b.positions;
+    mesh->normals = b.normals;
+    mesh->indices = b.indices;
+    mesh->positionsOffset = b.positionsOffset;
+    mesh->normalsOffset = b.normalsOffset;
+    mesh->indicesOffset = b.indicesOffset;
+    mesh->positionsStride = b.positionsStride;
+    mesh->normalsStride = b.normalsStride;
+    mesh->indexCount = b.indexCount;
+    mesh->boundsMin = b.boundsMin;
+    mesh->boundsMax = b.boundsMax;
+    mesh->name = b.name;
+    mesh->id = nextId_++;
+    meshes_.push_back(std::move(mesh));
+    return VoxelMeshHandle{meshes_.back()->id};
+}
+
+bool VoxelScene::removeMesh(VoxelMeshHandle handle, std::string* error) {
+    auto it = findById(meshes_, handle.id);
+    if (it == meshes_.end()) {
+        if (error) *error = "voxel scene: removeMesh: unknown mesh " + std::to_string(handle.id);
+        return false;
+    }
+    if ((*it)->users) {
+        if (error) *error = "voxel scene: mesh '" + (*it)->name + "' is used by " + std::to_string((*it)->users) + " instance(s)";
+        return false;
+    }
+    if ((*it)->owned)
+        for (rhi::BufferHandle b : {(*it)->positions, (*it)->normals, (*it)->indices})
+            if (b) device_.destroy(b);
+    meshes_.erase(it);
+    return true;
+}
+
+WorldBox VoxelScene::worldBounds(const Mesh& mesh, const glm::mat4& t) const {
+    WorldBox box{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? mesh.boundsMax.x : mesh.boundsMin.x, (c & 2) ? mesh.boundsMax.y : mesh.boundsMin.y,
+                               (c & 4) ? mesh.boundsMax.z : mesh.boundsMin.z);
+        const glm::vec3 w = glm::vec3(t * glm::vec4(corner, 1.0f));
+        box.min = glm::min(box.min, w);
+        box.max = glm::max(box.max, w);
+    }
+    return box;
+}
+
+VoxelInstanceHandle VoxelScene::addInstance(const VoxelInstanceDesc& d, std::string* error) {
+    auto it = findById(meshes_, d.mesh.id);
+    if (it == meshes_.end()) {
+        if (error) *error = "voxel scene: addInstance: unknown mesh " + std::to_string(d.mesh.id);
+        return {};
+    }
+    const std::string who = "voxel scene: instance of mesh '" + (*it)->name + "': ";
+    if (!usableTransform(d.transform)) {
+        if (error) *error = who + "the transform must be finite, affine and invertible";
+        return {};
+    }
+    std::string why;
+    if (!checkVoxelMaterial(d.material, &why)) {
+        if (error) *error = who + why;
+        return {};
+    }
+    for (int c = 0; c < 4; ++c)
+        if (!std::isfinite(d.user0[c]) || !std::isfinite(d.user1[c])) {
+            if (error) *error = who + "user0 and user1 must be finite";
+            return {};
+        }
+    auto instance = std::make_unique<Instance>();
+    instance->id = nextId_++;
+    instance->mesh = it->get();
+    instance->transform = d.transform;
+    instance->material = d.material;
+    instance->user0 = d.user0;
+    instance->user1 = d.user1;
+    ++instance->mesh->users;
+    dirty_.push_back(worldBounds(*instance->mesh, d.transform));
+    instances_.push_back(std::move(instance));
+    return VoxelInstanceHandle{instances_.back()->id};
+}
+
+bool VoxelScene::setTransform(VoxelInstanceHandle handle, const glm::mat4& transform, std::string* error) {
+    auto it = findById(instances_, handle.id);
+    if (it == instances_.end()) {
+        if (error) *error = "voxel scene: setTransform: unknown instance " + std::to_string(handle.id);
+        return false;
+    }
+    if (!usableTransform(transform)) {
+        if (error) *error = "voxel scene: instance of mesh '" + (*it)->mesh->name + "': the transform must be finite, affine and invertible";
+        return false;
+    }
+    dirty_.push_back(worldBounds(*(*it)->mesh, (*it)->transform));
+    (*it)->transform = transform;
+    dirty_.push_back(worldBounds(*(*it)->mesh, transform));
+    return true;
+}
+
+bool VoxelScene::removeInstance(VoxelInstanceHandle handle, std::string* error) {
+    auto it = findById(instances_, handle.id);
+    if (it == instances_.end()) {
+        if (error) *error = "voxel scene: removeInstance: unknown instance " + std::to_string(handle.id);
+        return false;
+    }
+    dirty_.push_back(worldBounds(*(*it)->mesh, (*it)->transform));
+    --(*it)->mesh->users;
+    instances_.erase(it);
+    return true;
+}
+
+std::vector<WorldBox> VoxelScene::takeDirtyRegions() {
+    std::vector<WorldBox> out;
+    out.swap(dirty_);
+    return out;
+}
+
+bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::string* error) {
+    lastDraws_ = 0;
+    const std::vector<WorldBox> regions = clipmap.dirtyRegions();
+    const float margin = clipmap.placement().voxelSize(clipmap.desc().levels - 1);
+    bool ok = true;
+    for (const auto& instance : instances_) {
+        const Mesh& mesh = *instance->mesh;
+        // Grown by the coarsest level's voxel: the geometry stage dilates each level's triangles by half a voxel.
+        WorldBox bounds = worldBounds(mesh, instance->transform);
+        bounds.min -= glm::vec3(margin);
+        bounds.max += glm::vec3(margin);
+        if (std::none_of(regions.begin(), regions.end(), [&](const WorldBox& r) { return overlaps(bounds, r); })) continue;
+        std::string why;
+        std::optional<rhi::DrawCallState> state = clipmap.voxelizationState(instance->material, &why);
+        if (!state) {
+            if (error && ok) *error = "voxel scene: instance of mesh '" + mesh.name + "': " + why;
+            ok = false;
+            continue;
+        }
+        state->label = "vct voxelize registered mesh";
+        state->vertexShader = mesh.normals ? vertex_ : vertexFlat_;
+        state->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
+        state->vertexBuffers.push({mesh.positions, mesh.positionsOffset, mesh.positionsStride, false});
+        if (mesh.normals) {
+            state->vertexInputs.push({1, rhi::VertexFormat::Float3, 1, 0});
+            state->vertexBuffers.push({mesh.normals, mesh.normalsOffset, mesh.normalsStride, false});
+        }
+        state->indexBuffer = {mesh.indices, mesh.indicesOffset, rhi::IndexFormat::U32};
+        InstanceConstants c;
+        c.transform = instance->transform;
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance->transform)));
+        for (int r = 0; r < 3; ++r) c.normalRows[r] = glm::vec4(normalMatrix[0][r], normalMatrix[1][r], normalMatrix[2][r], 0.0f);
+        c.user0 = instance->user0;
+        c.user1 = instance->user1;
+        state->bindings.constants.push(rhi::constants(kVoxelSceneInstanceConstants, c));
+        rhi::appendBindings(state->bindings, extra);
+        rhi::DrawIndexedArgs args;
+        args.indexCount = mesh.indexCount;
+        device_.drawIndexed(*state, args);
+        ++lastDraws_;
+    }
+    return ok;
+}
+
+}  // namespace bricklight::vct

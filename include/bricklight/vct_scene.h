@@ -1,0 +1,112 @@
+// Bricklight voxel cone tracing: meshes registered from CPU arrays or the application's GPU buffers and
+// voxelized through the same draw records as the application's own draws (vct::Clipmap::voxelizationState),
+// with our vertex shader — the convenience path for an application that does not write a voxelization vertex
+// shader, as sdf::SdfScene is for the distance field. docs/vct.md, "Registered meshes".
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bricklight/vct.h"
+
+namespace bricklight::vct {
+
+// A mesh from CPU arrays, copied to the device at registration. Positions (and normals, optional) are three
+// floats per vertex in the mesh's own space; three indices per triangle.
+struct VoxelMeshArrays {
+    const float* positions = nullptr;
+    const float* normals = nullptr;  // optional: without them each triangle's own normal is used
+    uint32_t vertexCount = 0;
+    const uint32_t* indices = nullptr;
+    uint32_t indexCount = 0;
+    std::string name;
+};
+
+// A mesh in the application's buffers (Vertex / Index usage), drawn where it lies: three floats per position
+// (and normal) at the given offsets and strides, 32-bit indices. The device cannot check their contents:
+// `boundsMin`/`boundsMax` (the mesh's own space) are what culling uses, and triangles with non-finite vertices
+// are dropped by the geometry shader. The buffers must outlive the mesh.
+struct VoxelMeshBuffers {
+    rhi::BufferHandle positions;
+    uint64_t positionsOffset = 0;
+    uint32_t positionsStride = 12;
+    rhi::BufferHandle normals;  // optional
+    uint64_t normalsOffset = 0;
+    uint32_t normalsStride = 12;
+    uint32_t vertexCount = 0;
+    rhi::BufferHandle indices;
+    uint64_t indicesOffset = 0;
+    uint32_t indexCount = 0;
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+    std::string name;
+};
+
+struct VoxelMeshHandle {
+    uint32_t id = 0;
+    explicit operator bool() const { return id != 0; }
+};
+struct VoxelInstanceHandle {
+    uint32_t id = 0;
+    explicit operator bool() const { return id != 0; }
+};
+
+struct VoxelInstanceDesc {
+    VoxelMeshHandle mesh;
+    glm::mat4 transform{1.0f};  // mesh space to world; finite and invertible
+    VoxelMaterial material;
+    // Handed to the material's blVoxelEmittance as BlVoxelFragment::user0 / user1 (e.g. albedo and emission).
+    glm::vec4 user0{0.0f}, user1{0.0f};
+};
+
+// The slot our vertex shader's per-instance constants take (transform, normal matrix, user vectors): the
+// material's emittance function may use constants slots 0 and 1 only.
+constexpr uint8_t kVoxelSceneInstanceConstants = 2;
+
+class VoxelScene {
+public:
+    // Null with *error if the device cannot create our vertex shaders.
+    static std::unique_ptr<VoxelScene> create(rhi::IDevice& device, std::string* error);
+    ~VoxelScene();
+    VoxelScene(const VoxelScene&) = delete;
+    VoxelScene& operator=(const VoxelScene&) = delete;
+
+    // A null handle with *error (naming the mesh) for empty or inconsistent arrays, non-finite values, indices
+    // out of range, or buffers that are not live, lack the usage, or are too small for the counts.
+    VoxelMeshHandle addMesh(const VoxelMeshArrays& mesh, std::string* error);
+    VoxelMeshHandle addMesh(const VoxelMeshBuffers& mesh, std::string* error);
+    // Refused while instances use the mesh.
+    bool removeMesh(VoxelMeshHandle mesh, std::string* error);
+
+    // Each change of the instances marks the world boxes it touched (old and new places) dirty:
+    // takeDirtyRegions() hands them to Clipmap::update's `invalidated`, so that a persistent clip-map rewrites
+    // them. Refused (changing nothing) for an unknown mesh or instance, a bad transform or a bad material.
+    VoxelInstanceHandle addInstance(const VoxelInstanceDesc& desc, std::string* error);
+    bool setTransform(VoxelInstanceHandle instance, const glm::mat4& transform, std::string* error);
+    bool removeInstance(VoxelInstanceHandle instance, std::string* error);
+    std::vector<WorldBox> takeDirtyRegions();
+
+    // Between Clipmap::update and finishVoxelization: draws every instance whose world box meets this update's
+    // rewrite regions, with its material's fragment shader; `extra` (the emittance functions' own resources)
+    // is added to every draw. False with *error, after drawing what it could, if a material is refused.
+    bool voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::string* error);
+    uint32_t lastDrawCount() const { return lastDraws_; }  // instances the last voxelize() drew (the rest were culled)
+
+private:
+    struct Mesh;
+    struct Instance;
+    explicit VoxelScene(rhi::IDevice& device);  // in the .cpp, where Mesh and Instance are complete
+    WorldBox worldBounds(const Mesh& mesh, const glm::mat4& transform) const;
+    rhi::IDevice& device_;
+    rhi::ShaderHandle vertex_, vertexFlat_;  // with and without normals
+    std::vector<std::unique_ptr<Mesh>> meshes_;
+    std::vector<std::unique_ptr<Instance>> instances_;
+    std::vector<WorldBox> dirty_;
+    uint32_t nextId_ = 1;
+    uint32_t lastDraws_ = 0;
+};
+
+}  // namespace bricklight::vct
