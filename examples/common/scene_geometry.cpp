@@ -176,10 +176,11 @@ SceneGeometry proceduralField(uint32_t targetTriangles) {
     return s;
 }
 
-const char* builtinSceneNames() { return "cornell, two-rooms[:THICKNESS], atrium, dynamic, field"; }
+const char* builtinSceneNames() { return "cornell, cornell-glass, two-rooms[:THICKNESS], atrium, dynamic, field"; }
 
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits) {
     if (nameOrPath == "cornell") return cornellBox();
+    if (nameOrPath == "cornell-glass") return cornellGlass();
     if (nameOrPath == "field") return proceduralField(1000000);
     if (nameOrPath == "atrium") return atrium();
     if (nameOrPath == "dynamic") return dynamicRoom();

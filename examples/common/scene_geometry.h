@@ -32,6 +32,13 @@ struct TriangleMesh {
     // A dielectric specular layer (reflectance 0.04 at normal incidence, GGX with `roughness`), as
     // metallic-roughness materials have; off: plain Lambertian (the measured scenes' materials).
     bool specular = false;
+    // Glass: the share of light that a clear dielectric (index of refraction `ior`, GGX microfacets of
+    // `roughness`; smooth below 0.02) reflects and refracts instead of the opaque material above: 0 opaque, 1
+    // clear glass (no absorption). Glass meshes must be closed and wound counter-clockwise seen from outside:
+    // the side a ray meets says whether it enters or leaves. Checked by GpuScene: transmission in [0, 1], ior
+    // finite in (1, 3].
+    float transmission = 0.0f;
+    float ior = 1.5f;
     uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
 };
 
@@ -99,9 +106,12 @@ SceneGeometry twoRooms(float wallThickness);
 SceneGeometry atrium();
 // A closed room with a torus that moves and a small ceiling light that travels over a scripted path.
 SceneGeometry dynamicRoom();
+// The Cornell box with a glass sphere (ior 1.5, roughness 0.1, 1280 triangles) in place of the short block, in
+// front of the tall one: the renderer's example of a custom material that traces cones (docs/vct.md).
+SceneGeometry cornellGlass();
 // The built-in scenes' names, for messages.
 const char* builtinSceneNames();
-// A built-in scene by name ("cornell", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model
+// A built-in scene by name ("cornell", "cornell-glass", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model
 // file (loadModel, under `limits`).
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits = {});
 

@@ -53,11 +53,13 @@ struct Options : render::RenderOptions {
 const char* const kGiDebugNames[] = {"radiance-cache", "irradiance-cache", "probes", "probe-sh", "disocclusion", "samples"};
 // Voxel cone tracing's views (vct::DebugMode, in its order), for --gi vxgi or --ao vxao.
 const char* const kVctDebugNames[] = {"vct-opacity", "vct-emittance", "vct-level", "vct-rewritten"};
+// The cone tracer's samples of the image's centre pixel (vct::ConeTracer::debugConeSamples).
+const char* const kVctConeSamples = "vct-cone-samples";
 
 bool isVctDebug(const std::string& view) {
     for (const char* n : kVctDebugNames)
         if (view == n) return true;
-    return false;
+    return view == kVctConeSamples;
 }
 
 void printUsage(FILE* to) {
@@ -109,7 +111,7 @@ Options parse(int argc, char** argv) {
             known = known || isVctDebug(v);
             if (!known)
                 usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (the SDF GI's) "
-                      "or vct-opacity, vct-emittance, vct-level or vct-rewritten (voxel cone tracing's) (got '" + v + "')");
+                      "or vct-opacity, vct-emittance, vct-level, vct-rewritten or vct-cone-samples (voxel cone tracing's) (got '" + v + "')");
             o.giDebug.push_back(v);
         }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
@@ -276,7 +278,10 @@ int main(int argc, char** argv) {
             raster->render();
             device->endFrame();
         }
-        how = o.gi ? "rasterized, direct light + SDF GI over " + std::to_string(frames) + " frames"
+        const std::string technique = o.giTechnique == render::GiTechnique::Vct ? "voxel cone tracing"
+                                      : o.giUnseenFromVct                         ? "SDF GI (unseen surfaces from a clip-map)"
+                                                                                  : "SDF GI";
+        how = o.gi ? "rasterized, direct light + " + technique + " over " + std::to_string(frames) + " frames"
                    : "rasterized, direct light only (" + std::to_string(ro.lightSamples) + " light samples per pixel)";
     }
     if (o.singleBounce) how += ", one bounce of indirect light";
@@ -293,7 +298,9 @@ int main(int argc, char** argv) {
     for (const std::string& view : o.giDebug) {
         render::Image img;
         uint32_t mode = 0;
-        if (isVctDebug(view)) {
+        if (view == kVctConeSamples) {
+            img = raster->vctConeSamplesView();
+        } else if (isVctDebug(view)) {
             while (view != kVctDebugNames[mode]) ++mode;
             img = raster->vctDebugView(vct::DebugMode(mode), o.exposure);
         } else {

@@ -6,7 +6,8 @@ namespace {
 const char* const kNames[] = {"final", "direct", "indirect-diffuse", "specular-gi", "albedo", "normal", "depth", "motion",
                               "sdf-distance", "sdf-normal", "sdf-iterations", "sdf-brick-id", "sdf-cascade-id", "sdf-uvw",
                               "gi-radiance-cache", "gi-irradiance-cache", "gi-probes", "gi-probe-sh", "gi-disocclusion",
-                              "gi-samples", "vct-opacity", "vct-emittance", "vct-level", "vct-rewritten"};
+                              "gi-samples", "vct-opacity", "vct-emittance", "vct-level", "vct-rewritten",
+                              "vct-cone-samples"};
 static_assert(sizeof(kNames) / sizeof(kNames[0]) == size_t(View::Count), "a name for every view");
 }  // namespace
 

@@ -32,6 +32,7 @@ enum class View : uint32_t {
     VctEmittance,
     VctLevel,
     VctRewritten,
+    VctConeSamples,  // the cone tracer's samples of one pixel (RasterRenderer::setVctProbePixel)
     Count
 };
 

@@ -53,9 +53,19 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec3> shadingNormals;  // zero: use the triangle's normal
     std::vector<uint32_t> materialOf;
-    for (const auto& inst : scene.instances) {
+    // Glass last: the fast path draws the opaque triangles (the G-buffer, the voxelization) as one range and the
+    // glass ones as another (raster_renderer_glass.cpp).
+    uint32_t opaqueTriangles = 0;
+    for (const auto& inst : scene.instances)
         if (inst.mesh >= scene.meshes.size()) return fail("an instance names mesh " + std::to_string(inst.mesh) + ", which does not exist");
+    std::vector<const scenes::MeshInstance*> ordered;
+    for (int glass = 0; glass < 2; ++glass)
+        for (const auto& inst : scene.instances)
+            if ((scene.meshes[inst.mesh].transmission > 0.0f) == (glass == 1)) ordered.push_back(&inst);
+    for (const scenes::MeshInstance* instance : ordered) {
+        const auto& inst = *instance;
         const auto& m = scene.meshes[inst.mesh];
+        if (m.transmission <= 0.0f) opaqueTriangles += uint32_t(m.indices.size() / 3);
         for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = m.indices[i + size_t(k)];
@@ -82,6 +92,12 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         if (!std::isfinite(m.roughness) || !std::isfinite(m.metalness) || m.roughness < 0.0f || m.roughness > 1.0f ||
             m.metalness < 0.0f || m.metalness > 1.0f)
             return fail("mesh '" + m.name + "': roughness and metalness must be in [0, 1]");
+    for (const auto& m : scene.meshes) {
+        if (!(m.transmission >= 0.0f && m.transmission <= 1.0f))  // NaN fails too
+            return fail("mesh '" + m.name + "': transmission must be in [0, 1] (0 opaque, 1 clear glass), got " + std::to_string(m.transmission));
+        if (!(m.ior > 1.0f && m.ior <= 3.0f))
+            return fail("mesh '" + m.name + "': the index of refraction (ior) must be finite and in (1, 3], got " + std::to_string(m.ior));
+    }
     for (const auto& m : scene.meshes)
         if (!finite(m.albedo) || !finite(m.emission) || glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) ||
             glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1.0f))))
@@ -170,7 +186,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         const auto& m = scene.meshes[i];
         materials.push_back(glm::vec4(m.albedo, m.roughness));
         materials.push_back(glm::vec4(m.emission, m.metalness));
-        materials.push_back(glm::vec4(layerOf[i], m.specular ? 0.04f : 0.0f, 0.0f, 0.0f));
+        materials.push_back(glm::vec4(layerOf[i], m.specular ? 0.04f : 0.0f, m.transmission, m.ior));
     }
     std::vector<glm::vec4> triangleUvs(2 * size_t(n)), triangleNormals(3 * size_t(n));
     for (uint32_t slot = 0; slot < n; ++slot) {
@@ -186,6 +202,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->environment_ = env;
     s->environment_.sunDirection = glm::length(env.sunDirection) > 0.0f ? glm::normalize(env.sunDirection) : glm::vec3(0, 1, 0);
     s->triangles_ = n;
+    s->opaqueTriangles_ = opaqueTriangles;
     s->positions_ = std::move(positions);
     s->lightCount_ = lightCount;
     s->lightWeight_ = total;
@@ -249,6 +266,16 @@ void GpuScene::bind(rhi::Bindings& b, bool textures) const {
     b.readBuffers.push({2, materials_, {}});
     b.readBuffers.push({3, lights_, {}});
     b.readBuffers.push({4, pointLights_, {}});
+}
+
+void GpuScene::bindVertices(rhi::DrawCallState& d) const {
+    d.vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
+    d.vertexInputs.push({1, rhi::VertexFormat::Float3, 0, 12});
+    d.vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
+    d.vertexInputs.push({3, rhi::VertexFormat::Float3, 0, 28});
+    d.vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
+    d.vertexInputs.push({5, rhi::VertexFormat::Float3, 0, 48});
+    d.vertexBuffers.push({vertices_, 0, kVertexStride, false});
 }
 
 SceneLightConstants GpuScene::lightConstants(uint32_t seed, uint32_t maxBounces) const {

@@ -29,7 +29,7 @@ bool checkCamera(const scenes::Camera& camera, std::string* error);
 class GpuScene {
 public:
     // Null with `error` set for an empty scene, non-finite positions, indices out of range, negative
-    // albedo/emission, a BVH deeper than the traversal stack.
+    // albedo/emission, transmission outside [0, 1], an ior outside (1, 3], a BVH deeper than the traversal stack.
     // `previous` (optional): the same scene's world positions one frame earlier (an animated scene), for
     // motion vectors; used when it has as many vertices.
     static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
@@ -44,11 +44,16 @@ public:
     static constexpr uint32_t kTextureSize = 256;  // every base-colour texture is resampled to this square
     SceneLightConstants lightConstants(uint32_t seed, uint32_t maxBounces) const;
     uint32_t triangleCount() const { return triangles_; }
-    // 3 vertices per triangle, in the scene's order (layout: kVertexStride).
+    // The vertex buffer holds the opaque triangles first, then the glass ones (transmission > 0).
+    uint32_t opaqueTriangleCount() const { return opaqueTriangles_; }
+    uint32_t glassTriangleCount() const { return triangles_ - opaqueTriangles_; }
+    // 3 vertices per triangle, in the scene's order, glass last (layout: kVertexStride).
     rhi::BufferHandle vertexBuffer() const { return vertices_; }
     rhi::BufferHandle materialBuffer() const { return materials_; }
     // position, shading normal, material, previous position, uv, geometric normal
     static constexpr uint32_t kVertexStride = 60;
+    // The vertex buffer and all six attributes at locations 0..5, as render/gbuffer.vert reads them.
+    void bindVertices(rhi::DrawCallState& state) const;
     const std::vector<glm::vec3>& worldPositions() const { return positions_; }
     float rayOffset() const { return epsilon_; }
 
@@ -61,7 +66,7 @@ private:
     uint32_t pointLightCount_ = 0;
     scenes::Environment environment_;
     std::vector<glm::vec3> positions_;
-    uint32_t lightCount_ = 0, triangles_ = 0;
+    uint32_t lightCount_ = 0, triangles_ = 0, opaqueTriangles_ = 0;
     float lightWeight_ = 0.0f, epsilon_ = 1e-4f;
 };
 

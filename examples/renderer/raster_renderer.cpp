@@ -110,11 +110,12 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
         return fail("the device could not create the G-buffer or the lighting pass (see its messages)");
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
+    if (!r->createGlass(error)) return nullptr;
     const bool vct = options.gi && options.giTechnique == GiTechnique::Vct;
     if (options.gi && !vct && !r->createGi(scene, error)) return nullptr;
     r->giLights_ = giLightsOf(scene);
     r->sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
-    if ((vct || options.vxao) && !r->createVct(scene, error)) return nullptr;
+    if ((vct || options.vxao || (options.gi && options.giUnseenFromVct)) && !r->createVct(scene, error)) return nullptr;
     if (!r->setCamera(scene.camera, error)) return nullptr;
     r->previousViewProjection_ = r->viewProjection_;
     r->previousView_ = r->view_;
@@ -122,7 +123,7 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     return r;
 }
 
-bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
+bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* error) {
     auto fail = [&](const std::string& m) {
         if (error) *error = "raster renderer: " + m;
         return false;
@@ -159,6 +160,12 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
         if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError());
     }
     sdfCenter_ = sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
+    return true;
+}
+
+bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
+    if (!sdf_ && !createSdf(scene, error)) return false;
+    std::string why;
     gi::ContextDesc gd;
     gd.displayWidth = options_.width;
     gd.displayHeight = options_.height;
@@ -169,7 +176,10 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     gd.debugName = "render gi";
     gd.errorCallback = options_.errorCallback;
     gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
-    if (!gi_) return fail(why);
+    if (!gi_) {
+        if (error) *error = "raster renderer: " + why;
+        return false;
+    }
     return true;
 }
 
@@ -204,9 +214,10 @@ RasterRenderer::~RasterRenderer() {
     sdf_.reset();
     coneTracer_.reset();
     clipmap_.reset();
-    for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_})
+    for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_, glassFragment_})
         if (s) device_.destroy(s);
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_})
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_,
+                                 glassRadiance_, glassDepth_})
         if (t) device_.destroy(t);
     for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_, display_})
         if (s) device_.destroy(s);
@@ -240,13 +251,7 @@ void RasterRenderer::render() {
     d.label = "gbuffer";
     d.vertexShader = vertex_;
     d.fragmentShader = fragment_;
-    d.vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
-    d.vertexInputs.push({1, rhi::VertexFormat::Float3, 0, 12});
-    d.vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
-    d.vertexInputs.push({3, rhi::VertexFormat::Float3, 0, 28});
-    d.vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
-    d.vertexInputs.push({5, rhi::VertexFormat::Float3, 0, 48});
-    d.vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
+    scene_->bindVertices(d);
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_}) {
         rhi::ColorTarget c;
         c.view = rhi::wholeTexture(t);
@@ -263,7 +268,7 @@ void RasterRenderer::render() {
     d.bindings.readBuffers.push({2, scene_->materialBuffer(), {}});
     d.bindings.textures.push({0, rhi::wholeTexture(scene_->textureArray()), scene_->textureSampler()});
     rhi::DrawArgs args;
-    args.vertexCount = 3 * scene_->triangleCount();
+    args.vertexCount = 3 * rasterTriangleCount();  // without the glass range when the glass pass draws it
     // Markers name the passes in GPU timings (the viewer's table) and in captures.
     device_.beginMarker("gbuffer");
     device_.draw(d, args);
@@ -288,6 +293,7 @@ void RasterRenderer::render() {
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();
 
+    if (clipmap_) voxelizeVct();
     if (gi_) {
         device_.beginMarker("sdf update");
         sdf_->update(sdfCenter_);
@@ -320,10 +326,12 @@ void RasterRenderer::render() {
         g.trace = options_.giTrace;
         g.roughnessThreshold = options_.giRoughnessThreshold;
         g.resetHistory = cut_;
+        g.unseenLight = options_.giUnseenFromVct ? clipmap_.get() : nullptr;
         cut_ = false;
         gi_->dispatch(g);
     }
-    if (clipmap_) renderVct();
+    traceVct();
+    renderGlass();
     struct {
         glm::vec4 eye;
         uint32_t size[4];
@@ -333,7 +341,7 @@ void RasterRenderer::render() {
     k.label = "composite";
     k.bindings.constants.push(rhi::constants(0, c));
     slot = 0;
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_})
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_, glassRadiance_})
         k.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     k.bindings.readBuffers.push({0, direct_, {}});
     k.bindings.storageBuffers.push({0, combined_, {}, rhi::Access::Write});

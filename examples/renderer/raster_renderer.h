@@ -43,6 +43,12 @@ struct RasterOptions {
     uint32_t vctLightSamples = 4;  // light samples per voxelization fragment
     float vctThickness = 1.0f;     // vct::VoxelMaterial::thickness of every surface (two-sided: half each side)
     vct::ConeTraceParams vctTrace;
+    // Cones stop at the first surface the distance field's ray meets along their axis (vct::TraceDesc::
+    // occlusionField): the renderer builds the field for voxel cone tracing too.
+    bool vctSdfOcclusion = false;
+    // With the SDF GI (giTechnique Sdf): a clip-map with emittance is voxelized each frame, and GI's probe rays
+    // that hit surfaces the camera never saw read its light (gi::DispatchDesc::unseenLight).
+    bool giUnseenFromVct = false;
     // Voxel ambient occlusion (an opacity-only clip-map) when GI does not already trace cones: the AO image is
     // readAmbientOcclusion(); it does not change the lit image (direct lighting already shadows the sky).
     bool vxao = false;
@@ -80,6 +86,12 @@ public:
     Image readAmbientOcclusion();
     // A voxel cone tracing debug view of the latest frame (0..1, from the camera); empty without a clip-map.
     Image vctDebugView(vct::DebugMode mode, float exposure);
+    // The samples of the probe pixel's cones in the latest frame drawn over the view (View::VctConeSamples), and
+    // the samples themselves; empty without the cone tracer.
+    Image vctConeSamplesView();
+    std::vector<vct::ConeSample> vctConeSamples();
+    // The pixel whose cones View::VctConeSamples shows (default: the centre; clamped to the image).
+    void setVctProbePixel(uint32_t x, uint32_t y) { probePixel_ = glm::uvec2(x, y); }
     // A GI debug view of the latest frame (tone-mapped, 0..1); empty without GI.
     Image giDebugView(gi::DebugMode mode, float exposure);
     GBufferView gbuffer() const;
@@ -112,10 +124,18 @@ public:
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
-    bool createGi(const scenes::SceneGeometry& scene, std::string* error);
+    bool createSdf(const scenes::SceneGeometry& scene, std::string* error);  // the distance field alone
+    bool createGi(const scenes::SceneGeometry& scene, std::string* error);   // the field (if not yet) and GI
     bool createVct(const scenes::SceneGeometry& scene, std::string* error);  // raster_renderer_vct.cpp
-    void renderVct();
+    void voxelizeVct();  // before GI, which may read the clip-map's light (giUnseenFromVct)
+    void traceVct();     // the cone tracer's passes, after GI's
     bool giOn() const { return gi_ || (clipmap_ && options_.vctEmittance != vct::EmittanceMode::None); }
+    // Glass (raster_renderer_glass.cpp): with a clip-map that holds light, meshes with transmission > 0 are left
+    // out of the G-buffer and the voxelization and drawn by a forward pass that traces cones through them.
+    bool glassPassOn() const;
+    uint32_t rasterTriangleCount() const;  // what the G-buffer and the voxelization draw (the opaque range, or all)
+    bool createGlass(std::string* error);  // the pass's shader and a placeholder target the composite can bind
+    void renderGlass();                     // before the composite, which takes the glass pixels from it
     void syncSdf(const scenes::SceneGeometry& scene);
     Image readGi(rhi::TextureHandle t);
     bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_
@@ -137,7 +157,12 @@ private:
     std::unique_ptr<vct::Clipmap> clipmap_;
     std::unique_ptr<vct::ConeTracer> coneTracer_;
     rhi::ShaderHandle vctVertex_, vctEmittance_;
+    glm::uvec2 probePixel_{~0u, ~0u};  // View::VctConeSamples' pixel (~0: the centre, set at creation)
+    Image readDebugView();  // debugView_ as an image (0..1)
     std::vector<gi::Light> giLights_;
+    rhi::ShaderHandle glassFragment_;
+    rhi::TextureHandle glassRadiance_, glassDepth_;  // 1×1 until a frame draws glass
+    bool glassDrawn_ = false;
     bool cut_ = false;
     scenes::Camera camera_;
     glm::mat4 view_{1.0f}, projection_{1.0f}, previousView_{1.0f}, previousProjection_{1.0f};

@@ -25,6 +25,14 @@ bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error
         }
     }
     bool drawn = false;
+    if (view == View::VctConeSamples) {
+        if (!coneTracer_) {
+            *error = "needs the cone tracer (--gi vxgi or --ao vxao)";
+            return false;
+        }
+        return coneTracer_->debugConeSamples(std::min(probePixel_.x, options_.width - 1), std::min(probePixel_.y, options_.height - 1),
+                                             debugView_, error);
+    }
     if (viewIsVct(view)) {
         vct::DebugViewDesc desc;
         desc.mode = vct::DebugMode(uint32_t(view) - uint32_t(View::VctOpacity));
@@ -128,7 +136,7 @@ sdf::MemoryUse RasterRenderer::memoryUse() const {
         use.resources.push_back({name, bytes});
         use.totalBytes += bytes;
     };
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_}) {
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_, glassRadiance_, glassDepth_}) {
         const rhi::TextureDesc* d = t ? device_.describe(t) : nullptr;
         if (d) add(d->debugName, rhi::subresourceBytes(*d, {}));
     }

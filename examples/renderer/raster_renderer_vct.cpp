@@ -14,22 +14,32 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
         if (error) *error = "raster renderer: voxel cone tracing: " + m;
         return false;
     };
+    if (options_.vxao && options_.gi && options_.giTechnique == GiTechnique::Sdf)
+        return fail("voxel AO with the SDF GI is not supported (both write the diffuse output): use --gi vxgi, whose diffuse alpha "
+                    "is the AO, or --gi none");
     const glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     const float side = std::max(extent.x, std::max(extent.y, extent.z));
     vct::ClipmapDesc desc;
     desc.resolution = options_.vctResolution;
     desc.levels = options_.vctLevels;
-    desc.emittance = options_.gi && options_.giTechnique == GiTechnique::Vct ? options_.vctEmittance : vct::EmittanceMode::None;
+    const bool light = options_.gi && (options_.giTechnique == GiTechnique::Vct || options_.giUnseenFromVct);
+    desc.emittance = light ? options_.vctEmittance : vct::EmittanceMode::None;
     options_.vctEmittance = desc.emittance;
     // With bounces the emittance holds last frame's indirect light, which changes every frame: revoxelize whole.
     desc.persistent = !options_.giFeedback;
     // The finest level holds the scene with a margin (the anchor snaps to even voxels: two voxels each side).
     desc.finestVoxelSize = std::max(side * 1.1f, 1e-6f) / float(std::max(desc.resolution, 8u) - 4);
     std::string why;
+    if (options_.vctSdfOcclusion && !sdf_ && !createSdf(scene, error)) return false;
     clipmap_ = vct::Clipmap::create(device_, desc, &why);
     if (!clipmap_) return fail(why);
-    coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, options_.width, options_.height, &why);
-    if (!coneTracer_) return fail(why);
+    // The SDF GI with the clip-map's light for unseen surfaces voxelizes only; it traces no cones.
+    const bool traceCones = options_.vxao || (options_.gi && options_.giTechnique == GiTechnique::Vct);
+    if (traceCones) {
+        coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, options_.width, options_.height, &why);
+        if (!coneTracer_) return fail(why);
+    }
+    if (probePixel_.x == ~0u) probePixel_ = glm::uvec2(options_.width / 2, options_.height / 2);
     if (!vct::checkConeTraceParams(options_.vctTrace, &why)) return fail(why);
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
@@ -42,7 +52,7 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
     return true;
 }
 
-void RasterRenderer::renderVct() {
+void RasterRenderer::voxelizeVct() {
     device_.beginMarker("vct voxelize");
     std::string why;
     if (!clipmap_->update(sceneCenter_, &why)) {
@@ -64,7 +74,7 @@ void RasterRenderer::renderVct() {
             state->vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
             state->vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
             state->vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
-            const glm::uvec4 lighting(options_.vctLightSamples, options_.giFeedback ? 1u : 0u, 0u, 0u);
+            const glm::uvec4 lighting(options_.vctLightSamples, options_.giFeedback ? 1u : 0u, options_.vctSdfOcclusion ? 1u : 0u, 0u);
             const SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
             if (material.fragmentShader) {  // the emittance function's resources (voxel AO draws opacity only)
                 state->bindings.constants.push(rhi::constants(0, lighting));
@@ -73,13 +83,22 @@ void RasterRenderer::renderVct() {
                 clipmap_->traceBindings(state->bindings);  // blVoxelIndirect (bounces)
             }
             rhi::DrawArgs args;
-            args.vertexCount = 3 * scene_->triangleCount();
+            args.vertexCount = 3 * rasterTriangleCount();  // glass is left out when the glass pass draws it
             device_.draw(*state, args);
         }
         clipmap_->finishVoxelization();
     }
     device_.endMarker();
+}
 
+void RasterRenderer::traceVct() {
+    if (!coneTracer_) return;
+    std::string why;
+    if (options_.vctSdfOcclusion && !gi_) {  // GI updates the field itself when it runs
+        device_.beginMarker("sdf update");
+        sdf_->update(sdfCenter_);
+        device_.endMarker();
+    }
     vct::TraceDesc t;
     t.view = view_;
     t.projection = projection_;
@@ -94,6 +113,7 @@ void RasterRenderer::renderVct() {
     t.outputDiffuse = giDiffuse_;
     t.outputSpecular = options_.vctEmittance == vct::EmittanceMode::None ? rhi::TextureHandle{} : giSpecular_;
     t.params = options_.vctTrace;
+    t.occlusionField = options_.vctSdfOcclusion ? sdf_.get() : nullptr;
     t.resetHistory = cut_;
     cut_ = false;
     if (!coneTracer_->dispatch(t, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
@@ -113,10 +133,27 @@ Image RasterRenderer::readAmbientOcclusion() {
 }
 
 Image RasterRenderer::vctDebugView(vct::DebugMode mode, float exposure) {
-    Image img;
     std::string why;
     const View view = View(uint32_t(View::VctOpacity) + uint32_t(mode));
-    if (!clipmap_ || !viewIsVct(view) || !drawDebugView(view, exposure, &why)) return img;
+    if (!clipmap_ || mode > vct::DebugMode::Rewritten || !drawDebugView(view, exposure, &why)) return {};
+    return readDebugView();
+}
+
+Image RasterRenderer::vctConeSamplesView() {
+    std::string why;
+    if (!coneTracer_ || !drawDebugView(View::VctConeSamples, 1.0f, &why)) {
+        if (!why.empty() && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+        return {};
+    }
+    return readDebugView();
+}
+
+std::vector<vct::ConeSample> RasterRenderer::vctConeSamples() {
+    return coneTracer_ ? coneTracer_->readConeSamples() : std::vector<vct::ConeSample>{};
+}
+
+Image RasterRenderer::readDebugView() {
+    Image img;
     std::vector<uint8_t> bytes(size_t(options_.width) * options_.height * 4);
     device_.readTexture(debugView_, {}, bytes.data());
     img.width = options_.width;

@@ -92,6 +92,26 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
         o.vxao = s == "vxao";
         return OptionParse::Consumed;
     }
+    if (a == "--gi-unseen") {
+        if (!value()) return OptionParse::Error;
+        const std::string s = v;
+        if (s != "vxgi" && s != "none") {
+            *error = "--gi-unseen must be vxgi or none (got '" + s + "')";
+            return OptionParse::Error;
+        }
+        o.giUnseenFromVct = s == "vxgi";
+        return OptionParse::Consumed;
+    }
+    if (a == "--vct-occlusion") {
+        if (!value()) return OptionParse::Error;
+        const std::string s = v;
+        if (s != "voxels" && s != "sdf") {
+            *error = "--vct-occlusion must be voxels or sdf (got '" + s + "')";
+            return OptionParse::Error;
+        }
+        o.vctSdfOcclusion = s == "sdf";
+        return OptionParse::Consumed;
+    }
     if (a == "--gi-scale") {
         uint32_t s = 0;
         if (whole(25, 100, &s) == OptionParse::Error) return OptionParse::Error;
@@ -175,7 +195,7 @@ bool checkSharedOptions(const RenderOptions& o, std::string* error) {
 const char* sharedOptionsUsage() {
     return "  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]\n"
            "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
-           "  [--gi-scale 100|75|50|25]\n"
+           "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--gi-unseen vxgi|none]\n"
            "  [--single-bounce] [--validate]\n"
            "  [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N] [--max-vertices N] [--max-indices N]\n"
            "  [--max-face-indices N] [--max-nodes N] [--max-node-depth N] [--max-texture-pixels N]\n"
@@ -202,6 +222,8 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.gi = o.gi;
     ro.giTechnique = o.giTechnique;
     ro.vxao = o.vxao;
+    ro.vctSdfOcclusion = o.vctSdfOcclusion;
+    ro.giUnseenFromVct = o.giUnseenFromVct;
     ro.giResolution = o.giScale;
     ro.giFeedback = !o.singleBounce;
     return ro;

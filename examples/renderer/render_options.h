@@ -25,6 +25,8 @@ struct RenderOptions {
     bool gi = true;
     GiTechnique giTechnique = GiTechnique::Sdf;  // --gi sdf|vxgi|none
     bool vxao = false;                            // --ao vxao
+    bool vctSdfOcclusion = false;                 // --vct-occlusion sdf (RasterOptions::vctSdfOcclusion)
+    bool giUnseenFromVct = false;                 // --gi-unseen vxgi (RasterOptions::giUnseenFromVct)
     gi::InternalResolution giScale = gi::InternalResolution::Native;
     bool singleBounce = false;
     bool validate = false;      // every call through rhi::createValidationDevice

@@ -22,8 +22,10 @@ void vctPanel(ViewerApp& app) {
         if (vxgi && !options.gi) app.setGiEnabled(true);
         app.requestRebuild();
     }
-    if (ImGui::Checkbox("voxel AO (without voxel GI)", &options.vxao)) app.requestRebuild();
+    if (ImGui::Checkbox("voxel AO (with voxel GI or no GI)", &options.vxao)) app.requestRebuild();
+    if (!vxgi && options.gi && ImGui::Checkbox("SDF GI: unseen surfaces lit from a clip-map", &options.giUnseenFromVct)) app.requestRebuild();
     if (!vxgi && !options.vxao) return;
+    if (ImGui::Checkbox("cones stop at the distance field's surfaces", &options.vctSdfOcclusion)) app.requestRebuild();
 
     // Fixed at creation: these rebuild the renderer.
     const char* resolutions[] = {"32", "64", "128", "256"};
@@ -60,6 +62,7 @@ void vctPanel(ViewerApp& app) {
     if (ImGui::SliderInt("light-leak lag (samples)", &lag, 0, 2)) g.vctTrace.lightLeakLag = uint32_t(lag);
     ImGui::SliderFloat("start offset (voxels)", &g.vctTrace.initialOffset, 0.0f, 8.0f, "%.2f");
     ImGui::SliderFloat("temporal weight", &g.vctTrace.temporalWeight, 0.0f, 0.98f, "%.2f");
+    ImGui::SliderFloat("specular tangent jitter", &g.vctTrace.specularJitter, 0.0f, 1.0f, "%.2f");
     ImGui::SliderFloat("specular roughness cap", &g.vctTrace.maxSpecularRoughness, 0.0f, 1.0f, "%.2f");
 
     render::RasterRenderer* r = app.renderer();
@@ -70,6 +73,14 @@ void vctPanel(ViewerApp& app) {
                 c.placement().voxelSize(c.desc().levels - 1) * float(c.desc().resolution));
     ImGui::Text("rewritten this frame: %zu boxes", c.rewriteBoxes().size());
     ImGui::Text("clip-map memory %.1f MiB", double(c.memoryUse().totalBytes) / (1 << 20));
+    // The pixel whose cones the vct-cone-samples view shows (in the renderer's image, not the window's).
+    int* probe = g.vctProbePixel;
+    const int w = int(r->options().width), h = int(r->options().height);
+    if (probe[0] < 0) probe[0] = w / 2, probe[1] = h / 2;
+    probe[0] = std::min(probe[0], w - 1), probe[1] = std::min(probe[1], h - 1);
+    ImGui::SliderInt("cone samples: pixel x", &probe[0], 0, w - 1);
+    ImGui::SliderInt("cone samples: pixel y", &probe[1], 0, h - 1);
+    r->setVctProbePixel(uint32_t(probe[0]), uint32_t(probe[1]));
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ struct GiSettings {
     uint32_t vctResolution = 64, vctLevels = 5;
     vct::EmittanceMode vctEmittance = vct::EmittanceMode::Anisotropic;
     vct::ConeTraceParams vctTrace;
+    int vctProbePixel[2] = {-1, -1};  // the vct-cone-samples view's pixel (−1: the image's centre)
 };
 
 class ViewerApp {

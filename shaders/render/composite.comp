@@ -7,7 +7,9 @@
 // are exactly Lambertian in our BRDF and get no specular term. Also writes the "lit" image that GI
 // injects next frame: what surfaces send back into the scene, i.e. the combined radiance without the
 // emitters' own emission (direct lighting already samples the emitters; counting their emission again
-// through GI would count it twice).
+// through GI would count it twice). Glass pixels (alpha 1 in the glass pass's target: render/glass.frag) take
+// the glass's radiance in the combined image; the lit image keeps the opaque surface behind the glass, which is
+// what the G-buffer that GI reads holds there.
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_CONSTANTS(0) uniform Params {
     vec4 eye;     // xyz
@@ -19,6 +21,7 @@ BL_TEXTURE(2) uniform sampler2D gEmission;  // rgb emission, a metalness
 BL_TEXTURE(3) uniform sampler2D gPosition;  // xyz, w = 1 where geometry was drawn
 BL_TEXTURE(4) uniform sampler2D diffuseGI;
 BL_TEXTURE(5) uniform sampler2D specularGI;
+BL_TEXTURE(6) uniform sampler2D glassRadiance;  // 1×1 and transparent while no glass is drawn
 BL_READ_BUFFER(0) Direct { vec4 direct[]; };
 BL_STORAGE_BUFFER(0) Combined { vec4 combined[]; };
 BL_IMAGE(0, rgba16f) uniform writeonly image2D lit;
@@ -61,6 +64,7 @@ void main() {
     } else if (geometry) {
         emission = texelFetch(gEmission, ivec2(pixel), 0).rgb;  // GI off: direct light only
     }
-    combined[index] = vec4(radiance, 1.0);
+    vec4 glass = texelFetch(glassRadiance, min(ivec2(pixel), textureSize(glassRadiance, 0) - 1), 0);
+    combined[index] = vec4(glass.a > 0.0 ? glass.rgb : radiance, 1.0);
     imageStore(lit, ivec2(pixel), vec4(max(sent - emission, vec3(0.0)), 1.0));
 }

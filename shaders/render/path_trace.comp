@@ -16,6 +16,9 @@
 //                hits nothing within eye.w (world units), else 0; 1 where the camera ray escapes
 // so that combined = direct + albedo * indirect for Lambertian scenes.
 // (For glossy surfaces the indirect AOV is still the diffuse irradiance estimate, weighted cos/(pi pdf).)
+// Where the camera ray's first hit takes the glass lobe, the pixel has no diffuse surface of its own: direct =
+// combined (all it shows comes through or off the glass), indirect = 0, albedo = 0; normal, depth and ao are
+// the glass surface's. Light that reaches an opaque primary hit through glass is indirect (it was refracted).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 BL_CONSTANTS(0) uniform Params {
@@ -42,74 +45,87 @@ void main() {
         vec2 jitter = vec2(rand(), rand());
         if (params.up.w == 0.0) jitter = vec2(0.5);
         vec2 ndc = (vec2(pixel) + jitter) / vec2(params.size.xy) * 2.0 - 1.0;
-        vec3 dir = normalize(params.forward.xyz + params.right.xyz * (ndc.x * params.forward.w * params.right.w) -
-                             params.up.xyz * (ndc.y * params.forward.w));
+        vec3 d = normalize(params.forward.xyz + params.right.xyz * (ndc.x * params.forward.w * params.right.w) -
+                           params.up.xyz * (ndc.y * params.forward.w));
         vec3 origin = params.eye.xyz;
-        Hit hit;
-        if (!traceRay(origin, dir, 0.0, 1e30, false, hit)) {
-            sums[0] += sceneLight.sky.rgb;
-            sums[1] += sceneLight.sky.rgb;
-            sums[6] += vec3(1.0);
-            continue;
-        }
-        vec3 p = origin + dir * hit.t;
-        vec3 ng = triangleNormal(hit.triangle);
-        bool front = dot(ng, dir) < 0.0;
-        vec3 n = shadingNormal(hit.triangle, hit.bary, front ? ng : -ng);
-        uint material = floatBitsToUint(triangles[3u * hit.triangle].w);
-        Surface surface = surfaceAt(material, hit.triangle, hit.bary);
-        vec3 emission = front ? materials[3u * material + 1u].rgb : vec3(0.0);
-        sums[3] += surface.baseColor;
-        sums[4] += n;
-        sums[5] += vec3(dot(p - origin, params.forward.xyz));
-        // AO from a stream of its own, so that the other AOVs draw the same numbers as without it. Always
-        // traced (no flag: a short any-hit ray); a range of 0 or below eps makes it 1.
-        uint pathRng = rngState;
-        rngState = pcg(pathRng ^ 0x9E3779B9u);
-        Hit occluder;
-        sums[6] += vec3(traceRay(p, cosineDirection(n), eps, params.eye.w, true, occluder) ? 0.0 : 1.0);
-        rngState = pathRng;
-        vec3 v = -dir;
-        vec3 direct = emission + directLight(p, n, v, surface, eps);
-        vec3 radiance = direct;
-        vec3 indirect = vec3(0.0);
-        vec3 d, throughput;
-        if (sampleBrdf(surface, n, v, d, throughput)) {
-            // Indirect diffuse at the primary hit, as irradiance / pi: cos / (pi pdf) per unit incoming
-            // radiance (1 for a Lambertian surface's cosine sampling).
-            vec3 relative = vec3(max(dot(n, d), 0.0) / (PI * brdfPdf(surface, n, v, d)));
-            for (uint bounce = 1u; bounce <= sceneLight.counts.z; ++bounce) {
-                if (!traceRay(p, d, eps, 1e30, false, hit)) {
-                    // The first bounce escaping to the sky is still direct light at the primary hit.
-                    if (bounce == 1u) direct += throughput * sceneLight.sky.rgb;
-                    else indirect += relative * sceneLight.sky.rgb;
-                    radiance += throughput * sceneLight.sky.rgb;
-                    break;
-                }
-                p = p + d * hit.t;
-                ng = triangleNormal(hit.triangle);
-                n = shadingNormal(hit.triangle, hit.bary, dot(ng, d) < 0.0 ? ng : -ng);
-                material = floatBitsToUint(triangles[3u * hit.triangle].w);
-                surface = surfaceAt(material, hit.triangle, hit.bary);
-                v = -d;
+        vec3 radiance = vec3(0.0), direct = vec3(0.0), indirect = vec3(0.0);
+        vec3 throughput = vec3(1.0);
+        vec3 relative = vec3(0.0);  // indirect diffuse at the primary hit per unit radiance arriving at this vertex
+        bool countEmission = true;  // camera rays, and rays a glass vertex sampled
+        bool glassPixel = false;
+        // Vertex k = 0 is the primary hit; the ray of vertex k leaves vertex k − 1.
+        for (uint k = 0u; k <= sceneLight.counts.z; ++k) {
+            Hit hit;
+            if (!traceRay(origin, d, k == 0u ? 0.0 : eps, 1e30, false, hit)) {
+                // The camera ray, or the primary hit's ray, escaping to the sky is direct light.
+                if (k <= 1u) direct += throughput * sceneLight.sky.rgb;
+                else indirect += relative * sceneLight.sky.rgb;
+                radiance += throughput * sceneLight.sky.rgb;
+                if (k == 0u) sums[6] += vec3(1.0);
+                break;
+            }
+            vec3 p = origin + d * hit.t;
+            vec3 ng = triangleNormal(hit.triangle);
+            bool front = dot(ng, d) < 0.0;
+            ng = front ? ng : -ng;  // towards the ray's origin
+            vec3 n = shadingNormal(hit.triangle, hit.bary, ng);
+            uint material = floatBitsToUint(triangles[3u * hit.triangle].w);
+            Surface surface = surfaceAt(material, hit.triangle, hit.bary);
+            vec3 v = -d;
+            if (k == 0u) {
+                sums[4] += n;
+                sums[5] += vec3(dot(p - origin, params.forward.xyz));
+                // AO from a stream of its own, so that the other AOVs draw the same numbers as without it. Always
+                // traced (no flag: a short any-hit ray); a range of 0 or below eps makes it 1.
+                uint pathRng = rngState;
+                rngState = pcg(pathRng ^ 0x9E3779B9u);
+                Hit occluder;
+                sums[6] += vec3(traceRay(p, cosineDirection(n), eps, params.eye.w, true, occluder) ? 0.0 : 1.0);
+                rngState = pathRng;
+            }
+            if (countEmission && front) {
+                vec3 emission = materials[3u * material + 1u].rgb;
+                radiance += throughput * emission;
+                if (k == 0u) direct += emission; else indirect += relative * emission;
+            }
+            // The glass lobe with probability `transmission` (no draw for opaque or clear glass).
+            float transmission = glassTransmission(material);
+            bool glass = transmission > 0.0 && (transmission >= 1.0 || rand() < transmission);
+            if (k == 0u) {
+                glassPixel = glass;
+                sums[3] += glass ? vec3(0.0) : surface.baseColor;
+            }
+            if (!glass) {
                 vec3 light = directLight(p, n, v, surface, eps);
                 radiance += throughput * light;
-                indirect += relative * light;
-                if (bounce >= 3u) {
-                    float keep = min(max(throughput.r, max(throughput.g, throughput.b)), 0.95);
-                    if (rand() >= keep) break;
-                    throughput /= keep;
-                    relative /= keep;
-                }
-                vec3 weight;
-                if (!sampleBrdf(surface, n, v, d, weight)) break;
-                throughput *= weight;
-                relative *= weight;
+                if (k == 0u) direct += light; else indirect += relative * light;
             }
+            if (k >= 3u) {
+                float keep = min(max(throughput.r, max(throughput.g, throughput.b)), 0.95);
+                if (rand() >= keep) break;
+                throughput /= keep;
+                relative /= keep;
+            }
+            vec3 next, weight;
+            if (glass) {
+                float w;
+                if (!sampleGlass(n, ng, v, front, surface.roughness, glassIor(material), next, w)) break;
+                weight = vec3(w);
+            } else if (!sampleBrdf(surface, n, v, next, weight)) {
+                break;
+            }
+            // Indirect diffuse at the primary hit, as irradiance / pi: cos / (pi pdf) per unit incoming radiance
+            // (1 for a Lambertian surface's cosine sampling).
+            if (k == 0u && !glass) relative = vec3(max(dot(n, next), 0.0) / (PI * brdfPdf(surface, n, v, next)));
+            else relative *= weight;
+            throughput *= weight;
+            countEmission = glass;
+            origin = p;
+            d = next;
         }
         sums[0] += radiance;
-        sums[1] += direct;
-        sums[2] += indirect;
+        sums[1] += glassPixel ? radiance : direct;
+        sums[2] += glassPixel ? vec3(0.0) : indirect;
     }
     for (uint a = 0u; a < 7u; ++a) accumulated[a * pixelCount + pixelIndex] += vec4(sums[a], float(params.size.w));
 }

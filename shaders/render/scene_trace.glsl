@@ -13,7 +13,8 @@ BL_CONSTANTS(1) uniform SceneLight {
 } sceneLight;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits)
 BL_READ_BUFFER(1) Nodes { vec4 nodes[]; };           // 2 per node: min, rightOrFirst; max, count
-BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 3 per material: albedo, roughness; emission, metalness; texture layer (-1 none)
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 3 per material: albedo, roughness; emission, metalness;
+                                                     // texture layer (-1 none), dielectric F0, transmission, ior
 BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, cumulative weight, weight
 BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
 BL_READ_BUFFER(5) TriangleUvs { vec4 triangleUvs[]; };  // 2 per triangle: uv0, uv1; uv2
@@ -215,6 +216,69 @@ bool sampleBrdf(Surface s, vec3 n, vec3 v, out vec3 l, out vec3 weight) {
     float pdf = brdfPdf(s, n, v, l);
     if (pdf <= 0.0) return false;
     weight = evalBrdf(s, n, v, l) * max(dot(n, l), 0.0) / pdf;
+    return true;
+}
+
+// Glass (TriangleMesh::transmission, ior): a clear dielectric interface with GGX microfacets, smooth below this
+// roughness (a mirror and a perfect refraction).
+const float kSmoothGlass = 0.02;
+float glassTransmission(uint material) { return materials[3u * material + 2u].z; }
+float glassIor(uint material) { return materials[3u * material + 2u].w; }
+
+// Fresnel reflectance of a dielectric interface, exact (unpolarized): `cosI` the cosine of incidence on the
+// incident side, `eta` = η_transmitted / η_incident. 1 under total internal reflection.
+float fresnelDielectric(float cosI, float eta) {
+    float sin2T = (1.0 - cosI * cosI) / (eta * eta);
+    if (sin2T >= 1.0) return 1.0;
+    float cosT = sqrt(1.0 - sin2T);
+    float rs = (cosI - eta * cosT) / (cosI + eta * cosT);
+    float rp = (eta * cosI - cosT) / (eta * cosI + cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// Smith's masking for GGX (Walter et al. 2007, eq. 34): 0 where w sees the microfacet m from behind.
+float ggxG1(vec3 w, vec3 m, vec3 n, float a2) {
+    float wn = dot(w, n);
+    if (dot(w, m) * wn <= 0.0) return 0.0;
+    float c2 = wn * wn;
+    return 2.0 / (1.0 + sqrt(1.0 + a2 * (1.0 - c2) / c2));
+}
+
+// Samples the glass at a hit: a microfacet normal m from D(m)·(m·n) (the shading normal itself when smooth),
+// then reflection with probability F(v·m) (exact Fresnel) or refraction otherwise (Walter et al. 2007). The
+// Fresnel choice cancels F and 1 − F, so weight = BSDF · |cos| / pdf = |v·m| G1(v) G1(l) / (|v·n| |m·n|) (their
+// eq. 41): exactly 1 when smooth, and on average at most 1 when rough (single scattering loses a little, gains
+// nothing — the white furnace test). The radiance scaling η² across the interface is left out: it cancels on a
+// path that enters and leaves a closed object, and no light source sits inside glass. `n` is the shading normal
+// and `ng` the geometric one, both on v's side; `entering`: v is outside (the ray met the front face). False when
+// the sample leaves on the wrong side of the geometric surface (shading normals at grazing angles) or v sees a
+// microfacet from behind: the path ends there.
+bool sampleGlass(vec3 n, vec3 ng, vec3 v, bool entering, float roughness, float ior, out vec3 l, out float weight) {
+    float eta = entering ? ior : 1.0 / ior;
+    vec3 m = n;
+    float a2 = 0.0;
+    bool rough = roughness >= kSmoothGlass;
+    if (rough) {
+        float alpha = max(roughness * roughness, 1e-3);
+        a2 = alpha * alpha;
+        float u1 = rand(), u2 = rand();
+        float cosTheta = sqrt((1.0 - u2) / (1.0 + (a2 - 1.0) * u2)), sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+        float phi = 2.0 * PI * u1;
+        vec3 t = normalize(abs(n.x) > 0.5 ? cross(n, vec3(0, 1, 0)) : cross(n, vec3(1, 0, 0)));
+        m = normalize(t * (cos(phi) * sinTheta) + cross(n, t) * (sin(phi) * sinTheta) + n * cosTheta);
+    }
+    float vm = dot(v, m), vn = dot(v, n);
+    weight = 0.0;
+    if (vm <= 0.0 || vn <= 0.0) return false;
+    bool reflected = rand() < fresnelDielectric(vm, eta);
+    l = refract(-v, m, 1.0 / eta);
+    // refract() may find total internal reflection a rounding before fresnelDielectric does: reflect then.
+    reflected = reflected || dot(l, l) == 0.0;
+    l = reflected ? reflect(-v, m) : l;
+    // Reflection stays on v's side of the surface, refraction crosses it (of both normals).
+    float side = reflected ? 1.0 : -1.0;
+    if (side * dot(l, ng) <= 0.0 || side * dot(l, n) <= 0.0) return false;
+    weight = rough ? vm * ggxG1(v, m, n, a2) * ggxG1(l, m, n, a2) / (vn * dot(m, n)) : 1.0;
     return true;
 }
 

@@ -8,12 +8,23 @@
 // bounces on, the light the voxels gathered last frame (blVoxelIndirect) is reflected too, one bounce more each
 // frame.
 #define BL_VOXEL_MULTI_BOUNCE
+// With --vct-occlusion sdf the bounce cones stop at the first surface the scene's BVH meets along their axis (the
+// exact distance the cone tracer takes from the distance field).
+float bounceConeSurface(vec3 origin, vec3 direction);
+#define BL_VOXEL_CONE_SURFACE bounceConeSurface
 #include "bricklight/voxelize.glsl"
 BL_CONSTANTS(0) uniform VoxelLighting {
-    uvec4 params;  // x light samples per fragment, y 1: add last frame's indirect light
+    uvec4 params;  // x light samples per fragment, y 1: add last frame's indirect light, z 1: cones stop at surfaces
 } voxelLighting;
 #define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
+
+float bounceConeSurface(vec3 origin, vec3 direction) {
+    Hit h;
+    // The flag with per-ray data in the condition (docs/notes/soak.md).
+    if (voxelLighting.params.z == 0u || any(isnan(origin))) return 0.0;
+    return traceRay(origin, direction, 0.0, 1e30, false, h) ? max(h.t, 1e-6) : 0.0;
+}
 
 vec3 blVoxelEmittance(BlVoxelFragment f) {
     uint material = uint(f.user0.x + 0.5);
