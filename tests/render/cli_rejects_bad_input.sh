@@ -36,6 +36,9 @@ expect_failure "--gi-debug needs the fast path" "${common[@]}" --gi-debug probes
 expect_failure "--gi-debug probes needs the SDF GI" --gi vxgi --gi-debug probes --out "$out/x.png"
 expect_failure "--gi-debug vct-opacity needs voxel cone tracing" --gi-debug vct-opacity --out "$out/x.png"
 expect_failure "--aov ao needs --reference" --aov ao --out "$out/x.png"
+expect_failure "--vct-occlusion must be voxels or sdf" --vct-occlusion rays
+expect_failure "--gi-unseen must be vxgi or none" --gi-unseen sdf
+expect_failure "voxel AO with the SDF GI is not supported" --width 16 --height 16 --frames 1 --gi sdf --ao vxao --out "$out/x.png"
 # Numbers are read as numbers: a negative one cannot wrap around to a valid size.
 expect_failure "--width expects a whole number in 1\.\.8192 \(got '-18446744073709551615'\)" --width -18446744073709551615
 expect_failure "--height expects a whole number" --height 99999999999999999999999
