@@ -211,9 +211,9 @@ void aoAgainstReference(const std::string& backend) {
 void sdfOcclusionAgainstReference(const std::string& backend) {
     // Cones that stop where a ray through the distance field meets a surface (--vct-occlusion sdf): their samples
     // narrow before it so as not to average in what lies behind, and the surface's own light is read from its
-    // finest voxels. Measured (lavapipe), Cornell 128² after 32 frames: indirect relMSE 0.0167, SSIM 0.80, mean
-    // 0.0394 vs 0.0478 (82 %; voxel opacity alone: 0.048, 58 %; the SDF GI 69 %); combined relMSE 0.0069.
-    // two-rooms, wall of one finest voxel, lag 0: room B / room A 0.61 (voxels alone 0.78): what is left comes
+    // finest voxels. Measured (lavapipe), Cornell 128² after 32 frames: indirect relMSE 0.020, SSIM 0.78, mean
+    // 0.0377 vs 0.0478 (79 %; voxel opacity alone: 0.048, 58 %; the SDF GI 69 %); combined relMSE 0.0076.
+    // two-rooms, wall of one finest voxel, lag 0: room B / room A 0.62 (voxels alone 0.78): what is left comes
     // through coarse samples near the cones' origins, which hold the outer walls' sunlit faces. Bounds: about
     // twice the distance, and below the voxel-only figures.
     TestDevice td = makeDevice(backend);
