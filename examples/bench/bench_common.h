@@ -33,6 +33,9 @@ struct Options {
     std::string vctEmittance = "aniso";           // vct: aniso, iso or none
     uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
     bool vctSdfOcclusion = false;                 // vct: cones stop at the distance field's surfaces
+    bool vctRegistered = false;                   // vct: voxelize through vct::VoxelScene (culled) instead of one draw
+    bool vctPersistent = false;                   // vct: keep voxels; rewrite what the moving anchor uncovers
+    uint32_t vctMoveVoxels = 0;                   // vct: the anchor moves this many finest voxels along x a frame
 };
 
 // Sums of GPU milliseconds per marker label over the frames of one phase.

@@ -11,6 +11,7 @@
 
 #include "bench_common.h"
 #include "bricklight/vct.h"
+#include "bricklight/vct_scene.h"
 #include "scene_geometry.h"
 
 namespace bricklight::bench {
@@ -99,7 +100,7 @@ int runVct(const Options& o) {
         desc.resolution = o.vctResolution;
         desc.levels = o.vctLevels;
         desc.emittance = mode;
-        desc.persistent = false;
+        desc.persistent = o.vctPersistent;
         desc.finestVoxelSize = 2.0f * size / float(desc.resolution * (1u << (desc.levels - 1)));
         std::string error;
         auto clipmap = vct::Clipmap::create(*device, desc, &error);
@@ -115,6 +116,27 @@ int runVct(const Options& o) {
             std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
             return false;
         }
+        // --voxelizer scene: the scene's meshes and instances registered with a vct::VoxelScene, which draws only
+        // the instances that meet this update's rewrite regions.
+        std::unique_ptr<vct::VoxelScene> voxelScene;
+        if (o.vctRegistered) {
+            voxelScene = vct::VoxelScene::create(*device, &error);
+            std::vector<vct::VoxelMeshHandle> meshes;
+            for (const scenes::TriangleMesh& m : geometry.meshes) {
+                vct::VoxelMeshArrays a{m.positions.data(), m.normals.empty() ? nullptr : m.normals.data(), uint32_t(m.positions.size() / 3),
+                                       m.indices.data(), uint32_t(m.indices.size()), m.name};
+                meshes.push_back(voxelScene ? voxelScene->addMesh(a, &error) : vct::VoxelMeshHandle{});
+                if (!meshes.back()) break;
+            }
+            for (const scenes::MeshInstance& i : geometry.instances)
+                if (!voxelScene || !meshes.back() || !voxelScene->addInstance({meshes[i.mesh], i.transform, material, {}, {}}, &error)) {
+                    std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+                    return false;
+                }
+        }
+        uint64_t drawsPerFrame = 0;  // voxelization draws over the timed frames
+        rhi::Bindings sunBindings;
+        if (material.fragmentShader) sunBindings.constants.push(rhi::constants(0, sun));
         state->vertexShader = vertexShader;
         state->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
         state->vertexInputs.push({1, rhi::VertexFormat::Float3, 0, 12});
@@ -130,12 +152,19 @@ int runVct(const Options& o) {
             gbuffer.record(*device, *scene, now, previous, o.width, o.height);
             // Top-level markers only: a nested marker's label would be "outer/inner".
             device->beginMarker("vct update");
-            clipmap->update(now.eye, &error);
+            const glm::vec3 anchor = now.eye + glm::vec3(float(o.vctMoveVoxels * f) * desc.finestVoxelSize, 0.0f, 0.0f);
+            clipmap->update(anchor, &error, voxelScene ? voxelScene->takeDirtyRegions() : std::vector<vct::WorldBox>{});
             device->endMarker();
             device->beginMarker("vct voxelize");
-            rhi::DrawArgs args;
-            args.vertexCount = vertexCount;
-            device->draw(*state, args);
+            if (voxelScene) {
+                voxelScene->voxelize(*clipmap, sunBindings, &error);
+                drawsPerFrame += voxelScene->lastDrawCount();
+            } else if (!clipmap->rewriteBoxes().empty()) {
+                rhi::DrawArgs args;
+                args.vertexCount = vertexCount;
+                device->draw(*state, args);
+                drawsPerFrame += 1;
+            }
             device->endMarker();
             clipmap->finishVoxelization();
             vct::TraceDesc t;
@@ -167,7 +196,10 @@ int runVct(const Options& o) {
         collect(*device, 0);
         clipmap->setCountersEnabled(true);
         clipmap->resetCounters();
+        drawsPerFrame = 0;
         for (uint32_t f = 0; f < o.frames; ++f) frame(8 + f);
+        std::printf("  (%s, %s) voxelization draws a frame: %.1f\n", mode == vct::EmittanceMode::None ? "AO" : "GI",
+                    voxelScene ? "registered meshes, culled" : "one draw of every triangle", double(drawsPerFrame) / o.frames);
         *times = collect(*device, o.frames);
         *voxelsWritten = clipmap->readCounters().voxelsWritten / o.frames;
         clipmap->setCountersEnabled(false);

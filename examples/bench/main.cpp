@@ -52,7 +52,8 @@ namespace {
                  "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
                  "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
-                 "                            [--occlusion voxels|sdf]\n");
+                 "                            [--occlusion voxels|sdf] [--voxelizer draw|scene] [--persistent]\n"
+                 "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n");
     std::exit(2);
 }
 
@@ -123,7 +124,13 @@ Options parse(int argc, char** argv) {
             const std::string v = value();
             if (v != "voxels" && v != "sdf") usage("--occlusion must be voxels or sdf");
             o.vctSdfOcclusion = v == "sdf";
-        }
+        } else if (a == "--voxelizer") {
+            const std::string v = value();
+            if (v != "draw" && v != "scene") usage("--voxelizer must be draw or scene");
+            o.vctRegistered = v == "scene";
+        } else if (a == "--persistent") {
+            o.vctPersistent = true;
+        } else if (a == "--move") o.vctMoveVoxels = number(value(), "--move", 0, 64);
         else usage("unknown option '" + a + "'");
     }
     if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl");
