@@ -7,6 +7,15 @@
 
 namespace bricklight::render {
 
+void depthTestAgainstCleared(rhi::DrawCallState& d, rhi::TextureHandle depth) {
+    d.depthTarget.view = rhi::wholeTexture(depth);
+    d.depthTarget.load = rhi::LoadOp::Clear;
+    d.depthTarget.clearDepth = 1.0f;
+    d.depth.testEnable = true;
+    d.depth.writeEnable = true;
+    d.depth.compare = rhi::CompareOp::Less;
+}
+
 glm::mat4 viewMatrix(const scenes::Camera& camera) { return glm::lookAtRH(camera.eye, camera.at, camera.up); }
 
 glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sceneSize) {
@@ -258,12 +267,7 @@ void RasterRenderer::render() {
         c.load = rhi::LoadOp::Clear;
         d.colorTargets.push(c);
     }
-    d.depthTarget.view = rhi::wholeTexture(depth_);
-    d.depthTarget.load = rhi::LoadOp::Clear;
-    d.depthTarget.clearDepth = 1.0f;
-    d.depth.testEnable = true;
-    d.depth.writeEnable = true;
-    d.depth.compare = rhi::CompareOp::Less;
+    depthTestAgainstCleared(d, depth_);
     d.bindings.constants.push(rhi::constants(0, cam));
     d.bindings.readBuffers.push({2, scene_->materialBuffer(), {}});
     d.bindings.textures.push({0, rhi::wholeTexture(scene_->textureArray()), scene_->textureSampler()});

@@ -170,6 +170,9 @@ private:
     uint32_t frame_ = 0;
 };
 
+// The nearest surface wins: `depth` cleared to the far plane, tested and written with Less.
+void depthTestAgainstCleared(rhi::DrawCallState& draw, rhi::TextureHandle depth);
+
 // The renderer's camera matrices: right-handed view; projection with depth [0, 1] and clip-space y down
 // (row 0 at the top).
 glm::mat4 viewMatrix(const scenes::Camera& camera);

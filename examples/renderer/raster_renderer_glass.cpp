@@ -80,12 +80,7 @@ void RasterRenderer::renderGlass() {
     c.view = rhi::wholeTexture(glassRadiance_);
     c.load = rhi::LoadOp::Clear;  // alpha 0: no glass
     d.colorTargets.push(c);
-    d.depthTarget.view = rhi::wholeTexture(glassDepth_);
-    d.depthTarget.load = rhi::LoadOp::Clear;
-    d.depthTarget.clearDepth = 1.0f;
-    d.depth.testEnable = true;
-    d.depth.writeEnable = true;
-    d.depth.compare = rhi::CompareOp::Less;
+    depthTestAgainstCleared(d, glassDepth_);
     d.bindings.constants.push(rhi::constants(0, cam));
     d.bindings.constants.push(rhi::constants(1, light));
     d.bindings.constants.push(rhi::constants(2, glassParams));
