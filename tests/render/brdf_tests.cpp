@@ -15,19 +15,13 @@ using namespace bricklight::testing;
 namespace {
 
 scenes::SceneGeometry sphereUnderSky(float roughness, float metalness) {
-    scenes::SceneGeometry s;
     scenes::TriangleMesh m = scenes::icosphere(4);
     m.normals = m.positions;
     m.albedo = glm::vec3(1.0f);
     m.roughness = roughness;
     m.metalness = metalness;
     m.specular = true;
-    s.meshes.push_back(m);
-    s.instances.push_back({0, glm::mat4(1.0f)});
-    s.environment.skyRadiance = glm::vec3(1.0f);
-    s.camera = {glm::vec3(0, 0, 4), glm::vec3(0), glm::vec3(0, 1, 0), 30.0f};
-    s.computeBounds();
-    return s;
+    return furnace(m);
 }
 
 double meanOverSphere(TestDevice& td, const scenes::SceneGeometry& s) {

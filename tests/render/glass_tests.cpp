@@ -18,19 +18,13 @@ namespace {
 
 // A glass sphere (1280 triangles with a sphere's vertex normals, as cornell-glass's) under a uniform sky of 1.
 scenes::SceneGeometry glassUnderSky(float roughness) {
-    scenes::SceneGeometry s;
     scenes::TriangleMesh m = scenes::icosphere(3);
     m.name = "furnace glass";
     m.normals = m.positions;
     m.transmission = 1.0f;
     m.ior = 1.5f;
     m.roughness = roughness;
-    s.meshes.push_back(m);
-    s.instances.push_back({0, glm::mat4(1.0f)});
-    s.environment.skyRadiance = glm::vec3(1.0f);
-    s.camera = {glm::vec3(0, 0, 4), glm::vec3(0), glm::vec3(0, 1, 0), 30.0f};
-    s.computeBounds();
-    return s;
+    return furnace(m);
 }
 
 void whiteFurnace(const std::string& backend) {

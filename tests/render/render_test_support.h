@@ -106,4 +106,15 @@ inline scenes::TriangleMesh groundPlane(float half, glm::vec3 albedo) {
     return plane;
 }
 
+// A white furnace: `mesh` alone at the origin under a uniform sky of radiance 1, seen from 4 units away.
+inline scenes::SceneGeometry furnace(const scenes::TriangleMesh& mesh) {
+    scenes::SceneGeometry s;
+    s.meshes.push_back(mesh);
+    s.instances.push_back({0, glm::mat4(1.0f)});
+    s.environment.skyRadiance = glm::vec3(1.0f);
+    s.camera = {glm::vec3(0, 0, 4), glm::vec3(0), glm::vec3(0, 1, 0), 30.0f};
+    s.computeBounds();
+    return s;
+}
+
 }  // namespace bricklight::testing
