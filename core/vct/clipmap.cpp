@@ -64,6 +64,10 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
                           : desc.emittance == EmittanceMode::Isotropic ? "vct/resolve_isotropic.comp"
                                                                        : "vct/resolve_opacity.comp";
     c->resolve_ = makeShader(device, resolve);
+    const char* mips = desc.emittance == EmittanceMode::Anisotropic ? "vct/mip_build_anisotropic.comp"
+                       : desc.emittance == EmittanceMode::Isotropic ? "vct/mip_build_isotropic.comp"
+                                                                    : "vct/mip_build_opacity.comp";
+    c->mipBuild_ = makeShader(device, mips);
     if (device.capabilities().geometryShader) {
         c->voxelizeGeometry_ = makeShader(device, "vct/voxelize.geom");
         c->voxelizeOpacity_ = makeShader(device, "vct/voxelize_opacity.frag");
@@ -76,8 +80,8 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
     td.debugName = "vct opacity";
     c->opacity_ = device.createTexture(td);
-    // The traced volumes: each level's slab has a border slice on each side (resolve_body.glsl).
-    const uint64_t tracedDepth = uint64_t(desc.resolution + 2) * desc.levels;
+    // The traced volumes: each level's slab has a border slice on each side (resolve_body.glsl), then the mips'.
+    const uint64_t tracedDepth = detail::tracedSlices(desc.levels, desc.resolution);
     if (tracedDepth > limits.maxTextureSize3D)
         return fail("the traced volumes (" + std::to_string(desc.resolution) + "² × " + std::to_string(tracedDepth) +
                     ") exceed the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution");
@@ -119,7 +123,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     c->counters_ = device.createBuffer(bd);
     bool traced = c->tracedOpacity_ && c->tracedSampler_;
     for (rhi::TextureHandle t : c->tracedEmittance_) traced = traced && t;
-    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->debugView_ || !c->opacity_ || !c->rasterSize_ ||
+    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->mipBuild_ || !c->debugView_ || !c->opacity_ || !c->rasterSize_ ||
         !c->emittance_ || !c->frame_ || !c->counters_ || !traced)
         return fail("the device could not create the clip-map's volumes, buffers or passes");
     return c;
@@ -133,7 +137,7 @@ Clipmap::~Clipmap() {
     if (tracedSampler_) device_.destroy(tracedSampler_);
     for (rhi::BufferHandle b : {emittance_, frame_, counters_})
         if (b) device_.destroy(b);
-    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_, debugView_})
+    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, resolve_, mipBuild_, voxelizeGeometry_, voxelizeOpacity_, debugView_})
         if (s) device_.destroy(s);
 }
 
@@ -214,7 +218,7 @@ void Clipmap::writeFrame() {
     for (uint32_t level = 0; level < d.levels; ++level) h.origin[level] = glm::ivec4(placement_.origin(level), 0);
     h.params = glm::uvec4(d.resolution, d.levels, emittanceWordsPerVoxel(d.emittance), uint32_t(rewrite_.size()));
     h.scales = glm::vec4(d.finestVoxelSize, detail::kEmittanceUnits * d.emittanceStorageScale, 0.0f, 0.0f);
-    h.flags = glm::uvec4(countersEnabled_ ? 1u : 0u, 0u, 0u, 0u);
+    h.flags = glm::uvec4(countersEnabled_ ? 1u : 0u, clipmapMipLevels(d), 0u, 0u);
     std::memcpy(bytes.data(), &h, sizeof(h));
     for (size_t i = 0; i < rewrite_.size(); ++i) {
         const detail::FrameBox b{glm::ivec4(rewrite_[i].box.min, int(rewrite_[i].level)), glm::ivec4(rewrite_[i].box.max, 0)};
@@ -316,6 +320,49 @@ void Clipmap::finishVoxelization() {
     for (const LevelBox& b : rewrite_) resolveBox(b);
     for (const LevelBox& b : downsampleBoxes_) resolveBox(b);
     device_.endMarker();
+    const uint32_t coarsest = desc().levels - 1;
+    bool coarsestChanged = false;
+    for (const std::vector<LevelBox>* boxes : {&rewrite_, &downsampleBoxes_})
+        for (const LevelBox& b : *boxes) coarsestChanged = coarsestChanged || b.level == coarsest;
+    if (coarsestChanged) buildMips();
+}
+
+// The mips are small (the first has an eighth of a level's voxels) and rebuilt whole whenever the coarsest level
+// changed: what a change touches there spreads over most of them anyway.
+void Clipmap::buildMips() {
+    const ClipmapDesc& d = desc();
+    const uint32_t coarsest = d.levels - 1, mips = clipmapMipLevels(d);
+    const int r = int(d.resolution);
+    const glm::ivec3 origin = placement_.origin(coarsest);
+    struct {
+        glm::ivec4 target, targetMin, source, sourceMin, shift;
+    } c;
+    device_.beginMarker("vct mips");
+    for (uint32_t m = 1; m <= mips; ++m) {
+        const int size = detail::mipBoxSize(m, d.resolution);
+        c.target = glm::ivec4(detail::mipBoxOffset(m, d.levels, d.resolution), size);
+        c.targetMin = glm::ivec4((origin >> int(m)) - 1, 0);
+        if (m == 1) {  // the coarsest level, toroidal: its first voxel is stored at the origin modulo the resolution
+            c.source = glm::ivec4(0, 0, int(coarsest) * (r + 2) + 1, r);
+            c.sourceMin = glm::ivec4(origin, 0);
+            c.shift = glm::ivec4(placement_.toroidalTexel(origin), 0);
+        } else {
+            c.source = glm::ivec4(detail::mipBoxOffset(m - 1, d.levels, d.resolution), detail::mipBoxSize(m - 1, d.resolution));
+            c.sourceMin = glm::ivec4((origin >> int(m - 1)) - 1, 0);
+            c.shift = glm::ivec4(0);
+        }
+        rhi::DispatchState s;
+        s.shader = mipBuild_;
+        s.label = "vct mip";
+        s.bindings.constants.push(rhi::constants(0, c));
+        s.bindings.storageImages.push(rhi::storageImage(0, tracedOpacity_, rhi::Access::ReadWrite));
+        if (d.emittance != EmittanceMode::None)
+            for (size_t e = 0; e < tracedEmittance_.size(); ++e)
+                s.bindings.storageImages.push(rhi::storageImage(uint8_t(1 + e), tracedEmittance_[e], rhi::Access::ReadWrite));
+        const uint32_t groups = uint32_t(size + 3) / 4;
+        device_.dispatch(s, groups, groups, groups);
+    }
+    device_.endMarker();
 }
 
 bool Clipmap::debugView(const DebugViewDesc& d, std::string* error) {
@@ -324,8 +371,9 @@ bool Clipmap::debugView(const DebugViewDesc& d, std::string* error) {
         return false;
     };
     if (uint32_t(d.mode) > uint32_t(DebugMode::Rewritten)) return fail("mode " + std::to_string(uint32_t(d.mode)) + " is not a DebugMode");
-    if (d.level < -1 || d.level >= int32_t(desc().levels))
-        return fail("level " + std::to_string(d.level) + " is outside -1.." + std::to_string(desc().levels - 1));
+    const int32_t lastLevel = int32_t(desc().levels - 1 + clipmapMipLevels(desc()));  // the coarsest level's mips follow it
+    if (d.level < -1 || d.level > lastLevel)
+        return fail("level " + std::to_string(d.level) + " is outside -1.." + std::to_string(lastLevel) + " (levels, then the coarsest level's mips)");
     if (d.direction < -1 || d.direction > 5) return fail("direction " + std::to_string(d.direction) + " is outside -1..5");
     if (!(d.exposure > 0.0f) || !std::isfinite(d.exposure)) return fail("exposure must be a positive finite number");
     const rhi::TextureDesc* out = device_.describe(d.output);

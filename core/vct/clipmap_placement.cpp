@@ -56,7 +56,7 @@ uint64_t clipmapBytes(const ClipmapDesc& d) {
     const uint64_t voxels = uint64_t(d.resolution) * d.resolution * d.resolution * d.levels;
     const uint64_t opacity = voxels * 4, emittance = std::max<uint64_t>(voxels * emittanceWordsPerVoxel(d.emittance) * 4, 16);
     const uint64_t rasterSize = uint64_t(d.resolution) * d.resolution * 4;
-    const uint64_t tracedVoxels = uint64_t(d.resolution) * d.resolution * (d.resolution + 2) * d.levels;
+    const uint64_t tracedVoxels = uint64_t(d.resolution) * d.resolution * detail::tracedSlices(d.levels, d.resolution);
     const uint64_t directions = d.emittance == EmittanceMode::Anisotropic ? 6 : 1;
     const uint64_t traced = tracedVoxels * 4 + (d.emittance == EmittanceMode::None ? 8 : tracedVoxels * 8 * directions);
     const uint64_t frame = detail::kFrameBufferBytes, counters = detail::kCounterWords * 4;

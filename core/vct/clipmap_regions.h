@@ -2,6 +2,7 @@
 // voxelization rewrites and which the downsampling refills.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -17,7 +18,7 @@ struct FrameHeader {
     glm::ivec4 origin[kMaxLevels];
     glm::uvec4 params;  // resolution, levels, emittance words per voxel, boxes
     glm::vec4 scales;   // finest voxel size, fixed-point units per unit of radiance
-    glm::uvec4 flags;   // x: counters on
+    glm::uvec4 flags;   // x: counters on, y: mips of the coarsest level
 };
 struct FrameBox {
     glm::ivec4 minLevel, max;
@@ -27,6 +28,16 @@ constexpr uint64_t kFrameBufferBytes = sizeof(FrameHeader) + kMaxFrameBoxes * si
 constexpr uint32_t kCounterWords = 8;
 // Fixed-point units of emittance per unit of radiance at emittanceStorageScale 1.
 constexpr float kEmittanceUnits = 65536.0f;
+
+// The traced volumes' layout (vctTracedSlices / vctMipBoxOffset in vct_layout.glsl): slices in all, and where
+// mip m ≥ 1 of the coarsest level lies, its box (resolution >> m) + 3 texels wide.
+inline uint32_t tracedSlices(uint32_t levels, uint32_t resolution) { return levels * (resolution + 2) + resolution / 2 + 3; }
+inline glm::ivec3 mipBoxOffset(uint32_t mip, uint32_t levels, uint32_t resolution) {
+    const int r = int(resolution), m = int(mip);
+    const glm::ivec3 beside(r / 2 + 3, r / 2 - (r >> std::max(m - 1, 0)) + 3 * (m - 2), 0);
+    return (mip <= 1 ? glm::ivec3(0) : beside) + glm::ivec3(0, 0, int(levels * (resolution + 2)));
+}
+inline int mipBoxSize(uint32_t mip, uint32_t resolution) { return int(resolution >> mip) + 3; }
 
 // The parts of `now` not in `before`, as up to three disjoint slabs.
 std::vector<VoxelBox> uncovered(const VoxelBox& before, const VoxelBox& now);

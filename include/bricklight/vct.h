@@ -34,8 +34,9 @@ struct ClipmapDesc {
     uint32_t levels = 5;             // stack levels, kMinLevels..kMaxLevels (VXGI 2.0 in UE4: 128³ × 5)
     uint32_t resolution = 128;       // voxels per axis of every level: 32, 64, 128 or 256
     float finestVoxelSize = 0.08f;   // world units; level L's voxels are finestVoxelSize × 2^L
-    // Coarser mips of the last level above the stack (each halves its resolution); 0: log2(resolution) − 2,
-    // down to 4³, as VXGI does.
+    // Coarser mips of the last level above the stack (each halves its resolution; cones wider than the
+    // coarsest level's voxels read them instead of undersampling it); 0: log2(resolution) − 2, down to 4³, as
+    // VXGI does.
     uint32_t mipLevels = 0;
     EmittanceMode emittance = EmittanceMode::Anisotropic;
     // Keep voxels from frame to frame and rewrite only what entered a level or was invalidated (VXGI's
@@ -154,7 +155,7 @@ struct VoxelizationCounters {
 enum class DebugMode : uint32_t { Opacity, Emittance, Level, Rewritten };
 struct DebugViewDesc {
     DebugMode mode = DebugMode::Opacity;
-    int32_t level = -1;      // the level to show; −1: the finest that holds each point
+    int32_t level = -1;      // the level to show (levels, then the coarsest level's mips); −1: the finest that holds each point
     int32_t direction = -1;  // emittance: 0..5 (+X, +Y, +Z, −X, −Y, −Z); −1: back along the ray
     glm::mat4 view{1.0f}, projection{1.0f};  // the camera (GiContext's conventions)
     glm::vec3 cameraPosition{0.0f};
@@ -232,7 +233,8 @@ public:
     const ClipmapDesc& desc() const { return placement_.desc(); }
     rhi::TextureHandle opacityVolume() const { return opacity_; }
     // The traced volumes: opacity along x, y, z (RGBA8_UNORM) and emittance radiance (RGBA16_FLOAT; six for anisotropic, one
-    // for isotropic, a 1³ zero texture without emittance), levels stacked in z with a border slice each side.
+    // for isotropic, a 1³ zero texture without emittance), levels stacked in z with a border slice each side, then a
+    // slab with the coarsest level's mips (vct_layout.glsl).
     rhi::TextureHandle tracedOpacity() const { return tracedOpacity_; }
     rhi::TextureHandle tracedEmittance(uint32_t direction) const { return tracedEmittance_[std::min<size_t>(direction, tracedEmittance_.size() - 1)]; }
     rhi::BufferHandle emittanceBuffer() const { return emittance_; }
@@ -243,13 +245,14 @@ private:
     void clearBox(const LevelBox& box, bool emittance);
     void downsampleBox(const LevelBox& box);
     void resolveBox(const LevelBox& box);
+    void buildMips();
     void writeFrame();
     struct MaterialBlock {
         float values[4];
     };
     rhi::IDevice& device_;
     ClipmapPlacement placement_;
-    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, resolve_, voxelizeGeometry_, voxelizeOpacity_, debugView_;
+    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, resolve_, mipBuild_, voxelizeGeometry_, voxelizeOpacity_, debugView_;
     rhi::TextureHandle opacity_, rasterSize_, tracedOpacity_;
     std::vector<rhi::TextureHandle> tracedEmittance_;
     rhi::SamplerHandle tracedSampler_;

@@ -36,7 +36,7 @@ void main() {
     vec3 dir = normalize(far.xyz / far.w - params.eye.xyz);
     float finest = blVctFrame.scales.x;
     float resolution = float(blVctFrame.params.x);
-    uint levels = blVctFrame.params.y;
+    uint levels = blVctFrame.params.y, mips = blVctFrame.flags.y;
     vec3 p = params.eye.xyz / finest;  // finest-voxel units
     vec3 invDir = 1.0 / mix(dir, vec3(1.0e-12), lessThan(abs(dir), vec3(1.0e-12)));
     vec3 colour = vec3(0.0);
@@ -46,21 +46,26 @@ void main() {
     uint mode = params.size.z + onScreen;
     int face = params.face.x + int(onScreen);
     for (int i = 0; i < 1024; ++i) {
-        uint level = params.size.w < levels ? params.size.w : blVctHoldingLevel(0u, p, 0.0, levels, resolution);
-        if (level >= levels) {
-            // Outside every level (or the chosen one): step towards the clip-map by the coarsest voxel.
+        uint level = params.size.w != 0xFFFFFFFFu ? params.size.w : blVctHoldingLevel(0u, p, 0.0, levels, resolution);
+        if (params.size.w == 0xFFFFFFFFu && level >= levels) level = levels + mips;  // no level holds the point
+        if (level >= levels + mips) {
+            // Outside every level: step towards the clip-map by the coarsest voxel.
             p += dir * float(1u << (levels - 1u));
             continue;
         }
         float scale = float(1u << level);
         ivec3 voxel = ivec3(floor(p / scale));
-        ivec3 lo = blVctFrame.origin[level].xyz;
-        if (any(lessThan(voxel, lo)) || any(greaterThanEqual(voxel, lo + int(resolution)))) {
+        // A level's voxels, toroidally; a mip's (a chosen level past the last), in its box with the border.
+        uint mip = level >= levels ? level - (levels - 1u) : 0u;
+        ivec3 lo = mip == 0u ? blVctFrame.origin[level].xyz : (blVctFrame.origin[levels - 1u].xyz >> int(mip)) - 1;
+        int extent = mip == 0u ? int(resolution) : (int(resolution) >> mip) + 3;
+        if (any(lessThan(voxel, lo)) || any(greaterThanEqual(voxel, lo + extent))) {
             p += dir * scale * 0.5;
             continue;
         }
         ivec3 t = vctTexel(0u, voxel, uint(resolution));
-        ivec3 texel = ivec3(t.xy, int(level) * (int(resolution) + 2) + 1 + t.z);
+        ivec3 texel = mip == 0u ? ivec3(t.xy, int(level) * (int(resolution) + 2) + 1 + t.z)
+                                : vctMipBoxOffset(mip, levels, uint(resolution)) + voxel - lo;
         vec3 alpha = texelFetch(blVctOpacityVolume, texel, 0).rgb;
         if (max(alpha.x, max(alpha.y, alpha.z)) >= 0.25) {
             if (mode == 0u) {

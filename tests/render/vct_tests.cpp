@@ -150,8 +150,9 @@ void leakPerSetting(const std::string& backend) {
     // The closed room B gets no light in the reference (and 2e-8 of room A's from the SDF GI, tests/render/
     // gi_tests.cpp). Voxel cone tracing leaks: its wide cones sample coarse voxels that hold both sides of the
     // wall, so a wall of one or two finest voxels makes little difference. Measured room B / room A (48³ × 5):
-    // wall of 1 voxel 0.78 (lag 0), 1.36 (lag 2); of 2 voxels 0.79, 1.40. Bounds: with lag 0 room B stays darker
-    // than room A, lag 0 leaks less than VXGI 1.0's lag 2, and the thicker wall leaks within 0.05 of the thinner.
+    // wall of 1 voxel 0.82 (lag 0), 1.47 (lag 2); of 2 voxels 0.84, 1.52 (0.78, 1.36, 0.79, 1.40 before the widest
+    // samples read the coarsest level's mips, which hold both rooms). Bounds: with lag 0 room B stays darker than
+    // room A, lag 0 leaks less than VXGI 1.0's lag 2, and the thicker wall leaks within 0.08 of the thinner.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     double thin[2], thick[2];
@@ -163,7 +164,7 @@ void leakPerSetting(const std::string& backend) {
     CHECK(thick[0] < 1.0);
     CHECK(thin[0] < thin[1]);
     CHECK(thick[0] < thick[1]);
-    for (int i = 0; i < 2; ++i) CHECK(thick[i] <= thin[i] + 0.05);
+    for (int i = 0; i < 2; ++i) CHECK(thick[i] <= thin[i] + 0.08);
     REQUIRE_NO_MESSAGES(td);
 }
 

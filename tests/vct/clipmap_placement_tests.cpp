@@ -3,11 +3,13 @@
 // and toroidal texels are a bijection.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 #include <set>
 #include <tuple>
 
 #include "bricklight/vct.h"
+#include "../../core/vct/clipmap_regions.h"
 
 using namespace bricklight::vct;
 
@@ -160,4 +162,25 @@ TEST_CASE("a bad anchor is refused and changes nothing; invalidate voxelizes eve
         REQUIRE(u.entered.size() == 1);
         CHECK(u.entered[0].voxelCount() == 32u * 32u * 32u);
     }
+}
+
+TEST_CASE("the coarsest level's mips fit their slab of the traced volumes without overlapping", "[vct][cpu]") {
+    for (uint32_t resolution : {32u, 64u, 128u, 256u})
+        for (uint32_t levels : {2u, 8u}) {
+            const uint32_t mips = uint32_t(std::log2(double(resolution)));  // the most a description may ask for
+            const int slab = int(levels * (resolution + 2));
+            std::set<Voxel> used;
+            for (uint32_t m = 1; m <= mips; ++m) {
+                const glm::ivec3 lo = detail::mipBoxOffset(m, levels, resolution);
+                const int size = detail::mipBoxSize(m, resolution);
+                INFO(resolution << "³ × " << levels << ", mip " << m << " at " << lo.x << "," << lo.y << "," << lo.z << " size " << size);
+                CHECK(size == int(resolution >> m) + 3);
+                REQUIRE(glm::all(glm::greaterThanEqual(lo, glm::ivec3(0, 0, slab))));
+                REQUIRE(lo.x + size <= int(resolution));
+                REQUIRE(lo.y + size <= int(resolution));
+                REQUIRE(lo.z + size <= int(detail::tracedSlices(levels, resolution)));
+                const std::set<Voxel> box = voxelsOf({lo, lo + glm::ivec3(size)});
+                for (const Voxel& v : box) REQUIRE(used.insert(v).second);
+            }
+        }
 }

@@ -94,8 +94,10 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
         for (float factor : {0.25f, 0.6f, 1.2f}) cones.push_back({glm::vec4(16.0f, 16.0f, 16.0f, factor), glm::vec4(d, 3.0f)});
     const std::vector<ConeOut> results = traceCones(td, h, cones);
     // Measured (anisotropic / isotropic): cones along the axes gather 0.99 / 0.89 (factor 0.25), 0.91 / 0.76 (0.6),
-    // 0.72 / 0.60 (1.2) and end 0.99, 0.91, 0.72 opaque; cones into the corners, where coarse voxels hold the
-    // corner and the empty space around it, 0.58 / 1.23, 0.35 / 0.78, 0.25 / 0.57 at opacities 0.73, 0.40, 0.29.
+    // 0.46 / 0.64 (1.2) and end 0.99, 0.91, 0.51 opaque — the widest cones' last samples read the coarsest level's
+    // first mip, whose 16-unit voxels hold the 19-unit box's walls and the space around them (0.72 / 0.60 and 0.72
+    // opaque when they undersampled the coarsest level instead); cones into the corners, where coarse voxels hold
+    // the corner and the empty space around it, 0.58 / 1.23, 0.44 / 1.00, 0.41 / 1.06.
     for (size_t i = 0; i < cones.size(); ++i) {
         const ConeOut& r = results[i];
         INFO("cone " << i << " direction " << cones[i].direction.x << "," << cones[i].direction.y << "," << cones[i].direction.z << " factor "
@@ -111,8 +113,8 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
             CHECK(r.radiance.x > 0.15f);
             CHECK(r.radiance.x < 1.3f);
         } else {
-            CHECK(r.finalOpacity > (factor < 0.5f ? 0.97f : factor < 1.0f ? 0.85f : 0.65f));
-            CHECK(r.radiance.x > (factor < 0.5f ? 0.85f : factor < 1.0f ? 0.7f : 0.5f));
+            CHECK(r.finalOpacity > (factor < 0.5f ? 0.97f : factor < 1.0f ? 0.85f : 0.45f));
+            CHECK(r.radiance.x > (factor < 0.5f ? 0.85f : factor < 1.0f ? 0.7f : 0.4f));
             CHECK(r.radiance.x < 1.15f);
         }
     }
@@ -144,7 +146,7 @@ void conesThroughAnOpenSide(const std::string& backend) {
                               << r[1].finalOpacity << "; along it: " << r[2].radiance.x << " opacity " << r[2].finalOpacity);
     CHECK(r[0].radiance.x > 1.5f);
     CHECK(r[0].radiance.x < 2.5f);
-    CHECK(r[0].finalOpacity > 0.99f);
+    CHECK(r[0].finalOpacity > 0.95f);  // 0.956: the last samples read mip 1, whose 4-unit voxels hold the wall and the space behind
     CHECK(r[1].radiance.x == 0.0f);
     CHECK(r[1].finalOpacity == 0.0f);
     CHECK(r[2].radiance.x < 0.2f);  // the wall lies 9.5 voxels off the cone's axis

@@ -80,11 +80,24 @@ BlCone blDefaultCone(vec3 origin, vec3 direction, float coneFactor) {
 // The cone factor of a cone of full angle `angle` (radians).
 float blConeFactor(float angle) { return 2.0 * tan(0.5 * angle); }
 
-// A level's volumes at a point (finest-voxel coordinates): opacity in w, emittance towards −dir in xyz.
-vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, float slices) {
+// Where a level's volumes hold a point (finest-voxel coordinates), as the traced volumes' texture coordinates. Levels
+// ≥ the level count are the coarsest level's mips (vct_layout.glsl), which cover what it covers.
+vec3 blVctLevelUvw(uint level, vec3 pFinest, float resolution, uint levels) {
     vec3 p = pFinest / float(1u << level);  // the level's voxel coordinates
-    float z = p.z - resolution * floor(p.z / resolution);  // toroidal in z (x and y wrap in the sampler)
-    vec3 uvw = vec3(p.xy / resolution, (float(level) * (resolution + 2.0) + 1.0 + z) / slices);
+    float slices = float(vctTracedSlices(levels, uint(resolution)));
+    if (level < levels) {
+        float z = p.z - resolution * floor(p.z / resolution);  // toroidal in z (x and y wrap in the sampler)
+        return vec3(p.xy / resolution, (float(level) * (resolution + 2.0) + 1.0 + z) / slices);
+    }
+    uint mip = level - (levels - 1u);
+    vec3 box = vec3(vctMipBoxOffset(mip, levels, uint(resolution)));
+    vec3 t = box + 1.0 + p - vec3(blVctFrame.origin[levels - 1u].xyz >> int(mip));  // the box's first texel is the border
+    return t / vec3(resolution, resolution, slices);
+}
+
+// A level's (or mip's) volumes at a point (finest-voxel coordinates): opacity in w, emittance towards −dir in xyz.
+vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint levels) {
+    vec3 uvw = blVctLevelUvw(level, pFinest, resolution, levels);
     // Opacity along the cone and the light the faces facing back along it send, each axis weighted by the
     // direction's component on it: the share of the voxel's silhouette that face makes (VXGI's weighting). A
     // wall seen at an angle blocks and sends less per voxel, and the cone crosses more of its voxels.
@@ -123,7 +136,7 @@ vec3 blVctSurfaceRadiance(vec3 position, vec3 direction, out bool known) {
     uint level = blVctHoldingLevel(0u, p, 1.0, levels, resolution);
     known = level < levels;
     if (!known) return vec3(0.0);
-    vec4 s = blVctSampleLevel(level, p, direction, resolution, float(levels) * (resolution + 2.0));
+    vec4 s = blVctSampleLevel(level, p, direction, resolution, levels);
     known = s.w > 0.05;
     return s.rgb / max(s.w, 0.25);
 }
@@ -136,7 +149,7 @@ BlConeResult blTraceCone(BlCone cone) {
     float finest = blVctFrame.scales.x;
     float resolution = float(blVctFrame.params.x);
     uint levels = blVctFrame.params.y;
-    float slices = float(levels) * (resolution + 2.0);
+    uint top = levels - 1u + blVctFrame.flags.y;  // the coarsest level's last mip
     vec3 origin = cone.origin / finest;
     float maxT = cone.maxDistance > 0.0 ? cone.maxDistance / finest : 1.0e30;
     float rangeT = cone.ambientRange / finest;
@@ -164,13 +177,14 @@ BlConeResult blTraceCone(BlCone cone) {
             break;
         }
         vec3 p = origin + cone.direction * t;
-        // Wider than the coarsest level's voxels: that level still (undersampled, as no mips lie above it yet).
-        float fLevel = min(log2(size), float(levels - 1u));
-        uint level = blVctHoldingLevel(uint(fLevel), p, 0.5 * size, levels, resolution);
+        // Wider than the coarsest level's voxels: its mips, which cover the same region.
+        float fLevel = min(log2(size), float(top));
+        uint level = blVctHoldingLevel(min(uint(fLevel), levels - 1u), p, 0.5 * size, levels, resolution);
         if (level >= levels) break;  // left the clip-map
+        if (level == levels - 1u) level = max(level, uint(fLevel));
         float f = max(fLevel - float(level), 0.0);
-        vec4 s = blVctSampleLevel(level, p, cone.direction, resolution, slices);
-        if (f > 0.0 && level + 1u < levels) s = mix(s, blVctSampleLevel(level + 1u, p, cone.direction, resolution, slices), f);
+        vec4 s = blVctSampleLevel(level, p, cone.direction, resolution, levels);
+        if (f > 0.0 && level < top) s = mix(s, blVctSampleLevel(level + 1u, p, cone.direction, resolution, levels), f);
         float alpha = clamp(s.w, 0.0, 1.0);
         // The cone steps as its width says, but never more than half the way to the surface; the opacity is
         // corrected to the step over the (narrower) sample's size.

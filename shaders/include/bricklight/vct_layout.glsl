@@ -45,7 +45,7 @@ struct BlVctBox {
         ivec4 origin[8];  /* each level's lowest world voxel */                                          \
         uvec4 params;     /* x resolution, y levels, z emittance words per voxel (0, 3, 18), w boxes */  \
         vec4 scales;      /* x finest voxel size, y fixed-point units per unit of radiance */            \
-        uvec4 flags;      /* x 1: count (BL_VCT_COUNT_*) */                                              \
+        uvec4 flags;      /* x 1: count (BL_VCT_COUNT_*), y mips of the coarsest level */               \
         BlVctBox boxes[]; /* the voxels this frame's voxelization may write */                           \
     } blVctFrame
 
@@ -62,6 +62,21 @@ uint vctTexelIndex(uint level, ivec3 worldVoxel, uint resolution) {
 
 // Where word `word` of the texel `texelIndex` lies in the emittance buffer (texelCount: resolution³ × levels).
 uint vctWordIndex(uint texelIndex, uint word, uint texelCount) { return word * texelCount + texelIndex; }
+
+// The traced volumes (Clipmap::tracedOpacity / tracedEmittance) hold each level in z slices
+// [L × (resolution + 2), (L + 1) × (resolution + 2)) — the level's voxels toroidally with a border slice each side —
+// and above them one slab of resolution / 2 + 3 slices with the coarsest level's mips. Mip m (1, 2, …; voxels
+// 2^m times the coarsest level's) is not toroidal: a box of (resolution >> m) + 3 texels per axis, texel t holding
+// the mip's world voxel (coarsest origin >> m) − 1 + t, so that it covers the whole coarsest level (whose origin
+// need not align with the mip's voxels) with an empty border on every side for filtering. Mip 1 lies at the slab's
+// corner, the others beside it, stacked in y.
+int vctTracedSlices(uint levels, uint resolution) { return int(levels * (resolution + 2u) + resolution / 2u + 3u); }
+ivec3 vctMipBoxOffset(uint mip, uint levels, uint resolution) {
+    int r = int(resolution), m = int(mip);
+    // Mips 2 .. mip − 1 below this one: Σ (r >> k) + 3 = r / 2 − (r >> (mip − 1)) + 3 (mip − 2).
+    ivec3 beside = ivec3(r / 2 + 3, r / 2 - (r >> max(m - 1, 0)) + 3 * (m - 2), 0);
+    return (mip <= 1u ? ivec3(0) : beside) + ivec3(0, 0, int(levels * (resolution + 2u)));
+}
 
 // The six emittance directions of the anisotropic mode, in storage order.
 vec3 vctDirection(uint d) {

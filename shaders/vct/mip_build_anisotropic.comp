@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+#define BL_VCT_DIRECTIONS 6
+#include "mip_build_body.glsl"

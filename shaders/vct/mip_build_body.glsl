@@ -1,0 +1,115 @@
+// Builds one mip of the coarsest level in the traced volumes from the level or the mip below it (included by
+// mip_build_opacity.comp, mip_build_isotropic.comp and mip_build_anisotropic.comp, which define
+// BL_VCT_DIRECTIONS 0, 1 or 6). The combination is downsample.comp's, on the traced (float) values:
+//  * opacity along each axis: each column of two children along it combines as complements, the four columns
+//    average;
+//  * emittance towards a direction: per column along its axis, the child nearer the viewer plus the other seen
+//    through it, the four columns' sum / 4; isotropic: the mean of that over the six directions.
+// Children outside the source's region count as empty, so a mip voxel that reaches past the coarsest level holds
+// only the part inside it. Every texel of the mip's box is written, its empty border too.
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+BL_CONSTANTS(0) uniform Mip {
+    ivec4 target;     // xyz: the mip's box in the traced volumes, w: its size per axis
+    ivec4 targetMin;  // xyz: the world voxel (of this mip) of the box's first texel
+    ivec4 source;     // xyz: the source's box in the traced volumes, w: its width per axis
+    ivec4 sourceMin;  // xyz: the source's first valid world voxel
+    ivec4 shift;      // xyz: where that voxel is stored, toroidally (the level: its coordinates modulo the width; a mip: 0)
+} mip;
+BL_IMAGE(0, rgba8) uniform image3D tracedOpacity;  // rgb: along x, y, z
+#if BL_VCT_DIRECTIONS >= 1
+BL_IMAGE(1, rgba16f) uniform image3D tracedEmittance0;
+#endif
+#if BL_VCT_DIRECTIONS == 6
+BL_IMAGE(2, rgba16f) uniform image3D tracedEmittance1;
+BL_IMAGE(3, rgba16f) uniform image3D tracedEmittance2;
+BL_IMAGE(4, rgba16f) uniform image3D tracedEmittance3;
+BL_IMAGE(5, rgba16f) uniform image3D tracedEmittance4;
+BL_IMAGE(6, rgba16f) uniform image3D tracedEmittance5;
+#endif
+
+vec3 loadEmittance(ivec3 t, uint d, bool valid) {
+    if (!valid) return vec3(0.0);
+#if BL_VCT_DIRECTIONS == 1
+    return imageLoad(tracedEmittance0, t).rgb;
+#elif BL_VCT_DIRECTIONS == 6
+    if (d == 0u) return imageLoad(tracedEmittance0, t).rgb;
+    if (d == 1u) return imageLoad(tracedEmittance1, t).rgb;
+    if (d == 2u) return imageLoad(tracedEmittance2, t).rgb;
+    if (d == 3u) return imageLoad(tracedEmittance3, t).rgb;
+    if (d == 4u) return imageLoad(tracedEmittance4, t).rgb;
+    return imageLoad(tracedEmittance5, t).rgb;
+#else
+    return vec3(0.0);
+#endif
+}
+
+void storeEmittance(ivec3 t, uint d, vec3 e, float alpha) {
+#if BL_VCT_DIRECTIONS == 1
+    imageStore(tracedEmittance0, t, vec4(e, 0.0));
+#elif BL_VCT_DIRECTIONS == 6
+    vec4 v = vec4(e, alpha);
+    if (d == 0u) imageStore(tracedEmittance0, t, v);
+    if (d == 1u) imageStore(tracedEmittance1, t, v);
+    if (d == 2u) imageStore(tracedEmittance2, t, v);
+    if (d == 3u) imageStore(tracedEmittance3, t, v);
+    if (d == 4u) imageStore(tracedEmittance4, t, v);
+    if (d == 5u) imageStore(tracedEmittance5, t, v);
+#endif
+}
+
+void main() {
+    ivec3 local = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(local, ivec3(mip.target.w)))) return;
+    ivec3 voxel = mip.targetMin.xyz + local;
+    int width = mip.source.w;
+    // Children in x-fastest order: child i is at 2·voxel + (i & 1, (i >> 1) & 1, i >> 2).
+    ivec3 texel[8];
+    bool valid[8];
+    vec3 alpha[8];
+    bool empty = true;
+    for (int i = 0; i < 8; ++i) {
+        ivec3 rel = voxel * 2 + ivec3(i & 1, (i >> 1) & 1, i >> 2) - mip.sourceMin.xyz;
+        valid[i] = all(greaterThanEqual(rel, ivec3(0))) && all(lessThan(rel, ivec3(width)));
+        // Toroidal for the level (shift < width, so one subtraction wraps), plain for a mip (shift 0).
+        ivec3 wrapped = clamp(rel, ivec3(0), ivec3(width - 1)) + mip.shift.xyz;
+        wrapped -= mix(ivec3(0), ivec3(width), greaterThanEqual(wrapped, ivec3(width)));
+        texel[i] = mip.source.xyz + wrapped;
+        alpha[i] = valid[i] ? imageLoad(tracedOpacity, texel[i]).rgb : vec3(0.0);
+        empty = empty && alpha[i] == vec3(0.0);
+    }
+    vec3 opacity = vec3(0.0);
+    for (int axis = 0; axis < 3; ++axis)
+        for (int j = 0; j < 4; ++j) {
+            // The j-th column along `axis`: its lower child has the axis bit clear.
+            int lower = axis == 0 ? 2 * j : (axis == 1 ? (j & 1) + 4 * (j >> 1) : j);
+            int upper = lower + (1 << axis);
+            opacity[axis] += (1.0 - (1.0 - alpha[lower][axis]) * (1.0 - alpha[upper][axis])) * 0.25;
+        }
+    ivec3 t = mip.target.xyz + local;
+    imageStore(tracedOpacity, t, vec4(opacity, 0.0));
+#if BL_VCT_DIRECTIONS >= 1
+    vec3 mean = vec3(0.0);
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            uint d = uint(axis + 3 * side);  // +axis for side 0, −axis for side 1
+            vec3 sum = vec3(0.0);
+            for (int j = 0; j < 4 && !empty; ++j) {
+                int lower = axis == 0 ? 2 * j : (axis == 1 ? (j & 1) + 4 * (j >> 1) : j);
+                int upper = lower + (1 << axis);
+                // Light towards +axis leaves through the upper child first; towards −axis, the lower.
+                int nearChild = side == 0 ? upper : lower, farChild = side == 0 ? lower : upper;
+                uint stored = BL_VCT_DIRECTIONS == 6 ? d : 0u;
+                sum += loadEmittance(texel[nearChild], stored, valid[nearChild]) +
+                       (1.0 - alpha[nearChild][axis]) * loadEmittance(texel[farChild], stored, valid[farChild]);
+            }
+            sum *= 0.25;
+            mean += sum / 6.0;
+#if BL_VCT_DIRECTIONS == 6
+            storeEmittance(t, d, sum, opacity[axis]);
+#endif
+        }
+#if BL_VCT_DIRECTIONS == 1
+    storeEmittance(t, 0u, mean, 0.0);
+#endif
+#endif
+}
