@@ -1,5 +1,6 @@
 // vct::VoxelScene: registered meshes voxelized through Clipmap::voxelizationState with our vertex shader
-// (shaders/vct/voxelize_mesh.vert), culled against the clip-map's rewrite regions.
+// (shaders/vct/voxelize_mesh.vert), or in compute (bricklight/voxelize_compute.glsl) with the big triangles
+// drawn, culled against the clip-map's rewrite regions.
 #include "bricklight/vct_scene.h"
 
 #include <algorithm>
@@ -16,9 +17,10 @@ struct VoxelScene::Mesh {
     rhi::BufferHandle positions, normals, indices;  // ours (CPU arrays) or the application's
     uint64_t positionsOffset = 0, normalsOffset = 0, indicesOffset = 0;
     uint32_t positionsStride = 12, normalsStride = 12;
-    uint32_t indexCount = 0;
+    uint32_t indexCount = 0, vertexCount = 0;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
     bool owned = false;
+    bool computeReadable = false;  // the compute voxelizer can bind its buffers as read buffers
     uint32_t users = 0;  // instances
 };
 
@@ -46,6 +48,30 @@ struct InstanceConstants {
 };
 static_assert(sizeof(InstanceConstants) == 144);
 
+// The compute voxelizer's constants (BlVoxelMeshInstance in bricklight/voxelize_compute.glsl, std140).
+struct ComputeConstants {
+    InstanceConstants instance;
+    glm::uvec4 positions;  // first word, stride in words, triangles of this dispatch, has normals
+    glm::uvec4 normals;    // first word, stride in words, vertices, first triangle of this dispatch
+    glm::uvec4 indices;    // first word, first word of the instance's drawn list, word of its count
+    glm::vec4 split;       // the largest extent voxelized in compute (finest voxels)
+};
+static_assert(sizeof(ComputeConstants) == 208);
+
+constexpr uint32_t kComputeGroupSize = 64;        // local_size_x of bricklight/voxelize_compute.glsl
+constexpr uint32_t kMaxGroupsPerDispatch = 65535;  // Vulkan's and GL's guaranteed minimum
+constexpr uint32_t kDrawArgsWords = 5;            // rhi::DrawIndexedArgs
+
+InstanceConstants instanceConstants(const glm::mat4& transform, const glm::vec4& user0, const glm::vec4& user1) {
+    InstanceConstants c;
+    c.transform = transform;
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+    for (int r = 0; r < 3; ++r) c.normalRows[r] = glm::vec4(normalMatrix[0][r], normalMatrix[1][r], normalMatrix[2][r], 0.0f);
+    c.user0 = user0;
+    c.user1 = user1;
+    return c;
+}
+
 template <typename T>
 auto findById(std::vector<std::unique_ptr<T>>& items, uint32_t id) {
     return std::find_if(items.begin(), items.end(), [&](const auto& item) { return item->id == id; });
@@ -70,8 +96,9 @@ std::unique_ptr<VoxelScene> VoxelScene::create(rhi::IDevice& device, std::string
     };
     s->vertex_ = shader("vct/voxelize_mesh.vert");
     s->vertexFlat_ = shader("vct/voxelize_mesh_flat.vert");
-    if (!s->vertex_ || !s->vertexFlat_) {
-        if (error) *error = "voxel scene: the device could not create the voxelization vertex shaders";
+    s->compute_ = shader("vct/voxelize_mesh.comp");
+    if (!s->vertex_ || !s->vertexFlat_ || !s->compute_) {
+        if (error) *error = "voxel scene: the device could not create the voxelization vertex and compute shaders";
         return nullptr;
     }
     return s;
@@ -82,8 +109,9 @@ VoxelScene::~VoxelScene() {
         if (m->owned)
             for (rhi::BufferHandle b : {m->positions, m->normals, m->indices})
                 if (b) device_.destroy(b);
-    for (rhi::ShaderHandle h : {vertex_, vertexFlat_})
+    for (rhi::ShaderHandle h : {vertex_, vertexFlat_, compute_})
         if (h) device_.destroy(h);
+    if (drawn_) device_.destroy(drawn_);
 }
 
 VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshArrays& a, std::string* error) {
@@ -115,10 +143,14 @@ VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshArrays& a, std::string* error
         bd.debugName = "voxel scene " + a.name + " " + what;
         return device_.createBuffer(bd, data);
     };
-    mesh->positions = buffer(a.positions, uint64_t(a.vertexCount) * 12, rhi::BufferUsage::Vertex, "positions");
-    if (a.normals) mesh->normals = buffer(a.normals, uint64_t(a.vertexCount) * 12, rhi::BufferUsage::Vertex, "normals");
-    mesh->indices = buffer(a.indices, uint64_t(a.indexCount) * 4, rhi::BufferUsage::Index, "indices");
+    // ShaderRead too: the compute voxelizer reads them.
+    mesh->positions = buffer(a.positions, uint64_t(a.vertexCount) * 12, rhi::BufferUsage::Vertex | rhi::BufferUsage::ShaderRead, "positions");
+    if (a.normals)
+        mesh->normals = buffer(a.normals, uint64_t(a.vertexCount) * 12, rhi::BufferUsage::Vertex | rhi::BufferUsage::ShaderRead, "normals");
+    mesh->indices = buffer(a.indices, uint64_t(a.indexCount) * 4, rhi::BufferUsage::Index | rhi::BufferUsage::ShaderRead, "indices");
     mesh->owned = true;
+    mesh->computeReadable = true;
+    mesh->vertexCount = a.vertexCount;
     if (!mesh->positions || !mesh->indices || (a.normals && !mesh->normals)) {
         for (rhi::BufferHandle b : {mesh->positions, mesh->normals, mesh->indices})
             if (b) device_.destroy(b);
@@ -168,9 +200,11 @@ VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshBuffers& b, std::string* erro
     mesh->positionsStride = b.positionsStride;
     mesh->normalsStride = b.normalsStride;
     mesh->indexCount = b.indexCount;
+    mesh->vertexCount = b.vertexCount;
     mesh->boundsMin = b.boundsMin;
     mesh->boundsMax = b.boundsMax;
     mesh->name = b.name;
+    mesh->computeReadable = computeReadable(*mesh);
     mesh->id = nextId_++;
     meshes_.push_back(std::move(mesh));
     return VoxelMeshHandle{meshes_.back()->id};
@@ -191,6 +225,17 @@ bool VoxelScene::removeMesh(VoxelMeshHandle handle, std::string* error) {
             if (b) device_.destroy(b);
     meshes_.erase(it);
     return true;
+}
+
+// The compute voxelizer binds the buffers whole as read buffers of words.
+bool VoxelScene::computeReadable(const Mesh& mesh) const {
+    for (rhi::BufferHandle h : {mesh.positions, mesh.normals, mesh.indices}) {
+        if (!h) continue;
+        const rhi::BufferDesc* d = device_.describe(h);
+        if (!d || !(d->usage & rhi::BufferUsage::ShaderRead) || d->structStride != 0) return false;
+    }
+    return mesh.positionsStride % 4 == 0 && (!mesh.normals || mesh.normalsStride % 4 == 0) && mesh.positionsOffset % 4 == 0 &&
+           mesh.normalsOffset % 4 == 0 && mesh.indicesOffset % 4 == 0;
 }
 
 WorldBox VoxelScene::worldBounds(const Mesh& mesh, const glm::mat4& t) const {
@@ -219,6 +264,12 @@ VoxelInstanceHandle VoxelScene::addInstance(const VoxelInstanceDesc& d, std::str
     std::string why;
     if (!checkVoxelMaterial(d.material, &why)) {
         if (error) *error = who + why;
+        return {};
+    }
+    if (d.material.computeShader && !d.material.fragmentShader) {
+        if (error)
+            *error = who + "the material has a computeShader but no fragmentShader: the compute voxelizer draws the triangles too big "
+                           "for one invocation with the fragmentShader, and Voxelizer::Draws uses only it";
         return {};
     }
     for (int c = 0; c < 4; ++c)
@@ -273,11 +324,34 @@ std::vector<WorldBox> VoxelScene::takeDirtyRegions() {
     return out;
 }
 
+void VoxelScene::setVoxelizer(Voxelizer voxelizer, const ComputeVoxelizer& options) {
+    voxelizer_ = voxelizer;
+    computeOptions_ = options;
+    if (!(computeOptions_.splitVoxels >= 0.0f)) computeOptions_.splitVoxels = 0.0f;  // NaN: draw every triangle
+}
+
 bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::string* error) {
     lastDraws_ = 0;
+    lastComputes_ = 0;
     const std::vector<WorldBox> regions = clipmap.dirtyRegions();
     const float margin = clipmap.placement().voxelSize(clipmap.desc().levels - 1);
     bool ok = true;
+    auto refuse = [&](const Mesh& mesh, const std::string& why) {
+        if (error && ok) *error = "voxel scene: instance of mesh '" + mesh.name + "': " + why;
+        ok = false;
+    };
+    // What this call writes, instance by instance; the constants live here until the calls that point at them.
+    struct Work {
+        const Instance* instance = nullptr;
+        rhi::DrawCallState state;
+        bool compute = false;
+        uint64_t argsWord = 0, listWord = 0;  // compute: its draw's arguments and its drawn-triangle list
+        InstanceConstants constants;
+        ComputeConstants computeConstants;
+    };
+    std::vector<Work> work;
+    work.reserve(instances_.size());
+    uint32_t computeCount = 0;
     for (const auto& instance : instances_) {
         const Mesh& mesh = *instance->mesh;
         // Grown by the coarsest level's voxel: the geometry stage dilates each level's triangles by half a voxel.
@@ -288,30 +362,125 @@ bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::str
         std::string why;
         std::optional<rhi::DrawCallState> state = clipmap.voxelizationState(instance->material, &why);
         if (!state) {
-            if (error && ok) *error = "voxel scene: instance of mesh '" + mesh.name + "': " + why;
-            ok = false;
+            refuse(mesh, why);
             continue;
         }
-        state->label = "vct voxelize registered mesh";
-        state->vertexShader = mesh.normals ? vertex_ : vertexFlat_;
-        state->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
-        state->vertexBuffers.push({mesh.positions, mesh.positionsOffset, mesh.positionsStride, false});
+        Work& w = work.emplace_back();
+        w.instance = instance.get();
+        w.state = *state;
+        w.state.label = "vct voxelize registered mesh";
+        w.state.vertexShader = mesh.normals ? vertex_ : vertexFlat_;
+        w.state.vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
+        w.state.vertexBuffers.push({mesh.positions, mesh.positionsOffset, mesh.positionsStride, false});
         if (mesh.normals) {
-            state->vertexInputs.push({1, rhi::VertexFormat::Float3, 1, 0});
-            state->vertexBuffers.push({mesh.normals, mesh.normalsOffset, mesh.normalsStride, false});
+            w.state.vertexInputs.push({1, rhi::VertexFormat::Float3, 1, 0});
+            w.state.vertexBuffers.push({mesh.normals, mesh.normalsOffset, mesh.normalsStride, false});
         }
-        state->indexBuffer = {mesh.indices, mesh.indicesOffset, rhi::IndexFormat::U32};
-        InstanceConstants c;
-        c.transform = instance->transform;
-        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance->transform)));
-        for (int r = 0; r < 3; ++r) c.normalRows[r] = glm::vec4(normalMatrix[0][r], normalMatrix[1][r], normalMatrix[2][r], 0.0f);
-        c.user0 = instance->user0;
-        c.user1 = instance->user1;
-        state->bindings.constants.push(rhi::constants(kVoxelSceneInstanceConstants, c));
-        rhi::appendBindings(state->bindings, extra);
-        rhi::DrawIndexedArgs args;
-        args.indexCount = mesh.indexCount;
-        device_.drawIndexed(*state, args);
+        w.state.indexBuffer = {mesh.indices, mesh.indicesOffset, rhi::IndexFormat::U32};
+        w.constants = instanceConstants(instance->transform, instance->user0, instance->user1);
+        // A material with its own fragment shader needs its own compute shader, or its emittance would be lost.
+        const VoxelMaterial& m = instance->material;
+        w.compute = voxelizer_ == Voxelizer::Compute && mesh.computeReadable && (m.computeShader || !m.fragmentShader);
+        if (w.compute) ++computeCount;
+    }
+
+    // The compute instances' drawn-triangle lists: DrawIndexedArgs for each, then room for all its indices.
+    std::vector<uint32_t> args;
+    if (computeCount) {
+        uint64_t words = uint64_t(computeCount) * kDrawArgsWords;
+        for (Work& w : work) {
+            if (!w.compute) continue;
+            w.argsWord = args.size();
+            w.listWord = words;
+            words += w.instance->mesh->indexCount;
+            args.insert(args.end(), {0u, 1u, uint32_t(w.listWord), 0u, 0u});
+        }
+        if (words > UINT32_MAX) {
+            refuse(*work.front().instance->mesh, "the compute voxelizer's drawn-triangle lists exceed 2^32 indices; instances are drawn");
+            for (Work& w : work) w.compute = false;
+            computeCount = 0;
+        } else if (words * 4 > drawnBytes_) {
+            if (drawn_) device_.destroy(drawn_);
+            rhi::BufferDesc bd;
+            bd.size = std::max<uint64_t>((words + words / 2) * 4, 4096);  // room to grow: half as much again
+            bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::Index | rhi::BufferUsage::IndirectArgs;
+            bd.debugName = "voxel scene drawn triangles";
+            drawn_ = device_.createBuffer(bd);
+            drawnBytes_ = drawn_ ? bd.size : 0;
+            if (!drawn_) {
+                refuse(*work.front().instance->mesh, "the device could not create the compute voxelizer's list buffer; instances are drawn");
+                for (Work& w : work) w.compute = false;
+                computeCount = 0;
+            }
+        }
+        if (computeCount) device_.writeBuffer(drawn_, 0, args.data(), args.size() * 4);
+    }
+
+    // The dispatches first, one after another: they accumulate with atomics as the draws do, so only the first
+    // needs a barrier after the update's clears.
+    bool previousWasDispatch = false;
+    for (Work& w : work) {
+        if (!w.compute) continue;
+        const Mesh& mesh = *w.instance->mesh;
+        rhi::DispatchState ds;
+        ds.shader = w.instance->material.computeShader ? w.instance->material.computeShader : compute_;
+        ds.label = "vct voxelize registered mesh (compute)";
+        ds.bindings = w.state.bindings;  // the clip-map's: material constants, frame, emittance, counters, opacity
+        ComputeConstants& c = w.computeConstants;
+        c.instance = w.constants;
+        c.positions = glm::uvec4(uint32_t(mesh.positionsOffset / 4), mesh.positionsStride / 4, 0u, mesh.normals ? 1u : 0u);
+        c.normals = glm::uvec4(uint32_t(mesh.normalsOffset / 4), mesh.normalsStride / 4, mesh.vertexCount, 0u);
+        c.indices = glm::uvec4(uint32_t(mesh.indicesOffset / 4), uint32_t(w.listWord), uint32_t(w.argsWord), 0u);
+        c.split = glm::vec4(computeOptions_.splitVoxels, 0.0f, 0.0f, 0.0f);
+        ds.bindings.constants.push(rhi::constants(kVoxelSceneInstanceConstants, c));
+        auto read = [&](uint8_t slot, rhi::BufferHandle buffer) {
+            rhi::ReadBufferBinding b;
+            b.slot = slot;
+            b.buffer = buffer;
+            ds.bindings.readBuffers.push(b);
+        };
+        read(4, mesh.positions);
+        read(5, mesh.normals ? mesh.normals : mesh.positions);
+        read(6, mesh.indices);
+        rhi::StorageBufferBinding list;
+        list.slot = 5;
+        list.buffer = drawn_;
+        list.access = rhi::Access::ReadWrite;
+        ds.bindings.storageBuffers.push(list);
+        // `extra` is the emittance functions' own resources: ours (opacity only) declare none.
+        if (w.instance->material.computeShader) rhi::appendBindings(ds.bindings, extra);
+        const uint32_t triangles = mesh.indexCount / 3;
+        const uint32_t perDispatch = kMaxGroupsPerDispatch * kComputeGroupSize;
+        for (uint32_t first = 0; first < triangles; first += perDispatch) {
+            c.positions.z = std::min(perDispatch, triangles - first);
+            c.normals.w = first;
+            ds.flags = previousWasDispatch ? rhi::DispatchFlags::NoBarrierWithPreviousWriter : 0u;
+            // One invocation per triangle and level (groups in y: the levels).
+            if (!device_.dispatch(ds, (c.positions.z + kComputeGroupSize - 1) / kComputeGroupSize, clipmap.desc().levels, 1)) {
+                refuse(mesh, "the device refused the compute voxelizer's dispatch (is the material's computeShader a compute shader "
+                             "that includes bricklight/voxelize_compute.glsl, and do `extra`'s bindings leave its slots free?)" +
+                                 std::string(first == 0 ? "; the instance is drawn instead" : ""));
+                // A refused call writes nothing: refused from the start, the draw path takes the whole instance.
+                if (first == 0) w.compute = false;
+                break;
+            }
+            previousWasDispatch = true;
+        }
+        if (w.compute) ++lastComputes_;
+    }
+
+    for (Work& w : work) {
+        w.state.bindings.constants.push(rhi::constants(kVoxelSceneInstanceConstants, w.constants));
+        if (w.instance->material.fragmentShader) rhi::appendBindings(w.state.bindings, extra);
+        if (w.compute) {
+            // The triangles the dispatch left to the draw path (the arguments' index count is what it appended).
+            w.state.indexBuffer = {drawn_, 0, rhi::IndexFormat::U32};
+            device_.drawIndirect(w.state, drawn_, w.argsWord * 4, true);
+        } else {
+            rhi::DrawIndexedArgs a;
+            a.indexCount = w.instance->mesh->indexCount;
+            device_.drawIndexed(w.state, a);
+        }
         ++lastDraws_;
     }
     return ok;

@@ -34,6 +34,8 @@ struct Options {
     uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
     bool vctSdfOcclusion = false;                 // vct: cones stop at the distance field's surfaces
     bool vctRegistered = false;                   // vct: voxelize through vct::VoxelScene (culled) instead of one draw
+    bool vctCompute = false;                      // vct: ... with its compute voxelizer (vct::Voxelizer::Compute)
+    float vctSplitVoxels = 8.0f;                  // vct: vct::ComputeVoxelizer::splitVoxels
     bool vctPersistent = false;                   // vct: keep voxels; rewrite what the moving anchor uncovers
     uint32_t vctMoveVoxels = 0;                   // vct: the anchor moves this many finest voxels along x a frame
 };

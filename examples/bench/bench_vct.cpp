@@ -3,9 +3,12 @@
 // vct::Clipmap::voxelizationState, then downsampling and the traced volumes), then traces diffuse and specular
 // cones on a G-buffer traced through the scene's distance field (timed apart); then the same for voxel AO
 // (an opacity-only clip-map). The clip-map follows the camera; its coarsest level spans twice the scene.
+// --voxelizer scene registers the meshes with a vct::VoxelScene (culled draws); compute does too, voxelized by
+// its compute voxelizer (vct::Voxelizer::Compute).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <vector>
 
@@ -18,7 +21,7 @@ namespace bricklight::bench {
 
 namespace {
 
-const char* const kVctPasses[] = {"vct update", "vct voxelize", "vct downsample", "vct resolve", "vct diffuse", "vct specular"};
+const char* const kVctPasses[] = {"vct update", "vct voxelize", "vct downsample", "vct resolve", "vct mips", "vct diffuse", "vct specular"};
 
 // The scene's triangles in world space, 3 vertices each: position, normal (the triangle's own where the mesh
 // has none).
@@ -44,6 +47,18 @@ std::vector<float> worldTriangles(const scenes::SceneGeometry& g) {
         }
     }
     return out;
+}
+
+// The compute voxelizer (--voxelizer compute; --split: ComputeVoxelizer::splitVoxels).
+struct ComputeChoice {
+    bool enabled = false;
+    vct::ComputeVoxelizer options;
+};
+ComputeChoice computeChoice(const Options& o) {
+    ComputeChoice c;
+    c.enabled = o.vctCompute;
+    c.options.splitVoxels = o.vctSplitVoxels;
+    return c;
 }
 
 vct::EmittanceMode modeOf(const std::string& s) {
@@ -83,6 +98,10 @@ int runVct(const Options& o) {
     const rhi::ShaderHandle vertexShader = sd.blob ? device->createShader(sd) : rhi::ShaderHandle{};
     sd.blob = rhi::findShader("bench/vct_emittance.frag");
     const rhi::ShaderHandle emittanceShader = sd.blob ? device->createShader(sd) : rhi::ShaderHandle{};
+    // The same emittance for the compute voxelizer (bricklight/voxelize_compute.glsl).
+    const ComputeChoice compute = computeChoice(o);
+    sd.blob = compute.enabled ? rhi::findShader("bench/vct_emittance.comp") : nullptr;
+    const rhi::ShaderHandle emittanceCompute = sd.blob ? device->createShader(sd) : rhi::ShaderHandle{};
     if (!gbuffer.create(*device, o.width, o.height) || !diffuse || !specular || !vertexBuffer || !vertexShader || !emittanceShader) {
         std::fprintf(stderr, "bricklight-bench: the device could not create the benchmark's G-buffer or voxelization inputs\n");
         return 1;
@@ -111,16 +130,18 @@ int runVct(const Options& o) {
         }
         vct::VoxelMaterial material;
         material.fragmentShader = mode == vct::EmittanceMode::None ? rhi::ShaderHandle{} : emittanceShader;
+        material.computeShader = mode == vct::EmittanceMode::None ? rhi::ShaderHandle{} : emittanceCompute;
         std::optional<rhi::DrawCallState> state = clipmap->voxelizationState(material, &error);
         if (!state) {
             std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
             return false;
         }
         // --voxelizer scene: the scene's meshes and instances registered with a vct::VoxelScene, which draws only
-        // the instances that meet this update's rewrite regions.
+        // the instances that meet this update's rewrite regions; compute: the same, voxelized in compute.
         std::unique_ptr<vct::VoxelScene> voxelScene;
-        if (o.vctRegistered) {
+        if (o.vctRegistered || compute.enabled) {
             voxelScene = vct::VoxelScene::create(*device, &error);
+            if (voxelScene && compute.enabled) voxelScene->setVoxelizer(vct::Voxelizer::Compute, compute.options);
             std::vector<vct::VoxelMeshHandle> meshes;
             for (const scenes::TriangleMesh& m : geometry.meshes) {
                 vct::VoxelMeshArrays a{m.positions.data(), m.normals.empty() ? nullptr : m.normals.data(), uint32_t(m.positions.size() / 3),
@@ -134,7 +155,7 @@ int runVct(const Options& o) {
                     return false;
                 }
         }
-        uint64_t drawsPerFrame = 0;  // voxelization draws over the timed frames
+        uint64_t drawsPerFrame = 0, computesPerFrame = 0;  // instances voxelized (of them in compute) over the timed frames
         rhi::Bindings sunBindings;
         if (material.fragmentShader) sunBindings.constants.push(rhi::constants(0, sun));
         state->vertexShader = vertexShader;
@@ -159,6 +180,7 @@ int runVct(const Options& o) {
             if (voxelScene) {
                 voxelScene->voxelize(*clipmap, sunBindings, &error);
                 drawsPerFrame += voxelScene->lastDrawCount();
+                computesPerFrame += voxelScene->lastComputeCount();
             } else if (!clipmap->rewriteBoxes().empty()) {
                 rhi::DrawArgs args;
                 args.vertexCount = vertexCount;
@@ -196,10 +218,17 @@ int runVct(const Options& o) {
         collect(*device, 0);
         clipmap->setCountersEnabled(true);
         clipmap->resetCounters();
-        drawsPerFrame = 0;
+        drawsPerFrame = computesPerFrame = 0;
         for (uint32_t f = 0; f < o.frames; ++f) frame(8 + f);
         std::printf("  (%s, %s) voxelization draws a frame: %.1f\n", mode == vct::EmittanceMode::None ? "AO" : "GI",
-                    voxelScene ? "registered meshes, culled" : "one draw of every triangle", double(drawsPerFrame) / o.frames);
+                    compute.enabled ? "registered meshes, culled, compute voxelizer"
+                    : voxelScene    ? "registered meshes, culled"
+                                    : "one draw of every triangle",
+                    double(drawsPerFrame) / o.frames);
+        if (compute.enabled)
+            std::printf("  (%s) instances voxelized in compute a frame: %.1f (split above %g voxels; the rest drawn%s)\n",
+                        mode == vct::EmittanceMode::None ? "AO" : "GI", double(computesPerFrame) / o.frames, double(compute.options.splitVoxels),
+                        mode != vct::EmittanceMode::None && !emittanceCompute ? ": no bench/vct_emittance.comp in this build" : "");
         *times = collect(*device, o.frames);
         *voxelsWritten = clipmap->readCounters().voxelsWritten / o.frames;
         clipmap->setCountersEnabled(false);
@@ -220,12 +249,14 @@ int runVct(const Options& o) {
     vct::MemoryUse giMemory, aoMemory;
     uint64_t giVoxels = 0, aoVoxels = 0;
     if (!run(modeOf(o.vctEmittance), &gi, &giMemory, &giVoxels) || !run(vct::EmittanceMode::None, &ao, &aoMemory, &aoVoxels)) return 1;
-    const double revoxelize = gi.perFrame("vct update") + gi.perFrame("vct voxelize") + gi.perFrame("vct downsample") + gi.perFrame("vct resolve");
+    const double revoxelize = gi.perFrame("vct update") + gi.perFrame("vct voxelize") + gi.perFrame("vct downsample") + gi.perFrame("vct resolve") +
+                              gi.perFrame("vct mips");
     const double tracing = gi.perFrame("vct diffuse") + gi.perFrame("vct specular");
     std::printf("GI: full revoxelization %.3f ms, diffuse + specular %.3f ms (G-buffer %.3f ms, not included); %llu voxel writes a frame\n",
                 revoxelize, tracing, gi.perFrame("bench gbuffer"), (unsigned long long)giVoxels);
     for (const char* p : kVctPasses) std::printf("  %-22s %9.3f ms\n", p, gi.perFrame(p));
-    const double aoVoxelize = ao.perFrame("vct update") + ao.perFrame("vct voxelize") + ao.perFrame("vct downsample") + ao.perFrame("vct resolve");
+    const double aoVoxelize = ao.perFrame("vct update") + ao.perFrame("vct voxelize") + ao.perFrame("vct downsample") + ao.perFrame("vct resolve") +
+                              ao.perFrame("vct mips");
     std::printf("voxel AO: revoxelization (opacity only) %.3f ms, AO tracing %.3f ms\n", aoVoxelize, ao.perFrame("vct diffuse"));
     for (const char* p : kVctPasses) std::printf("  %-22s %9.3f ms\n", p, ao.perFrame(p));
     std::printf("memory: GI %.1f MiB, voxel AO %.1f MiB (clip-map and tracer; the two outputs are the app's)\n",
@@ -267,6 +298,7 @@ int runVct(const Options& o) {
     device->destroy(vertexBuffer);
     device->destroy(vertexShader);
     device->destroy(emittanceShader);
+    if (emittanceCompute) device->destroy(emittanceCompute);
     gbuffer.destroy(*device);
     return 0;
 }

@@ -52,7 +52,7 @@ namespace {
                  "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
                  "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
-                 "                            [--occlusion voxels|sdf] [--voxelizer draw|scene] [--persistent]\n"
+                 "                            [--occlusion voxels|sdf] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
                  "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n");
     std::exit(2);
 }
@@ -126,8 +126,11 @@ Options parse(int argc, char** argv) {
             o.vctSdfOcclusion = v == "sdf";
         } else if (a == "--voxelizer") {
             const std::string v = value();
-            if (v != "draw" && v != "scene") usage("--voxelizer must be draw or scene");
-            o.vctRegistered = v == "scene";
+            if (v != "draw" && v != "scene" && v != "compute") usage("--voxelizer must be draw, scene or compute");
+            o.vctRegistered = v != "draw";
+            o.vctCompute = v == "compute";
+        } else if (a == "--split") {
+            o.vctSplitVoxels = float(number(value(), "--split", 0, 100000));
         } else if (a == "--persistent") {
             o.vctPersistent = true;
         } else if (a == "--move") o.vctMoveVoxels = number(value(), "--move", 0, 64);

@@ -123,6 +123,11 @@ struct VoxelMaterial {
     // The application's voxelization fragment shader (bricklight/voxelize.glsl with its blVoxelEmittance);
     // null: ours, opacity only.
     rhi::ShaderHandle fragmentShader;
+    // The same blVoxelEmittance as a compute shader (bricklight/voxelize_compute.glsl), for vct::VoxelScene's
+    // compute voxelizer, which draws the triangles too big for one invocation with fragmentShader: it needs
+    // fragmentShader too. Null: ours (opacity only) where fragmentShader is null too; an instance with a
+    // fragmentShader and no computeShader is drawn, so that no emittance is lost. Ignored by draws.
+    rhi::ShaderHandle computeShader;
 };
 // False with *error naming the field for a material no draw can use.
 bool checkVoxelMaterial(const VoxelMaterial& material, std::string* error);

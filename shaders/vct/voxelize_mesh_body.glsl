@@ -16,7 +16,9 @@ layout(location = 1) in vec3 normal;
 BL_VOXEL_VERTEX_OUTPUTS
 
 void main() {
-    vec4 world = instance.transform * vec4(position, 1.0);
+    // precise: the compute voxelizer (vct/voxelize_mesh.comp) transforms the same way, and both must give the same
+    // bits for the words to match.
+    precise vec4 world = instance.transform * vec4(position, 1.0);
 #ifdef VCT_MESH_FLAT
     vec3 n = vec3(0.0);  // the geometry stage's face normal stands in for a zero normal
 #else

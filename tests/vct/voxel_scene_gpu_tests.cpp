@@ -1,7 +1,9 @@
 // vct::VoxelScene on both backends: registered meshes (CPU arrays, and the application's interleaved buffers)
 // voxelize to exactly the words the application's own draws of the same triangles write; a moved instance
 // marks its old and new places dirty, the update rewrites them (equal to a voxelization from scratch) and the
-// instances outside are culled; bad meshes, instances and buffers are refused with the object named.
+// instances outside are culled; bad meshes, instances and buffers are refused with the object named. The
+// compute voxelizer writes exactly the draw path's words (big triangles drawn, small and thin ones in compute,
+// CPU arrays and the application's buffers, after scrolling and moving), and refuses bad compute materials.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -233,7 +235,282 @@ void refusesBadMeshesAndInstances(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// Triangle lists as mesh arrays, with per-vertex normals or without (each triangle's own normal then).
+struct MeshArrays {
+    std::vector<float> positions, normals;
+    std::vector<uint32_t> indices;
+    void add(const glm::vec3 (&p)[3], const glm::vec3* n) {
+        for (int k = 0; k < 3; ++k) {
+            indices.push_back(uint32_t(positions.size() / 3));
+            positions.insert(positions.end(), {p[k].x, p[k].y, p[k].z});
+            if (n) normals.insert(normals.end(), {n[k].x, n[k].y, n[k].z});
+        }
+    }
+    vct::VoxelMeshArrays arrays(const char* name) const {
+        vct::VoxelMeshArrays a;
+        a.positions = positions.data();
+        a.normals = normals.empty() ? nullptr : normals.data();
+        a.vertexCount = uint32_t(positions.size() / 3);
+        a.indices = indices.data();
+        a.indexCount = uint32_t(indices.size());
+        a.name = name;
+        return a;
+    }
+};
+
+// Small triangles with smooth normals (a sphere of ~1-voxel facets) in one mesh with two big ones (a floor
+// across both levels), so that the compute voxelizer splits the mesh.
+MeshArrays sphereAndFloor() {
+    MeshArrays m;
+    const glm::vec3 centre(14.3f, 17.6f, 15.2f);
+    const float radius = 4.7f;
+    const int slices = 20, stacks = 12;
+    auto at = [&](int i, int j) {
+        const float theta = 3.14159265f * float(j) / float(stacks), phi = 6.2831853f * float(i) / float(slices);
+        return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    };
+    for (int j = 0; j < stacks; ++j)
+        for (int i = 0; i < slices; ++i) {
+            const glm::vec3 n[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+            const glm::vec3 a[3] = {centre + radius * n[0], centre + radius * n[1], centre + radius * n[2]};
+            const glm::vec3 na[3] = {n[0], n[1], n[2]};
+            const glm::vec3 b[3] = {centre + radius * n[0], centre + radius * n[2], centre + radius * n[3]};
+            const glm::vec3 nb[3] = {n[0], n[2], n[3]};
+            m.add(a, na);
+            m.add(b, nb);
+        }
+    const glm::vec3 up[3] = {glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)};
+    const glm::vec3 f0[3] = {{-30.0f, 6.25f, -30.0f}, {60.0f, 6.25f, 60.0f}, {60.0f, 6.25f, -30.0f}};
+    const glm::vec3 f1[3] = {{-30.0f, 6.25f, -30.0f}, {-30.0f, 6.25f, 60.0f}, {60.0f, 6.25f, 60.0f}};
+    m.add(f0, up);
+    m.add(f1, up);
+    return m;
+}
+
+// Thin slivers along every axis, tiny triangles, one degenerate and one on voxel boundaries; no normals.
+MeshArrays slivers() {
+    MeshArrays m;
+    for (int i = 0; i < 24; ++i) {
+        const glm::vec3 a(2.3f + 1.1f * float(i), 3.3f + 0.37f * float(i % 5), 22.1f + 0.21f * float(i % 7));
+        const glm::vec3 along = i % 3 == 0 ? glm::vec3(3.7f, 0.013f * float(i), 0.4f) : i % 3 == 1 ? glm::vec3(0.05f, 3.1f, 0.02f) : glm::vec3(0.3f, 0.01f, 3.3f);
+        const glm::vec3 t[3] = {a, a + along, a + glm::vec3(0.02f, 0.03f, 0.001f * float(i))};
+        m.add(t, nullptr);
+        const glm::vec3 tiny[3] = {a + glm::vec3(0.0f, 1.5f, 0.0f), a + glm::vec3(0.1f, 1.52f, 0.03f), a + glm::vec3(0.02f, 1.6f, 0.07f)};
+        m.add(tiny, nullptr);
+    }
+    const glm::vec3 degenerate[3] = {{5.0f, 5.0f, 5.0f}, {6.0f, 6.0f, 6.0f}, {7.0f, 7.0f, 7.0f}};
+    const glm::vec3 aligned[3] = {{8.0f, 9.0f, 10.0f}, {10.0f, 9.0f, 10.0f}, {8.0f, 9.0f, 12.0f}};
+    m.add(degenerate, nullptr);
+    m.add(aligned, nullptr);
+    return m;
+}
+
+// How many words differ, and where the first few lie (index: what a long vector's print would not show).
+size_t differences(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b, std::string* where) {
+    if (a.size() != b.size()) {
+        *where = "sizes " + std::to_string(a.size()) + " vs " + std::to_string(b.size());
+        return std::max(a.size(), b.size());
+    }
+    size_t count = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i] != b[i] && count++ < 8) *where += "word " + std::to_string(i) + ": " + std::to_string(a[i]) + " vs " + std::to_string(b[i]) + "; ";
+    return count;
+}
+
+// One scene, its clip-map and counters: the same meshes and instances in each, voxelized in one way.
+struct Voxelization {
+    std::unique_ptr<VoxelizeHarness> harness;
+    std::unique_ptr<vct::VoxelScene> scene;
+    std::vector<vct::VoxelInstanceHandle> instances;
+    vct::VoxelizationCounters counters;
+    uint32_t drawn = 0, computed = 0;
+};
+
+void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const glm::vec4 emission(0.8f, 0.6f, 0.4f, 0.0f);
+    rhi::Bindings extra;
+    extra.constants.push(rhi::constants(0, emission));
+    std::string error;
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("vct_tests/voxelize_emissive.comp");
+    REQUIRE(sd.blob);
+    const rhi::ShaderHandle emissiveCompute = td.device->createShader(sd);
+    REQUIRE(emissiveCompute);
+
+    const MeshArrays mixed = sphereAndFloor(), thin = slivers();
+    const BoxArrays cube = boxArrays(glm::vec3(3.5f), glm::vec3(11.5f));
+    // The cube from the application's interleaved buffers, once readable by compute (ShaderRead) and once not.
+    std::vector<float> interleaved;
+    for (size_t v = 0; v < cube.positions.size() / 3; ++v)
+        for (int c = 0; c < 6; ++c) interleaved.push_back(c < 3 ? cube.positions[3 * v + c] : cube.normals[3 * v + c - 3]);
+    rhi::BufferHandle appBuffers[4];
+    for (int readable = 0; readable < 2; ++readable) {
+        rhi::BufferDesc bd;
+        bd.size = interleaved.size() * 4;
+        bd.usage = rhi::BufferUsage::Vertex | (readable ? rhi::BufferUsage::ShaderRead : 0u);
+        bd.debugName = readable ? "app vertices (readable)" : "app vertices";
+        appBuffers[2 * readable] = td.device->createBuffer(bd, interleaved.data());
+        bd.size = cube.indices.size() * 4;
+        bd.usage = rhi::BufferUsage::Index | (readable ? rhi::BufferUsage::ShaderRead : 0u);
+        bd.debugName = readable ? "app indices (readable)" : "app indices";
+        appBuffers[2 * readable + 1] = td.device->createBuffer(bd, cube.indices.data());
+    }
+
+    // Draws; compute with the default split, every triangle drawn, none drawn (a floor of ~90² voxels in one
+    // invocation per level).
+    std::vector<Voxelization> runs(4);
+    const vct::ComputeVoxelizer options[4] = {{}, {}, {0.0f}, {1.0e6f}};
+    for (size_t r = 0; r < runs.size(); ++r) {
+        Voxelization& v = runs[r];
+        v.harness = std::make_unique<VoxelizeHarness>(td, sceneDesc());
+        v.scene = vct::VoxelScene::create(*td.device, &error);
+        REQUIRE(v.scene);
+        if (r > 0) v.scene->setVoxelizer(vct::Voxelizer::Compute, options[r]);
+        vct::VoxelMaterial emissive, fragmentOnly, opaque;
+        emissive.fragmentShader = fragmentOnly.fragmentShader = v.harness->emissiveShader();
+        emissive.computeShader = emissiveCompute;
+        opaque.thickness = 0.5f;
+        opaque.twoSided = true;
+        auto instance = [&](vct::VoxelMeshHandle mesh, const glm::vec3& at, const vct::VoxelMaterial& material) {
+            INFO(error);
+            REQUIRE(mesh);
+            vct::VoxelInstanceDesc id;
+            id.mesh = mesh;
+            id.transform = glm::translate(glm::mat4(1.0f), at);
+            id.material = material;
+            v.instances.push_back(v.scene->addInstance(id, &error));
+            REQUIRE(v.instances.back());
+        };
+        instance(v.scene->addMesh(mixed.arrays("sphere and floor"), &error), glm::vec3(0.25f, 0.0f, -0.5f), emissive);
+        instance(v.scene->addMesh(thin.arrays("slivers"), &error), glm::vec3(0.0f), opaque);
+        for (int readable = 0; readable < 2; ++readable) {
+            vct::VoxelMeshBuffers mb;
+            mb.positions = mb.normals = appBuffers[2 * readable];
+            mb.positionsStride = mb.normalsStride = 24;
+            mb.normalsOffset = 12;
+            mb.vertexCount = uint32_t(cube.positions.size() / 3);
+            mb.indices = appBuffers[2 * readable + 1];
+            mb.indexCount = uint32_t(cube.indices.size());
+            mb.boundsMin = glm::vec3(3.5f);
+            mb.boundsMax = glm::vec3(11.5f);
+            mb.name = readable ? "app cube (readable)" : "app cube";
+            instance(v.scene->addMesh(mb, &error), readable ? glm::vec3(14.0f, 1.0f, 0.0f) : glm::vec3(0.0f, 14.0f, 12.0f), emissive);
+        }
+        // An emissive material without a compute shader: drawn, whatever the voxelizer.
+        instance(v.scene->addMesh(meshOf(cube, "cube"), &error), glm::vec3(-20.0f, 2.0f, 18.0f),
+                 fragmentOnly);
+    }
+    auto voxelize = [&](const glm::vec3& anchor) {
+        for (Voxelization& v : runs) {
+            vct::Clipmap& clipmap = v.harness->clipmap();
+            clipmap.setCountersEnabled(true);
+            clipmap.resetCounters();
+            REQUIRE(clipmap.update(anchor, &error, v.scene->takeDirtyRegions()));
+            const bool voxelized = v.scene->voxelize(clipmap, extra, &error);
+            INFO(error);
+            REQUIRE(voxelized);
+            v.drawn = v.scene->lastDrawCount();
+            v.computed = v.scene->lastComputeCount();
+            clipmap.finishVoxelization();
+            v.counters = clipmap.readCounters();
+        }
+        const std::vector<uint32_t> opacity = runs[0].harness->opacity(), emittance = runs[0].harness->emittance();
+        CHECK(std::count_if(opacity.begin(), opacity.end(), [](uint32_t w) { return w != 0; }) > 1000);
+        CHECK(std::count_if(emittance.begin(), emittance.end(), [](uint32_t w) { return w != 0; }) > 1000);
+        CHECK(runs[0].computed == 0);
+        for (size_t r = 1; r < runs.size(); ++r) {
+            INFO("compute run " << r << " (split " << options[r].splitVoxels << ")");
+            std::string where;
+            CHECK(differences(runs[r].harness->opacity(), opacity, &where) == 0);
+            CHECK(differences(runs[r].harness->emittance(), emittance, &where) == 0);
+            INFO(where);
+            CHECK(where.empty());
+            CHECK(runs[r].drawn == runs[0].drawn);
+            // Fragments differ (the compute loop visits only the pixels of the triangle's bounding box); the
+            // writes do not.
+            CHECK(runs[r].counters.voxelsWritten == runs[0].counters.voxelsWritten);
+            CHECK(runs[r].counters.killedByFiner == runs[0].counters.killedByFiner);
+            CHECK(runs[r].counters.killedNotDirty == runs[0].counters.killedNotDirty);
+            CHECK(runs[r].counters.emittanceWrites == runs[0].counters.emittanceWrites);
+        }
+    };
+    voxelize(kAnchor);
+    CHECK(runs[0].drawn == 5);
+    CHECK(runs[1].computed == 3);  // the sphere, the slivers and the readable app cube; not the other two
+    CHECK(runs[1].counters.voxelsWritten > 1000);
+
+    // Persistent: the clip-map scrolls and the slivers move; only what meets the rewrite regions is voxelized.
+    for (Voxelization& v : runs) REQUIRE(v.scene->setTransform(v.instances[1], glm::translate(glm::mat4(1.0f), glm::vec3(2.0f, 1.0f, 0.0f)), &error));
+    voxelize(kAnchor + glm::vec3(5.0f, 0.0f, -3.0f));
+    CHECK(runs[0].drawn < 5);
+    voxelize(kAnchor + glm::vec3(5.0f, 2.0f, -3.0f));
+
+    runs.clear();
+    for (rhi::BufferHandle b : appBuffers) td.device->destroy(b);
+    td.device->destroy(emissiveCompute);
+    REQUIRE_NO_MESSAGES(td);
+}
+
+void computeVoxelizerRefusesBadMaterials(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    std::string error;
+    const glm::vec4 emission(1.0f, 0.5f, 0.25f, 0.0f);
+    rhi::Bindings extra;
+    extra.constants.push(rhi::constants(0, emission));
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("vct_tests/voxelize_emissive.comp");
+    REQUIRE(sd.blob);
+    const rhi::ShaderHandle emissiveCompute = td.device->createShader(sd);
+    REQUIRE(emissiveCompute);
+    VoxelizeHarness computed(td, sceneDesc()), drawn(td, sceneDesc());
+    auto scene = vct::VoxelScene::create(*td.device, &error);
+    REQUIRE(scene);
+    const BoxArrays cube = boxArrays(glm::vec3(3.25f), glm::vec3(6.5f));  // triangles of ~3 voxels: in compute
+    const vct::VoxelMeshHandle mesh = scene->addMesh(meshOf(cube, "cube"), &error);
+    REQUIRE(mesh);
+    vct::VoxelInstanceDesc id;
+    id.mesh = mesh;
+    id.material.computeShader = emissiveCompute;  // without its fragment shader: the big triangles would lose light
+    CHECK_FALSE(scene->addInstance(id, &error));
+    CHECK(error.find("mesh 'cube'") != std::string::npos);
+    CHECK(error.find("computeShader but no fragmentShader") != std::string::npos);
+
+    // A fragment shader given as the compute shader: the dispatch is refused, the error names the instance, and
+    // the instance is drawn instead (the same words as the draw path).
+    id.material.fragmentShader = computed.emissiveShader();
+    id.material.computeShader = computed.emissiveShader();
+    REQUIRE(scene->addInstance(id, &error));
+    scene->setVoxelizer(vct::Voxelizer::Compute);
+    REQUIRE(computed.clipmap().update(kAnchor, &error, scene->takeDirtyRegions()));
+    CHECK_FALSE(scene->voxelize(computed.clipmap(), extra, &error));
+    CHECK(error.find("mesh 'cube'") != std::string::npos);
+    CHECK(error.find("refused the compute voxelizer's dispatch") != std::string::npos);
+    CHECK(error.find("drawn instead") != std::string::npos);
+    CHECK(scene->lastDrawCount() == 1);
+    CHECK(scene->lastComputeCount() == 0);
+    computed.clipmap().finishVoxelization();
+    const bool named = std::any_of(td.messages->begin(), td.messages->end(),
+                                   [](const std::string& m) { return m.find("not a compute shader") != std::string::npos; });
+    CHECK(named);
+    td.messages->clear();
+    REQUIRE(drawn.clipmap().update(kAnchor, &error));
+    vct::VoxelMaterial harnessMaterial;
+    const glm::vec3 radiance(emission);
+    drawn.draw(boxTriangles(glm::vec3(3.25f), glm::vec3(6.5f)), harnessMaterial, &radiance);
+    drawn.clipmap().finishVoxelization();
+    CHECK(computed.opacity() == drawn.opacity());
+    CHECK(computed.emittance() == drawn.emittance());
+    scene.reset();
+    td.device->destroy(emissiveCompute);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
 BACKEND_TEST("registered meshes voxelize as the application's own draws do", "[vct]", registeredMeshesEqualTheAppsDraws)
 BACKEND_TEST("a voxel scene refuses bad meshes, buffers and instances", "[vct]", refusesBadMeshesAndInstances)
+BACKEND_TEST("the compute voxelizer writes the draw path's words", "[vct]", computeVoxelizerWritesTheDrawPathsWords)
+BACKEND_TEST("the compute voxelizer refuses bad materials", "[vct]", computeVoxelizerRefusesBadMaterials)

@@ -18,11 +18,117 @@
 // 4 × 4 samples inside the triangle (edges owned by one side only, so that shared edges count once), weighted
 // by the surface area it stands for and split over the six directions by the face normal; what leaves along
 // the projection axis goes to the column's outermost voxel on that side and the one behind it.
+//
+// The same code serves three stages: our geometry shader (vct/voxelize.geom) defines BL_VOXEL_SETUP_ONLY and
+// takes the per-triangle setup (blVoxelSetupTriangle); the fragment main below and the compute voxelizer of
+// registered meshes (bricklight/voxelize_compute.glsl, which defines BL_VOXEL_COMPUTE) both run the per-pixel
+// body (blVoxelPixel), so that the two paths write the same words.
 #ifndef BRICKLIGHT_VOXELIZE_GLSL
 #define BRICKLIGHT_VOXELIZE_GLSL
 
 #include "bricklight/bindings.glsl"
 #include "bricklight/vct_layout.glsl"
+
+BL_VCT_FRAME_BLOCK(7);
+#define BL_VCT_FRAME_DECLARED
+
+// One triangle projected into one level: what the geometry stage hands the fragment stage as flat values.
+// Edges, plane, bounds and depth range are in the triangle's frame, `offset` voxels from the level's origin.
+struct BlVoxelTriangle {
+    vec4 edge[3];      // xy unit inward normal n, zw a point p; n·(x − p) ≥ 0 inside
+    vec4 plane;        // depth w = x + y·u + z·v; w: surface area per projected area
+    vec4 bounds;       // the triangle's (u, v) bounding box: min xy, max zw
+    vec4 depth;        // x, y: the triangle's depth range; z thickness; w opacity
+    ivec4 levelAxis;   // x level, y projection axis, z two-sided
+    vec3 faceNormal;   // unit geometric normal in world space (winding order)
+    ivec3 offset;      // the triangle's frame in the level, projected (u, v, w)
+    vec3 opposite;     // edge function of each vertex on its opposite edge (barycentric weights; not passed on)
+};
+
+// (u, v, w): the two projected coordinates and the depth along `axis`.
+vec3 blVoxelProject(vec3 p, int axis) { return axis == 0 ? p.yzx : (axis == 1 ? p.zxy : p); }
+
+// The triangle (world space) in level `level`: false where it is dropped there (non-finite, outside the level,
+// wholly inside the finer level, or degenerate). material: x thickness, y opacity, z two-sided (VoxelMaterial).
+bool blVoxelSetupTriangle(vec3 world[3], uint level, vec4 material, out BlVoxelTriangle t) {
+    t = BlVoxelTriangle(vec4[3](vec4(0.0), vec4(0.0), vec4(0.0)), vec4(0.0), vec4(0.0), vec4(0.0), ivec4(0), vec3(0.0), ivec3(0), vec3(0.0));
+    if (level >= blVctFrame.params.y) return false;
+    float resolution = float(blVctFrame.params.x);
+    float voxelSize = blVctFrame.scales.x * float(1u << level);
+    // The triangle in its own frame: voxel units relative to the voxel of its first vertex. Everything the
+    // per-pixel body tests is computed there, so that a triangle gives bit-identical results wherever the level
+    // lies (a scrolled clip-map equals one voxelized from scratch); `offset` (integer) places that frame in the
+    // level.
+    vec3 pv[3];
+    for (int i = 0; i < 3; ++i) pv[i] = world[i] / voxelSize;
+    // Non-finite or absurdly distant vertices would make every edge test meaningless: drop the triangle.
+    for (int i = 0; i < 3; ++i)
+        if (any(isnan(pv[i])) || any(greaterThan(abs(pv[i]), vec3(1.0e8)))) return false;
+    vec3 base = floor(pv[0]);
+    ivec3 offset = ivec3(base) - blVctFrame.origin[level].xyz;
+    vec3 p[3];
+    for (int i = 0; i < 3; ++i) p[i] = pv[i] - base;
+    if (any(greaterThan(abs(p[1]), vec3(1.0e7))) || any(greaterThan(abs(p[2]), vec3(1.0e7)))) return false;
+
+    float thickness = clamp(material.x, 0.0, 2.0);
+    float pad = 1.0 + 0.5 * thickness;
+    vec3 lo = min(min(p[0], p[1]), p[2]) + vec3(offset), hi = max(max(p[0], p[1]), p[2]) + vec3(offset);
+    if (any(greaterThan(lo, vec3(resolution + pad))) || any(lessThan(hi, vec3(-pad)))) return false;
+    if (level > 0u) {
+        // Wholly inside the finer level: those voxels come from downsampling it.
+        vec3 finerLo = vec3(blVctFrame.origin[level - 1u].xyz) * 0.5 - vec3(blVctFrame.origin[level].xyz);
+        vec3 finerHi = finerLo + 0.5 * resolution;
+        if (all(greaterThanEqual(lo - pad, finerLo)) && all(lessThanEqual(hi + pad, finerHi))) return false;
+    }
+
+    // precise: no fused multiply-adds, so that Vulkan and GL, and the geometry and compute stages, round alike
+    // (the emittance words must agree).
+    precise vec3 n = cross(p[1] - p[0], p[2] - p[0]);
+    vec3 an = abs(n);
+    int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+    vec3 q[3];
+    for (int i = 0; i < 3; ++i) q[i] = blVoxelProject(p[i], axis);
+    vec3 nq = blVoxelProject(n, axis);
+    if (nq.z == 0.0) return false;  // degenerate: no area at float precision
+    float orientation = nq.z > 0.0 ? 1.0 : -1.0;  // counter-clockwise in (u, v) when positive
+
+    // Each edge is anchored at its lexicographically smaller end, so that the two triangles sharing an edge
+    // compute exactly opposite values at any point (the per-pixel fill rule relies on it).
+    for (int i = 0; i < 3; ++i) {
+        vec2 a = q[i].xy, b = q[(i + 1) % 3].xy;
+        precise vec2 e = orientation * vec2(a.y - b.y, b.x - a.x);
+        precise float len = length(e);
+        e /= len;
+        t.edge[i] = vec4(e, a.x < b.x || (a.x == b.x && a.y < b.y) ? a : b);
+    }
+    precise vec4 plane = vec4(q[0].z + (nq.x * q[0].x + nq.y * q[0].y) / nq.z, -nq.x / nq.z, -nq.y / nq.z,
+                              length(n) / abs(nq.z));
+    t.plane = plane;
+    vec2 uvLo = min(min(q[0].xy, q[1].xy), q[2].xy), uvHi = max(max(q[0].xy, q[1].xy), q[2].xy);
+    t.bounds = vec4(uvLo, uvHi);
+    t.depth = vec4(min(min(q[0].z, q[1].z), q[2].z), max(max(q[0].z, q[1].z), q[2].z), thickness, clamp(material.y, 0.0, 1.0));
+    // Barycentric weights of a point: edge i is opposite vertex (i + 2) % 3.
+    precise vec3 opposite = vec3(dot(t.edge[1].xy, q[0].xy - t.edge[1].zw), dot(t.edge[2].xy, q[1].xy - t.edge[2].zw),
+                                 dot(t.edge[0].xy, q[2].xy - t.edge[0].zw));
+    t.opposite = opposite;
+    t.levelAxis = ivec4(int(level), axis, material.z != 0.0 ? 1 : 0, 0);
+    precise vec3 unitNormal = n / length(n);
+    t.faceNormal = unitNormal;
+    t.offset = ivec3(blVoxelProject(vec3(offset), axis));
+    return true;
+}
+
+// The weights of the triangle's three vertices at a point s of its (u, v) frame (extrapolated outside it).
+vec3 blVoxelWeights(BlVoxelTriangle t, vec2 s) {
+    vec3 weight;
+    for (int i = 0; i < 3; ++i) {
+        precise float e = dot(t.edge[i].xy, s - t.edge[i].zw);
+        weight[(i + 2) % 3] = e / t.opposite[(i + 2) % 3];
+    }
+    return weight;
+}
+
+#ifndef BL_VOXEL_SETUP_ONLY
 
 struct BlVoxelFragment {
     vec3 position;    // world space, the pixel's centre on the triangle's plane
@@ -36,12 +142,11 @@ struct BlVoxelFragment {
 vec3 blVoxelEmittance(BlVoxelFragment f);
 #endif
 
-BL_VCT_FRAME_BLOCK(7);
-#define BL_VCT_FRAME_DECLARED
 BL_STORAGE_BUFFER(6) BlVctEmittance { uint words[]; } blVctEmittance;
 BL_STORAGE_BUFFER(7) BlVctCounters { uint counts[]; } blVctCounters;
 BL_IMAGE(7, r32ui) uniform coherent uimage3D blVctOpacity;
 
+#ifndef BL_VOXEL_COMPUTE
 layout(location = 0) in vec3 blVoxelNormalGs;
 layout(location = 1) in vec4 blVoxelUser0Gs;
 layout(location = 2) in vec4 blVoxelUser1Gs;
@@ -54,6 +159,7 @@ layout(location = 8) flat in vec4 blVoxelDepth;
 layout(location = 9) flat in ivec4 blVoxelLevelAxis;
 layout(location = 10) flat in vec3 blVoxelFaceNormal;
 layout(location = 11) flat in ivec3 blVoxelOffset;
+#endif
 
 const int BL_VOXEL_MAX_SPAN = 6;  // voxels one pixel can cover along the axis: 3 for the plane, +2 for thickness
 
@@ -142,43 +248,44 @@ void blVoxelMaxOpacity(ivec3 texel, uint opacity) {
     }
 }
 
-void main() {
-    blVoxelCount(BL_VCT_COUNT_FRAGMENTS, 1u);
-    ivec2 pixelInLevel = ivec2(floor(gl_FragCoord.xy));
-    // The triangle's frame (see vct/voxelize.geom): integer offsets, so these are exact.
-    vec2 pixel = vec2(pixelInLevel - blVoxelOffset.xy);
+// The per-pixel body: pixel `pixelInLevel` (of the level's resolution² projection) of the triangle `t`, with the
+// application's attributes interpolated at the pixel's centre. The caller counts the fragment.
+void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal, vec4 user0, vec4 user1) {
+    // The triangle's frame (see blVoxelSetupTriangle): integer offsets, so these are exact.
+    vec2 pixel = vec2(pixelInLevel - t.offset.xy);
     vec2 centre = pixel + 0.5;
     // Does the pixel's square touch the triangle? Its bounding box first, then each edge at the square's corner
     // furthest inside.
-    bool touches = pixel.x + 1.0 >= blVoxelBounds.x && pixel.x <= blVoxelBounds.z && pixel.y + 1.0 >= blVoxelBounds.y &&
-                   pixel.y <= blVoxelBounds.w;
-    touches = touches && blVoxelEdge(blVoxelEdge0, centre) + 0.5 * (abs(blVoxelEdge0.x) + abs(blVoxelEdge0.y)) >= 0.0;
-    touches = touches && blVoxelEdge(blVoxelEdge1, centre) + 0.5 * (abs(blVoxelEdge1.x) + abs(blVoxelEdge1.y)) >= 0.0;
-    touches = touches && blVoxelEdge(blVoxelEdge2, centre) + 0.5 * (abs(blVoxelEdge2.x) + abs(blVoxelEdge2.y)) >= 0.0;
+    bool touches = pixel.x + 1.0 >= t.bounds.x && pixel.x <= t.bounds.z && pixel.y + 1.0 >= t.bounds.y &&
+                   pixel.y <= t.bounds.w;
+    for (int i = 0; i < 3; ++i) {
+        precise float reach = blVoxelEdge(t.edge[i], centre) + 0.5 * (abs(t.edge[i].x) + abs(t.edge[i].y));
+        touches = touches && reach >= 0.0;
+    }
     if (!touches) {
         blVoxelCount(BL_VCT_COUNT_OFF_TRIANGLE, 1u);
         return;
     }
 
-    uint level = uint(blVoxelLevelAxis.x);
-    int axis = blVoxelLevelAxis.y;
+    uint level = uint(t.levelAxis.x);
+    int axis = t.levelAxis.y;
     uint resolution = blVctFrame.params.x;
     uint boxCount = blVctFrame.params.w;
     ivec3 origin = blVctFrame.origin[level].xyz;
     // The depths the plane takes over the square, within the triangle's own range, widened by the thickness.
-    precise float wCentre = blVoxelPlane.x + blVoxelPlane.y * centre.x + blVoxelPlane.z * centre.y;
-    float wSpread = 0.5 * (abs(blVoxelPlane.y) + abs(blVoxelPlane.z));
+    precise float wCentre = t.plane.x + t.plane.y * centre.x + t.plane.z * centre.y;
+    precise float wSpread = 0.5 * (abs(t.plane.y) + abs(t.plane.z));
     // Thickness goes behind the surface (away from the side its normal says is the front), so that no opaque,
     // dark voxel lies in front of the voxel that holds its light; a two-sided surface grows half each way.
-    float facing = dot(blVoxelFaceNormal, blVoxelNormalGs) >= 0.0 ? 1.0 : -1.0;
-    bool frontIsUp = facing * blVoxelFaceNormal[axis] > 0.0;  // the front looks towards +w
-    float behind = blVoxelLevelAxis.z != 0 ? 0.5 : (frontIsUp ? 1.0 : 0.0);
-    float wLo = max(wCentre - wSpread, blVoxelDepth.x) - behind * blVoxelDepth.z;
-    float wHi = min(wCentre + wSpread, blVoxelDepth.y) + (1.0 - behind) * blVoxelDepth.z;
-    int k0 = max(int(floor(wLo)) + blVoxelOffset.z, 0);
-    int k1 = min(min(int(floor(wHi)) + blVoxelOffset.z, int(resolution) - 1), k0 + BL_VOXEL_MAX_SPAN - 1);
+    float facing = dot(t.faceNormal, interpolatedNormal) >= 0.0 ? 1.0 : -1.0;
+    bool frontIsUp = facing * t.faceNormal[axis] > 0.0;  // the front looks towards +w
+    float behind = t.levelAxis.z != 0 ? 0.5 : (frontIsUp ? 1.0 : 0.0);
+    precise float wLo = max(wCentre - wSpread, t.depth.x) - behind * t.depth.z;
+    precise float wHi = min(wCentre + wSpread, t.depth.y) + (1.0 - behind) * t.depth.z;
+    int k0 = max(int(floor(wLo)) + t.offset.z, 0);
+    int k1 = min(min(int(floor(wHi)) + t.offset.z, int(resolution) - 1), k0 + BL_VOXEL_MAX_SPAN - 1);
 
-    uint opacity = vctPackOpacity(blVoxelDepth.w * abs(blVoxelFaceNormal));
+    uint opacity = vctPackOpacity(t.depth.w * abs(t.faceNormal));
     uint writable = 0u;  // bit k - k0
     uint written = 0u, killedByFiner = 0u, killedNotDirty = 0u;
     for (int k = k0; k <= k1; ++k) {
@@ -206,33 +313,33 @@ void main() {
     for (int sy = 0; sy < 4; ++sy)
         for (int sx = 0; sx < 4; ++sx) {
             vec2 s = pixel + (vec2(sx, sy) + 0.5) * 0.25;
-            if (!blVoxelOwns(blVoxelEdge0, s) || !blVoxelOwns(blVoxelEdge1, s) || !blVoxelOwns(blVoxelEdge2, s)) continue;
-            precise float w = clamp(blVoxelPlane.x + blVoxelPlane.y * s.x + blVoxelPlane.z * s.y, blVoxelDepth.x, blVoxelDepth.y);
-            int k = int(floor(w)) + blVoxelOffset.z - k0;
+            if (!blVoxelOwns(t.edge[0], s) || !blVoxelOwns(t.edge[1], s) || !blVoxelOwns(t.edge[2], s)) continue;
+            precise float w = clamp(t.plane.x + t.plane.y * s.x + t.plane.z * s.y, t.depth.x, t.depth.y);
+            int k = int(floor(w)) + t.offset.z - k0;
             ++inside;  // every sample in the triangle counts, whatever this update may write (see below)
             if (k >= 0 && k < BL_VOXEL_MAX_SPAN) ++samples[k];
         }
     if (inside == 0u) return;
 
     float voxelSize = blVctFrame.scales.x * float(1u << level);
-    vec3 local = blVoxelUnproject(vec3(centre, wCentre) + vec3(blVoxelOffset), axis);
+    vec3 local = blVoxelUnproject(vec3(centre, wCentre) + vec3(t.offset), axis);
     BlVoxelFragment f;
     f.position = (vec3(origin) + local) * voxelSize;
-    vec3 normal = blVoxelNormalGs;
-    f.normal = dot(normal, normal) > 0.0 ? normalize(normal) : blVoxelFaceNormal;
-    f.user0 = blVoxelUser0Gs;
-    f.user1 = blVoxelUser1Gs;
+    vec3 normal = interpolatedNormal;
+    f.normal = dot(normal, normal) > 0.0 ? normalize(normal) : t.faceNormal;
+    f.user0 = user0;
+    f.user1 = user1;
     f.level = level;
     f.voxelSize = voxelSize;
     // The front side is where the application's normal points; the face normal, so oriented, splits the light.
-    vec3 front = dot(blVoxelFaceNormal, f.normal) >= 0.0 ? blVoxelFaceNormal : -blVoxelFaceNormal;
+    vec3 front = dot(t.faceNormal, f.normal) >= 0.0 ? t.faceNormal : -t.faceNormal;
     uint directions = channels / 3u;
-    int sides = 1 + blVoxelLevelAxis.z;
+    int sides = 1 + t.levelAxis.z;
     // Fixed-point units per unit radiance, × the area each sample stands for (1/16 of a voxel face, divided by
     // the projection's cosine).
     // precise (no fused multiply-adds) here and in the geometry stage: Vulkan and GL then round alike and write
     // the same words.
-    precise float unitsPerSample = blVctFrame.scales.y * blVoxelPlane.w / 16.0;
+    precise float unitsPerSample = blVctFrame.scales.y * t.plane.w / 16.0;
     uint emittanceWrites = 0u;
     for (int side = 0; side < sides; ++side) {
         BlVoxelFragment g = f;
@@ -271,4 +378,23 @@ void main() {
 #endif
 }
 
+#ifndef BL_VOXEL_COMPUTE
+void main() {
+    blVoxelCount(BL_VCT_COUNT_FRAGMENTS, 1u);
+    BlVoxelTriangle t;
+    t.edge[0] = blVoxelEdge0;
+    t.edge[1] = blVoxelEdge1;
+    t.edge[2] = blVoxelEdge2;
+    t.plane = blVoxelPlane;
+    t.bounds = blVoxelBounds;
+    t.depth = blVoxelDepth;
+    t.levelAxis = blVoxelLevelAxis;
+    t.faceNormal = blVoxelFaceNormal;
+    t.offset = blVoxelOffset;
+    t.opposite = vec3(1.0);  // unused per pixel
+    blVoxelPixel(t, ivec2(floor(gl_FragCoord.xy)), blVoxelNormalGs, blVoxelUser0Gs, blVoxelUser1Gs);
+}
+#endif
+
+#endif  // BL_VOXEL_SETUP_ONLY
 #endif
