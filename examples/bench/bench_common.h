@@ -32,6 +32,7 @@ struct Options {
     uint32_t vctResolution = 128, vctLevels = 5;  // vct: the clip-map
     std::string vctEmittance = "aniso";           // vct: aniso, iso or none
     uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
+    float vctSpecularJitter = -1.0f;              // vct: ConeTraceParams::specularJitter (< 0: the default)
     bool vctSdfOcclusion = false;                 // vct: cones stop at the distance field's surfaces
     bool vctRegistered = false;                   // vct: voxelize through vct::VoxelScene (culled) instead of one draw
     bool vctCompute = false;                      // vct: ... with its compute voxelizer (vct::Voxelizer::Compute)

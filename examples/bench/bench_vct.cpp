@@ -166,6 +166,7 @@ int runVct(const Options& o) {
         vct::ConeTraceParams params;
         params.diffuseCones = o.vctCones;
         params.tracingSparsity = o.vctSparsity;
+        if (o.vctSpecularJitter >= 0.0f) params.specularJitter = o.vctSpecularJitter;
         BenchCamera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
         auto frame = [&](uint32_t f) {
             const BenchCamera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);

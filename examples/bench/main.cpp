@@ -52,7 +52,7 @@ namespace {
                  "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
                  "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
-                 "                            [--occlusion voxels|sdf] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
+                 "                            [--occlusion voxels|sdf] [--jitter PERCENT] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
                  "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n");
     std::exit(2);
 }
@@ -120,6 +120,7 @@ Options parse(int argc, char** argv) {
             if (o.vctEmittance != "aniso" && o.vctEmittance != "iso" && o.vctEmittance != "none") usage("--emittance must be aniso, iso or none");
         } else if (a == "--cones") o.vctCones = number(value(), "--cones", 1, 32);
         else if (a == "--sparsity") o.vctSparsity = number(value(), "--sparsity", 1, 4);
+        else if (a == "--jitter") o.vctSpecularJitter = float(number(value(), "--jitter (percent)", 0, 100)) / 100.0f;
         else if (a == "--occlusion") {
             const std::string v = value();
             if (v != "voxels" && v != "sdf") usage("--occlusion must be voxels or sdf");
