@@ -120,6 +120,7 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
     if (!r->createGlass(error)) return nullptr;
+    if (!r->createShadows(scene, error)) return nullptr;
     const bool vct = options.gi && options.giTechnique == GiTechnique::Vct;
     if (options.gi && !vct && !r->createGi(scene, error)) return nullptr;
     r->giLights_ = giLightsOf(scene);
@@ -219,6 +220,7 @@ GBufferView RasterRenderer::gbuffer() const {
 }
 
 RasterRenderer::~RasterRenderer() {
+    destroyShadows();
     gi_.reset();
     sdf_.reset();
     coneTracer_.reset();
@@ -277,13 +279,21 @@ void RasterRenderer::render() {
     device_.beginMarker("gbuffer");
     device_.draw(d, args);
     device_.endMarker();
+    if (depthPyramid_) {
+        std::string why;
+        if (!depthPyramid_->build(depth_, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+    }
+    renderShadowMaps();
 
     struct {
         glm::mat4 inverseViewProjection;
         glm::vec4 eye;
         uint32_t size[4];
     } p{glm::inverse(viewProjection_), glm::vec4(camera_.eye, 1.0f), {options_.width, options_.height, options_.lightSamples, frame_++}};
-    const SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
+    SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
+    const SceneLightConstants withSun = light;
+    // Shadow maps: the BVH path leaves the sun out; shadow_sun_light.comp adds it with the maps' visibility.
+    if (options_.shadows == ShadowMode::ShadowMap) light.sunIrradiance = glm::vec4(0.0f);
     rhi::DispatchState s;
     s.shader = lighting_;
     s.label = "direct lighting";
@@ -296,6 +306,7 @@ void RasterRenderer::render() {
     device_.beginMarker("direct light");
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();
+    if (options_.shadows == ShadowMode::ShadowMap) lightSunFromShadowMaps(withSun);
 
     if (clipmap_) voxelizeVct();
     if (gi_) {
@@ -372,6 +383,7 @@ bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* e
     }
     scene_ = std::move(next);
     giLights_ = giLightsOf(scene);
+    setSun(scene);
     syncSdf(scene);
     return true;
 }

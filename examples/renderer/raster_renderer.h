@@ -5,17 +5,48 @@
 // Each frame's lit image feeds the next frame's GI, so bounces accumulate over frames.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 
+#include "bricklight/depth_pyramid.h"
 #include "bricklight/gi.h"
 #include "bricklight/sdf.h"
 #include "bricklight/vct.h"
 #include "display_view.h"
 #include "gpu_scene.h"
 #include "path_tracer.h"
+#include "shadow_cascades.h"
 
 namespace bricklight::render {
+
+// Where the sun's visibility in the direct lighting comes from: a ray through the scene's BVH per pixel (exact;
+// the default), or cascaded shadow maps (raster_renderer_shadows.cpp). Emitters, point lights and the sky keep
+// their ray-traced estimator in both modes. docs/render.md, "Shadows".
+enum class ShadowMode { Bvh, ShadowMap };
+
+// The cascaded shadow maps' parameters (ShadowMode::ShadowMap). checkSunShadowOptions says what is accepted.
+struct SunShadowOptions {
+    uint32_t resolution = 1024;  // texels per side of each cascade's map (kMinShadowResolution..kMaxShadowResolution)
+    float splitLambda = 0.75f;   // 0 uniform .. 1 logarithmic splits
+    float shadowDistance = 0.0f;  // the cascades reach this far along the view (0: the scene bounds' farthest corner)
+    float slopeBias = 1.5f;      // the rasterizer's slope-scaled depth bias in the shadow draws (0..16)
+    float depthBias = 1.0f;      // the receiver's depth is moved this many texels towards the sun (0..16)
+    float normalOffset = 1.0f;   // the receiver is moved this many texels along its normal (0..16)
+    uint32_t pcfRadius = 1;      // PCF over (2·radius + 1)² bilinear taps (0..kMaxShadowPcfRadius)
+};
+// False with *error naming the field for parameters the shadow maps cannot use.
+bool checkSunShadowOptions(const SunShadowOptions& options, std::string* error);
+
+// The sun's cascades of the latest frame, for passes that read the shadow maps (the shadow classifier).
+struct ShadowCascadesView {
+    // D32_FLOAT 2D atlas of 2 × 2 tiles of resolution² texels: cascade i in tile shadowAtlasTile(i); null in Bvh
+    // mode. Depth 0 nearest the sun, cleared to 1 (no caster).
+    rhi::TextureHandle depth;
+    std::array<ShadowCascade, kShadowCascades> cascades{};  // viewProjection: world → the map's clip space
+    uint32_t resolution = 0;
+    glm::vec3 sunDirection{0.0f};  // towards the sun
+};
 
 // Which technique gives the indirect light when RasterOptions::gi is on.
 enum class GiTechnique { Sdf, Vct };
@@ -54,6 +85,10 @@ struct RasterOptions {
     bool vxao = false;
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
     sdf::Budgets sdfBudgets;   // the distance field's per-update budgets (deferred work goes to later updates)
+    ShadowMode shadows = ShadowMode::Bvh;
+    SunShadowOptions sunShadows;
+    // Build the hierarchical depth pyramid of the G-buffer depth each frame (depthPyramid()); off, it costs nothing.
+    bool depthPyramid = false;
     // Receives the SDF's and GI's messages (stderr when empty): an application counts them as it counts its
     // device's.
     rhi::ErrorCallback errorCallback;
@@ -121,6 +156,13 @@ public:
     void cameraCut() { cut_ = true; }
     Image readMotion();  // rg = UV motion (current - previous), b = 0
     uint32_t triangleCount() const { return scene_->triangleCount(); }
+    // The sun's shadow cascades of the latest frame (ShadowMode::ShadowMap; depth null otherwise).
+    ShadowCascadesView shadowCascades() const;
+    // The sun's visibility the direct lighting used in the latest frame (0..1 in every channel, 0 where the
+    // surface faces away from the sun, 1 on the sky); empty unless ShadowMode::ShadowMap.
+    Image readSunVisibility();
+    // The G-buffer depth's min/max pyramid of the latest frame (RasterOptions::depthPyramid); null when off.
+    const classify::DepthPyramid* depthPyramid() const { return depthPyramid_.get(); }
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
@@ -137,6 +179,27 @@ private:
     bool createGlass(std::string* error);  // the pass's shader and a placeholder target the composite can bind
     void renderGlass();                     // before the composite, which takes the glass pixels from it
     void syncSdf(const scenes::SceneGeometry& scene);
+    // raster_renderer_shadows.cpp: the shadow maps' shaders and textures (a 1×1 placeholder in Bvh mode, which
+    // the direct lighting binds but does not read), their draws, and the constants the direct lighting takes.
+    bool createShadows(const scenes::SceneGeometry& scene, std::string* error);
+    void renderShadowMaps();
+    void destroyShadows();
+    void setSun(const scenes::SceneGeometry& scene);  // the sun and the scene's bounds the cascades span
+    // ShadowMode::ShadowMap: adds the sun, shadowed by the maps, to the direct lighting (shadow_sun_light.comp).
+    void lightSunFromShadowMaps(const SceneLightConstants& light);
+    // shadow_sun.glsl's read buffer: the cascades of this frame and the sun.
+    struct ShadowData {
+        glm::mat4 viewProjection[kShadowCascades];
+        glm::vec4 splitFar, texelSize, depthRange, forward, irradiance, direction, bias;
+    };
+    rhi::ShaderHandle sunLight_;
+    rhi::BufferHandle shadowData_;
+    rhi::ShaderHandle shadowVertex_;
+    rhi::TextureHandle shadowMap_;
+    std::array<ShadowCascade, kShadowCascades> cascades_{};
+    glm::vec3 sunDirection_{0.0f, 1.0f, 0.0f}, sunIrradiance_{0.0f};
+    glm::vec3 sceneMin_{0.0f}, sceneMax_{0.0f};
+    std::unique_ptr<classify::DepthPyramid> depthPyramid_;
     Image readGi(rhi::TextureHandle t);
     bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_
     rhi::IDevice& device_;

@@ -140,10 +140,12 @@ sdf::MemoryUse RasterRenderer::memoryUse() const {
         const rhi::TextureDesc* d = t ? device_.describe(t) : nullptr;
         if (d) add(d->debugName, rhi::subresourceBytes(*d, {}));
     }
-    for (rhi::BufferHandle b : {direct_, combined_}) {
+    if (const rhi::TextureDesc* d = shadowMap_ ? device_.describe(shadowMap_) : nullptr) add(d->debugName, rhi::subresourceBytes(*d, {}));
+    for (rhi::BufferHandle b : {direct_, combined_, shadowData_}) {
         const rhi::BufferDesc* d = b ? device_.describe(b) : nullptr;
         if (d) add(d->debugName, d->size);
     }
+    if (depthPyramid_) add("depth pyramid", depthPyramid_->memoryBytes());
     return use;
 }
 

@@ -112,6 +112,29 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
         o.vctSdfOcclusion = s == "sdf";
         return OptionParse::Consumed;
     }
+    if (a == "--shadows") {
+        if (!value()) return OptionParse::Error;
+        const std::string s = v;
+        if (s != "bvh" && s != "shadowmap") {
+            *error = "--shadows must be bvh or shadowmap (got '" + s + "')";
+            return OptionParse::Error;
+        }
+        o.shadows = s == "shadowmap" ? ShadowMode::ShadowMap : ShadowMode::Bvh;
+        return OptionParse::Consumed;
+    }
+    if (a == "--shadow-resolution") return whole(kMinShadowResolution, kMaxShadowResolution, &o.sunShadows.resolution);
+    if (a == "--shadow-pcf") return whole(0, kMaxShadowPcfRadius, &o.sunShadows.pcfRadius);
+    if (a == "--shadow-lambda") {
+        if (!value()) return OptionParse::Error;
+        char* end = nullptr;
+        const float lambda = std::strtof(v, &end);
+        if (!*v || *end || !(lambda >= 0.0f && lambda <= 1.0f)) {
+            *error = "--shadow-lambda expects a number in 0..1 (got '" + std::string(v) + "')";
+            return OptionParse::Error;
+        }
+        o.sunShadows.splitLambda = lambda;
+        return OptionParse::Consumed;
+    }
     if (a == "--gi-scale") {
         uint32_t s = 0;
         if (whole(25, 100, &s) == OptionParse::Error) return OptionParse::Error;
@@ -196,6 +219,7 @@ const char* sharedOptionsUsage() {
     return "  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]\n"
            "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
            "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--gi-unseen vxgi|none]\n"
+           "  [--shadows bvh|shadowmap] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
            "  [--single-bounce] [--validate]\n"
            "  [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N] [--max-vertices N] [--max-indices N]\n"
            "  [--max-face-indices N] [--max-nodes N] [--max-node-depth N] [--max-texture-pixels N]\n"
@@ -226,6 +250,8 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.giUnseenFromVct = o.giUnseenFromVct;
     ro.giResolution = o.giScale;
     ro.giFeedback = !o.singleBounce;
+    ro.shadows = o.shadows;
+    ro.sunShadows = o.sunShadows;
     return ro;
 }
 

@@ -4,7 +4,8 @@
 // Direct lighting of the G-buffer: per pixel, emission plus light straight from the emitters (next-event
 // estimation, `samples` emitter samples), the sun and the sky (BRDF-sampled visibility), with
 // ray-traced shadows against the scene's BVH. The same estimator as the path tracer's first vertex, so the
-// two agree up to noise. Writes the direct radiance (w = 1) per pixel.
+// two agree up to noise. Writes the direct radiance (w = 1) per pixel. With the sun's shadow from cascaded
+// shadow maps (--shadows shadowmap) the host zeroes the sun here and shadow_sun_light.comp adds it afterwards.
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_CONSTANTS(0) uniform Params {
     mat4 inverseViewProjection;
