@@ -1,0 +1,183 @@
+// The shadow classifier (include/bricklight/classify.h): checks, resources and the classification pass
+// (shaders/classify/classify_shadows.comp). docs/classify.md.
+#include <cmath>
+#include <cstring>
+
+#include "bricklight/classify.h"
+#include "../core_shaders.h"
+
+namespace bricklight::classify {
+
+namespace {
+
+constexpr uint32_t kMaxSize = 16384;
+constexpr uint32_t kCountWords = 8;
+
+// The pass's parameters (the Params block of classify_shadows.comp, std430).
+struct Params {
+    glm::mat4 inverseViewProjection;
+    glm::mat4 worldToShadow[kMaxShadowCascades];
+    glm::vec4 uvRect[kMaxShadowCascades];
+    glm::vec4 sun, depthRange, normalScale, normalBias;
+    glm::uvec4 size, options, options2;
+};
+static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3);
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "shadow classifier: " + why;
+        return nullptr;
+    };
+    if (width == 0 || height == 0 || width > kMaxSize || height > kMaxSize)
+        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(kMaxSize) + " on each side");
+    shaders::link_bricklight_core();
+    std::unique_ptr<ShadowClassifier> c(new ShadowClassifier(device));
+    c->width_ = width;
+    c->height_ = height;
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("classify/classify_shadows.comp");
+    c->classify_ = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+    const uint64_t tiles = uint64_t(c->tilesX()) * c->tilesY();
+    rhi::BufferDesc bd;
+    bd.size = tiles * 16;
+    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
+    bd.debugName = "shadow tile list";
+    c->tiles_ = device.createBuffer(bd);
+    bd.size = kCountWords * 4;
+    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead | rhi::BufferUsage::IndirectArgs;
+    bd.debugName = "shadow tile count";
+    c->count_ = device.createBuffer(bd);
+    bd.size = sizeof(Params);
+    bd.usage = rhi::BufferUsage::ShaderRead;
+    bd.debugName = "shadow classifier parameters";
+    c->params_ = device.createBuffer(bd);
+    rhi::TextureDesc td;
+    td.format = rhi::Format::R32_UINT;
+    td.width = c->tilesX();
+    td.height = c->tilesY();
+    td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
+    td.debugName = "shadow hit mask";
+    c->hitMask_ = device.createTexture(td);
+    rhi::SamplerDesc sampler;
+    sampler.minFilter = sampler.magFilter = sampler.mipFilter = rhi::Filter::Nearest;
+    sampler.debugName = "shadow classifier point";
+    c->point_ = device.createSampler(sampler);
+    if (!c->classify_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->point_)
+        return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)");
+    return c;
+}
+
+ShadowClassifier::~ShadowClassifier() {
+    for (rhi::BufferHandle b : {tiles_, count_, params_})
+        if (b) device_.destroy(b);
+    if (hitMask_) device_.destroy(hitMask_);
+    if (point_) device_.destroy(point_);
+    if (classify_) device_.destroy(classify_);
+}
+
+bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error) {
+    auto fail = [&](const std::string& why) {
+        if (error) *error = "shadow classifier: " + why;
+        return false;
+    };
+    auto sized = [&](rhi::TextureHandle t, const char* name, bool depth) -> bool {
+        const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;
+        if (!td) return fail(std::string(name) + " is missing or not a live texture");
+        if (td->dimension != rhi::TextureDimension::Texture2D || !(td->usage & rhi::TextureUsage::Sampled))
+            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture");
+        if (depth && td->format != rhi::Format::D32_FLOAT && td->format != rhi::Format::R32_FLOAT)
+            return fail(std::string(name) + " '" + td->debugName + "' must be D32_FLOAT or R32_FLOAT");
+        return true;
+    };
+    if (d.mode != ShadowClassifyMode::Normals && d.mode != ShadowClassifyMode::Cascades)
+        return fail("mode " + std::to_string(uint32_t(d.mode)) + " is not Normals or Cascades");
+    if (!sized(d.depth, "depth", true) || !sized(d.normals, "normals", false)) return false;
+    for (rhi::TextureHandle t : {d.depth, d.normals}) {
+        const rhi::TextureDesc* td = device_.describe(t);
+        if (td->width != width_ || td->height != height_)
+            return fail("'" + td->debugName + "' is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", the classifier " +
+                        std::to_string(width_) + "x" + std::to_string(height_));
+    }
+    if (!finite(d.view) || !finite(d.projection) || !finite(d.normalsUnpackScale) || !finite(d.normalsUnpackOffset))
+        return fail("the camera matrices and the normals' unpacking must be finite");
+    const glm::mat4 viewProjection = d.projection * d.view;
+    const glm::mat4 inverse = glm::inverse(viewProjection);
+    if (!finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
+    const float sunLength = finite(d.sunDirection) ? glm::length(d.sunDirection) : 0.0f;
+    if (!(sunLength > 1.0e-6f) || !std::isfinite(sunLength)) return fail("sunDirection must be a finite, non-zero vector");
+    if (!(d.sunAngle >= 0.0f && d.sunAngle < 0.5f)) return fail("sunAngle " + std::to_string(d.sunAngle) + " is outside 0..0.5 radians");
+    if (!(d.rayPushOff >= 0.0f) || !std::isfinite(d.rayPushOff)) return fail("rayPushOff must be a finite number ≥ 0");
+    if (d.tileCutOff > 32) return fail("tileCutOff " + std::to_string(d.tileCutOff) + " is more than a tile's 32 pixels");
+    Params p{};
+    p.inverseViewProjection = inverse;
+    p.sun = glm::vec4(d.sunDirection / sunLength, std::tan(0.5f * d.sunAngle));
+    p.normalScale = glm::vec4(d.normalsUnpackScale, d.blockerOffset);
+    p.normalBias = glm::vec4(d.normalsUnpackOffset, d.rayPushOff);
+    p.size = glm::uvec4(width_, height_, tilesX(), uint32_t(d.mode));
+    p.options = glm::uvec4(0u, d.blockerTaps, d.rejectLitPixels ? 1u : 0u, d.cascadeRayInterval ? 1u : 0u);
+    p.options2 = glm::uvec4(d.tileCutOff, d.reversedDepth ? 1u : 0u, 1u, 1u);
+    rhi::TextureHandle shadowMap = d.depth;  // bound in Normals mode too (never read there)
+    if (d.mode == ShadowClassifyMode::Cascades) {
+        if (!sized(d.shadowMap, "shadowMap", true)) return false;
+        if (d.cascadeCount < 1 || d.cascadeCount > kMaxShadowCascades)
+            return fail("cascadeCount " + std::to_string(d.cascadeCount) + " is outside 1.." + std::to_string(kMaxShadowCascades));
+        if (d.blockerTaps != 8 && d.blockerTaps != 16 && d.blockerTaps != 24 && d.blockerTaps != 32)
+            return fail("blockerTaps " + std::to_string(d.blockerTaps) + " is not 8, 16, 24 or 32");
+        if (!(d.blockerOffset >= 0.0f && d.blockerOffset < 1.0f)) return fail("blockerOffset must lie in 0..1 (shadow-map depth)");
+        for (uint32_t c = 0; c < d.cascadeCount; ++c) {
+            const ShadowCascade& s = d.cascades[c];
+            const glm::vec4 r = s.uvRect;
+            if (!finite(s.worldToShadow) || !(s.depthRange > 0.0f) || !std::isfinite(s.depthRange))
+                return fail("cascade " + std::to_string(c) + ": worldToShadow must be finite and depthRange positive");
+            if (!(r.x >= 0.0f && r.y >= 0.0f && r.z <= 1.0f && r.w <= 1.0f && r.x < r.z && r.y < r.w))
+                return fail("cascade " + std::to_string(c) + ": uvRect must be a non-empty part of [0, 1]²");
+            p.worldToShadow[c] = s.worldToShadow;
+            p.uvRect[c] = r;
+            p.depthRange[int(c)] = s.depthRange;
+        }
+        const rhi::TextureDesc* sm = device_.describe(d.shadowMap);
+        p.options.x = d.cascadeCount;
+        p.options2.z = sm->width;
+        p.options2.w = sm->height;
+        shadowMap = d.shadowMap;
+    }
+    device_.writeBuffer(params_, 0, &p, sizeof(p));
+    const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};
+    device_.writeBuffer(count_, 0, counts, sizeof(counts));
+    rhi::DispatchState s;
+    s.shader = classify_;
+    s.label = "classify shadows";
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
+    s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.depth), point_});
+    s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.normals), point_});
+    s.bindings.textures.push(rhi::TextureBinding{2, rhi::wholeTexture(shadowMap), point_});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, tiles_, {}, rhi::Access::Write});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
+    s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
+    return device_.dispatch(s, tilesX(), tilesY(), 1);
+}
+
+ShadowClassifyCounts ShadowClassifier::readCounts() {
+    uint32_t w[kCountWords] = {};
+    ShadowClassifyCounts c;
+    if (!device_.readBuffer(count_, 0, sizeof(w), w)) return c;
+    c.listedTiles = w[0];
+    c.cutOffTiles = w[3];
+    c.rayPixels = w[4];
+    c.cutOffPixels = w[5];
+    c.activePixels = w[6];
+    return c;
+}
+
+}  // namespace bricklight::classify

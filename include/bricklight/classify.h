@@ -1,0 +1,107 @@
+// Bricklight tile classifiers (FidelityFX Classifier-class): the shadow classifier sorts the screen's 8×4 pixel tiles
+// by what the sun's shadow maps can decide — pixels surely lit, surely shadowed, and those that need a ray — and
+// lists the tiles with rays to trace (through the distance field, bricklight/trace.glsl) with each tile's pixel
+// mask and ray interval. docs/classify.md.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "bricklight/rhi.h"
+
+namespace bricklight::classify {
+
+constexpr uint32_t kShadowTileWidth = 8, kShadowTileHeight = 4;  // 32 pixels: bit y·8 + x of a tile's masks
+constexpr uint32_t kMaxShadowCascades = 4;
+
+// Normals: every pixel facing the sun needs a ray over [rayPushOff, ∞) (no shadow maps). Cascades: a blocker
+// search in the shadow maps decides what it can and bounds the rays of the rest.
+enum class ShadowClassifyMode : uint32_t { Normals, Cascades };
+
+// One cascade of the application's shadow maps.
+struct ShadowCascade {
+    // World → the shadow texture: x, y its texture coordinates in [0, 1] over the whole texture (an atlas's tile
+    // is a part of it), z the depth the map stores in [0, 1], 0 nearest the sun (an orthographic projection).
+    glm::mat4 worldToShadow{1.0f};
+    glm::vec4 uvRect{0.0f, 0.0f, 1.0f, 1.0f};  // the cascade's part of the texture: min u, min v, max u, max v
+    float depthRange = 1.0f;                   // world units from depth 0 to depth 1
+};
+
+// Per tile, tileList() holds a uvec4: x = tile x | tile y << 16, y = the mask of pixels that need a ray, z and w the
+// ray interval's start and end (floats, world units along the ray towards the sun, from the surface).
+struct ShadowClassifyDesc {
+    ShadowClassifyMode mode = ShadowClassifyMode::Cascades;
+    glm::mat4 view{1.0f}, projection{1.0f};  // the G-buffer's camera (the library's conventions, docs/gi.md)
+    bool reversedDepth = false;              // depth 1 near, 0 far
+    rhi::TextureHandle depth;                // one channel of device depth (D32_FLOAT / R32_FLOAT), the classifier's size
+    rhi::TextureHandle normals;              // world normal = stored × normalsUnpackScale + normalsUnpackOffset
+    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
+    glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // towards the sun
+    float sunAngle = 0.0093f;  // the sun's full angular diameter (radians): widens the blocker search with depth
+    // Cascades mode: the shadow texture (D32_FLOAT or R32_FLOAT, sampled; read texel by texel) and its cascades,
+    // finest first (each pixel takes the first whose uvRect holds it).
+    rhi::TextureHandle shadowMap;
+    uint32_t cascadeCount = 0;
+    ShadowCascade cascades[kMaxShadowCascades];
+    float blockerOffset = 0.002f;  // shadow-map depth a tap must be nearer the sun than the receiver to block it
+    uint32_t blockerTaps = 16;     // Poisson taps of the blocker search: 8, 16, 24 or 32
+    bool rejectLitPixels = true;   // false: pixels whose taps all lie behind them get a ray too
+    bool cascadeRayInterval = true;  // false: rays over [rayPushOff, ∞)
+    float rayPushOff = 0.04f;        // world units: the least ray start
+    // Tiles with this many ray pixels or fewer are not listed: their pixels keep the shadow maps' answer in the
+    // hit mask, and readCounts() counts them (0: every tile with a ray is listed).
+    uint32_t tileCutOff = 0;
+};
+
+struct ShadowClassifyCounts {
+    uint32_t listedTiles = 0;    // in tileList()
+    uint32_t cutOffTiles = 0;    // with ray pixels, not listed (tileCutOff)
+    uint32_t rayPixels = 0;      // pixels that need a ray, in listed tiles
+    uint32_t cutOffPixels = 0;   // pixels that needed a ray in cut-off tiles
+    uint32_t activePixels = 0;   // on-screen, not sky, facing the sun
+};
+
+//   resource                 format                              holds
+//   shadow tile list         buffer, uvec4 per tile (≤ tiles)    the listed tiles (ShadowClassifyDesc's comment)
+//   shadow tile count        buffer, 8 words, indirect args      x: listed tiles, then 1, 1 (dispatchIndirect
+//                                                                arguments: one 32-thread group per tile), then the
+//                                                                other ShadowClassifyCounts
+//   shadow hit mask          R32_UINT, ⌈W/8⌉ × ⌈H/4⌉            per tile, bit 1: shadowed or not known; 0: lit.
+//                                                                Preloaded with the shadow maps' answer (their
+//                                                                filtered taps); a trace over the listed tiles
+//                                                                replaces its masked bits with the rays'.
+class ShadowClassifier {
+public:
+    // Null with *error for a zero or too large size, or a device that cannot create the resources.
+    static std::unique_ptr<ShadowClassifier> create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error);
+    ~ShadowClassifier();
+    ShadowClassifier(const ShadowClassifier&) = delete;
+    ShadowClassifier& operator=(const ShadowClassifier&) = delete;
+
+    // Records the clear of the counts and the classification; false with *error, recording nothing, for missing or
+    // mis-sized inputs or bad parameters.
+    bool classify(const ShadowClassifyDesc& desc, std::string* error);
+
+    rhi::BufferHandle tileList() const { return tiles_; }
+    rhi::BufferHandle tileCount() const { return count_; }  // dispatchIndirect arguments at offset 0
+    rhi::TextureHandle hitMask() const { return hitMask_; }
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    uint32_t tilesX() const { return (width_ + kShadowTileWidth - 1) / kShadowTileWidth; }
+    uint32_t tilesY() const { return (height_ + kShadowTileHeight - 1) / kShadowTileHeight; }
+    ShadowClassifyCounts readCounts();  // waits for the GPU (tests and tools)
+
+private:
+    explicit ShadowClassifier(rhi::IDevice& device) : device_(device) {}
+    rhi::IDevice& device_;
+    uint32_t width_ = 0, height_ = 0;
+    rhi::ShaderHandle classify_;
+    rhi::BufferHandle tiles_, count_, params_;
+    rhi::TextureHandle hitMask_;
+    rhi::SamplerHandle point_;
+};
+
+}  // namespace bricklight::classify

@@ -1,0 +1,133 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+// The shadow classifier (classify::ShadowClassifier): one 32-thread group per 8×4 tile, one thread per pixel.
+// Per pixel: off screen, sky or facing away from the sun needs no ray (facing away: shadowed); in Normals mode the
+// rest need one; in Cascades mode a blocker search in the first cascade that holds the pixel decides — every tap
+// nearer the sun than the receiver: shadowed; none (with rejectLit): lit; a mix: a ray, bounded by the nearest and
+// the farthest blocker the taps saw. The tile's masks and interval are reduced through shared memory (never
+// subgroup operations: lavapipe's subgroups are 8 wide, the tile 32), then one thread appends the tile to the list
+// and writes its hit-mask texel.
+layout(local_size_x = 32, local_size_y = 1, local_size_z = 1) in;
+
+BL_READ_BUFFER(0) Params {
+    mat4 inverseViewProjection;
+    mat4 worldToShadow[4];
+    vec4 uvRect[4];
+    vec4 sun;          // xyz towards the sun, w tan(half the sun's angle)
+    vec4 depthRange;   // per cascade, world units from depth 0 to 1
+    vec4 normalScale;  // xyz; w: blocker offset
+    vec4 normalBias;   // xyz; w: ray push-off
+    uvec4 size;        // width, height, tiles along x, mode (0 normals, 1 cascades)
+    uvec4 options;     // cascades, taps, reject lit pixels, cascade ray interval
+    uvec4 options2;    // tile cut-off, reversed depth, shadow map width, height
+} params;
+BL_TEXTURE(0) uniform sampler2D depthTexture;
+BL_TEXTURE(1) uniform sampler2D normalTexture;
+BL_TEXTURE(2) uniform sampler2D shadowMap;
+BL_STORAGE_BUFFER(0) Tiles { uvec4 tiles[]; } list;
+BL_STORAGE_BUFFER(1) Counts { uint counts[8]; } count;  // listed, 1, 1, cut-off tiles, ray pixels, cut-off pixels, active
+BL_IMAGE(0, r32ui) uniform writeonly uimage2D hitMask;
+
+const float kNoEnd = 3.0e38;  // a ray interval without an end
+shared uint rayMask, answerMask, activeMask, minT, maxT;
+
+void main() {
+    uint lane = gl_LocalInvocationID.x;
+    uvec2 tile = uvec2(gl_WorkGroupID.xy);
+    ivec2 pixel = ivec2(tile * uvec2(8u, 4u) + uvec2(lane & 7u, lane >> 3u));
+    uint bit = 1u << lane;  // y · 8 + x
+    if (lane == 0u) {
+        rayMask = 0u;
+        answerMask = 0u;
+        activeMask = 0u;
+        minT = floatBitsToUint(kNoEnd);
+        maxT = 0u;
+    }
+    barrier();
+
+    bool onScreen = all(lessThan(uvec2(pixel), params.size.xy));
+    float depth = onScreen ? texelFetch(depthTexture, min(pixel, ivec2(params.size.xy) - 1), 0).r : 1.0;
+    bool reversed = params.options2.y != 0u;
+    bool surface = onScreen && (reversed ? depth > 0.0 : depth < 1.0);  // NaN: sky
+    vec3 n = texelFetch(normalTexture, min(pixel, ivec2(params.size.xy) - 1), 0).xyz * params.normalScale.xyz + params.normalBias.xyz;
+    bool facing = dot(n, params.sun.xyz) > 0.0;
+    bool isActive = surface && facing;
+    bool needsRay = isActive, answer = surface && !facing;  // facing away: shadowed, no ray
+    float t0 = params.normalBias.w, t1 = kNoEnd;
+    bool cascadesMode = params.size.w == 1u && isActive;
+    if (cascadesMode) {
+        vec2 ndc = (vec2(pixel) + 0.5) / vec2(params.size.xy) * 2.0 - 1.0;  // y −1 at the top row
+        vec4 w = params.inverseViewProjection * vec4(ndc, depth, 1.0);
+        vec3 world = w.xyz / w.w;
+        uint cascade = params.options.x;
+        vec3 s = vec3(0.0);
+        for (uint c = 0u; c < params.options.x; ++c) {
+            vec3 sc = (params.worldToShadow[c] * vec4(world, 1.0)).xyz;
+            vec4 r = params.uvRect[c];
+            if (cascade == params.options.x && all(greaterThan(sc.xy, r.xy)) && all(lessThan(sc.xy, r.zw))) {
+                cascade = c;
+                s = sc;
+            }
+        }
+        answer = false;  // beyond every cascade: lit as far as the maps know (the ray decides)
+        if (cascade < params.options.x) {
+            mat4 m = params.worldToShadow[cascade];
+            vec2 mapSize = vec2(params.options2.zw);
+            float range = params.depthRange[cascade];
+            // The penumbra a blocker can cast on the receiver grows with its distance: at most the receiver's
+            // distance from the depth-0 plane on the sun's side.
+            float radiusWorld = params.sun.w * max(s.z, 0.0) * range;
+            vec2 texelsPerWorld = vec2(length(vec3(m[0][0], m[1][0], m[2][0])), length(vec3(m[0][1], m[1][1], m[2][1]))) * mapSize;
+            vec2 radius = radiusWorld * texelsPerWorld + 1.0;
+            vec4 rect = params.uvRect[cascade] * vec4(mapSize, mapSize);
+            float receiver = s.z - params.normalScale.w;
+            uint taps = params.options.y, valid = 0u, blocking = 0u;
+            float nearestSun = 1.0e30, nearestReceiver = -1.0e30;
+            for (uint k = 0u; k < taps; ++k) {
+                // A sunflower spiral over the disc: even coverage with a fixed pattern.
+                float a = float(k) * 2.39996323, rr = sqrt((float(k) + 0.5) / float(taps));
+                vec2 at = floor(s.xy * mapSize + rr * vec2(cos(a), sin(a)) * radius);
+                if (any(lessThan(at, rect.xy)) || any(greaterThanEqual(at, rect.zw))) continue;
+                float d = texelFetch(shadowMap, ivec2(at), 0).r;
+                ++valid;
+                nearestSun = min(nearestSun, d);
+                if (d < receiver) {
+                    ++blocking;
+                    nearestReceiver = max(nearestReceiver, d);
+                }
+            }
+            bool allBlock = valid > 0u && blocking == valid, noneBlock = blocking == 0u;
+            needsRay = !allBlock && !(noneBlock && valid > 0u && params.options.z != 0u);
+            answer = allBlock || (valid > 0u && 2u * blocking > valid);
+            // The ray's interval: from the blocker the taps saw nearest the receiver to the one nearest the sun,
+            // widened by the depth offset and a texel, and by the search radius sideways.
+            if (params.options.w != 0u && blocking > 0u) {
+                float slack = params.normalScale.w * range + 2.0 / max(min(texelsPerWorld.x, texelsPerWorld.y), 1.0e-20);
+                t0 = max((s.z - nearestReceiver) * range - slack, params.normalBias.w);
+                t1 = (s.z - nearestSun) * range + slack + radiusWorld;
+            }
+        }
+    }
+    if (needsRay) {
+        atomicOr(rayMask, bit);
+        atomicMin(minT, floatBitsToUint(max(t0, 0.0)));  // non-negative floats order as their bits
+        atomicMax(maxT, floatBitsToUint(max(t1, 0.0)));
+    }
+    if (answer) atomicOr(answerMask, bit);
+    if (isActive) atomicOr(activeMask, bit);
+    barrier();
+
+    if (lane != 0u) return;
+    uint rays = bitCount(rayMask);
+    if (rays > params.options2.x) {
+        uint slot = atomicAdd(count.counts[0], 1u);
+        list.tiles[slot] = uvec4(tile.x | (tile.y << 16u), rayMask, minT, maxT);
+        atomicAdd(count.counts[4], rays);
+    } else if (rays > 0u) {
+        atomicAdd(count.counts[3], 1u);
+        atomicAdd(count.counts[5], rays);
+    }
+    atomicAdd(count.counts[6], bitCount(activeMask));
+    imageStore(hitMask, ivec2(tile), uvec4(answerMask));
+}
