@@ -20,8 +20,9 @@ struct Params {
     glm::vec4 uvRect[kMaxShadowCascades];
     glm::vec4 sun, depthRange, normalScale, normalBias;
     glm::uvec4 size, options, options2;
+    glm::vec4 trace;
 };
-static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3);
+static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16);
 
 bool finite(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
@@ -45,9 +46,12 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     std::unique_ptr<ShadowClassifier> c(new ShadowClassifier(device));
     c->width_ = width;
     c->height_ = height;
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader("classify/classify_shadows.comp");
-    c->classify_ = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+    for (auto [name, shader] : {std::pair{"classify/classify_shadows.comp", &c->classify_}, std::pair{"classify/trace_shadows.comp", &c->trace_},
+                                std::pair{"classify/resolve_shadows.comp", &c->resolve_}}) {
+        rhi::ShaderDesc sd;
+        sd.blob = rhi::findShader(name);
+        *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
+    }
     const uint64_t tiles = uint64_t(c->tilesX()) * c->tilesY();
     rhi::BufferDesc bd;
     bd.size = tiles * 16;
@@ -73,7 +77,7 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     sampler.minFilter = sampler.magFilter = sampler.mipFilter = rhi::Filter::Nearest;
     sampler.debugName = "shadow classifier point";
     c->point_ = device.createSampler(sampler);
-    if (!c->classify_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->point_)
+    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->point_)
         return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)");
     return c;
 }
@@ -83,7 +87,8 @@ ShadowClassifier::~ShadowClassifier() {
         if (b) device_.destroy(b);
     if (hitMask_) device_.destroy(hitMask_);
     if (point_) device_.destroy(point_);
-    if (classify_) device_.destroy(classify_);
+    for (rhi::ShaderHandle s : {classify_, trace_, resolve_})
+        if (s) device_.destroy(s);
 }
 
 bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error) {
@@ -118,6 +123,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     if (!(sunLength > 1.0e-6f) || !std::isfinite(sunLength)) return fail("sunDirection must be a finite, non-zero vector");
     if (!(d.sunAngle >= 0.0f && d.sunAngle < 0.5f)) return fail("sunAngle " + std::to_string(d.sunAngle) + " is outside 0..0.5 radians");
     if (!(d.rayPushOff >= 0.0f) || !std::isfinite(d.rayPushOff)) return fail("rayPushOff must be a finite number ≥ 0");
+    if (!(d.rayNormalOffset >= 0.0f) || !std::isfinite(d.rayNormalOffset)) return fail("rayNormalOffset must be a finite number ≥ 0");
     if (d.tileCutOff > 32) return fail("tileCutOff " + std::to_string(d.tileCutOff) + " is more than a tile's 32 pixels");
     Params p{};
     p.inverseViewProjection = inverse;
@@ -127,6 +133,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     p.size = glm::uvec4(width_, height_, tilesX(), uint32_t(d.mode));
     p.options = glm::uvec4(0u, d.blockerTaps, d.rejectLitPixels ? 1u : 0u, d.cascadeRayInterval ? 1u : 0u);
     p.options2 = glm::uvec4(d.tileCutOff, d.reversedDepth ? 1u : 0u, 1u, 1u);
+    p.trace = glm::vec4(d.rayNormalOffset, 0.0f, 0.0f, 0.0f);
     rhi::TextureHandle shadowMap = d.depth;  // bound in Normals mode too (never read there)
     if (d.mode == ShadowClassifyMode::Cascades) {
         if (!sized(d.shadowMap, "shadowMap", true)) return false;
@@ -165,7 +172,54 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, tiles_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
-    return device_.dispatch(s, tilesX(), tilesY(), 1);
+    if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)");
+    depth_ = d.depth;
+    normals_ = d.normals;
+    classified_ = true;
+    return true;
+}
+
+bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
+    if (!classified_ || !device_.describe(depth_) || !device_.describe(normals_)) {
+        if (error) *error = "shadow classifier: trace() needs a classify() whose depth and normals are still live";
+        return false;
+    }
+    rhi::DispatchState s;
+    s.shader = trace_;
+    s.label = "trace shadow rays";
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{1, tiles_, {}});
+    s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(depth_), point_});
+    s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(normals_), point_});
+    s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::ReadWrite));
+    field.traceBindings(s.bindings);
+    if (!device_.dispatchIndirect(s, count_, 0)) {
+        if (error) *error = "shadow classifier: the device refused the trace (see its messages)";
+        return false;
+    }
+    return true;
+}
+
+bool ShadowClassifier::resolve(rhi::TextureHandle output, std::string* error) {
+    const rhi::TextureDesc* d = output ? device_.describe(output) : nullptr;
+    if (!d || d->format != rhi::Format::R16_FLOAT || !(d->usage & rhi::TextureUsage::Storage) || d->width != width_ || d->height != height_ ||
+        d->dimension != rhi::TextureDimension::Texture2D) {
+        if (error)
+            *error = "shadow classifier: the shadow mask must be a live 2D R16_FLOAT texture with Storage usage of " + std::to_string(width_) + "x" +
+                     std::to_string(height_);
+        return false;
+    }
+    if (!classified_) {
+        if (error) *error = "shadow classifier: resolve() needs a classify() first";
+        return false;
+    }
+    rhi::DispatchState s;
+    s.shader = resolve_;
+    s.label = "resolve shadow mask";
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
+    s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Read));
+    s.bindings.storageImages.push(rhi::storageImage(1, output, rhi::Access::Write));
+    return device_.dispatch(s, (width_ + 7) / 8, (height_ + 3) / 4, 1);
 }
 
 ShadowClassifyCounts ShadowClassifier::readCounts() {

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "bricklight/rhi.h"
+#include "bricklight/sdf.h"
 
 namespace bricklight::classify {
 
@@ -51,6 +52,7 @@ struct ShadowClassifyDesc {
     bool rejectLitPixels = true;   // false: pixels whose taps all lie behind them get a ray too
     bool cascadeRayInterval = true;  // false: rays over [rayPushOff, ∞)
     float rayPushOff = 0.04f;        // world units: the least ray start
+    float rayNormalOffset = 0.01f;   // world units the rays' origins move along the normal (trace())
     // Tiles with this many ray pixels or fewer are not listed: their pixels keep the shadow maps' answer in the
     // hit mask, and readCounts() counts them (0: every tile with a ray is listed).
     uint32_t tileCutOff = 0;
@@ -71,8 +73,8 @@ struct ShadowClassifyCounts {
 //                                                                other ShadowClassifyCounts
 //   shadow hit mask          R32_UINT, ⌈W/8⌉ × ⌈H/4⌉            per tile, bit 1: shadowed or not known; 0: lit.
 //                                                                Preloaded with the shadow maps' answer (their
-//                                                                filtered taps); a trace over the listed tiles
-//                                                                replaces its masked bits with the rays'.
+//                                                                filtered taps); trace() replaces the listed
+//                                                                tiles' masked bits with the rays' answers.
 class ShadowClassifier {
 public:
     // Null with *error for a zero or too large size, or a device that cannot create the resources.
@@ -84,6 +86,14 @@ public:
     // Records the clear of the counts and the classification; false with *error, recording nothing, for missing or
     // mis-sized inputs or bad parameters.
     bool classify(const ShadowClassifyDesc& desc, std::string* error);
+    // Hybrid shadows, after classify(): one ray per masked pixel of each listed tile (dispatchIndirect on tileCount(),
+    // 32 threads a tile) towards the sun's centre through `field` (an updated distance field of the same scene), over
+    // the tile's interval; hitMask() takes the rays' answers for those pixels. The last classify()'s depth and normals
+    // must still be live. False with *error, recording nothing, before any classify().
+    bool trace(const sdf::SdfScene& field, std::string* error);
+    // hitMask() per pixel into `output` (R16_FLOAT with Storage usage, the classifier's size): 1 lit, 0 shadowed or
+    // facing away from the sun.
+    bool resolve(rhi::TextureHandle output, std::string* error);
 
     rhi::BufferHandle tileList() const { return tiles_; }
     rhi::BufferHandle tileCount() const { return count_; }  // dispatchIndirect arguments at offset 0
@@ -98,7 +108,9 @@ private:
     explicit ShadowClassifier(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
     uint32_t width_ = 0, height_ = 0;
-    rhi::ShaderHandle classify_;
+    rhi::ShaderHandle classify_, trace_, resolve_;
+    rhi::TextureHandle depth_, normals_;  // the last classify()'s (trace())
+    bool classified_ = false;
     rhi::BufferHandle tiles_, count_, params_;
     rhi::TextureHandle hitMask_;
     rhi::SamplerHandle point_;

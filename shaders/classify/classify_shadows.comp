@@ -10,18 +10,7 @@
 // and writes its hit-mask texel.
 layout(local_size_x = 32, local_size_y = 1, local_size_z = 1) in;
 
-BL_READ_BUFFER(0) Params {
-    mat4 inverseViewProjection;
-    mat4 worldToShadow[4];
-    vec4 uvRect[4];
-    vec4 sun;          // xyz towards the sun, w tan(half the sun's angle)
-    vec4 depthRange;   // per cascade, world units from depth 0 to 1
-    vec4 normalScale;  // xyz; w: blocker offset
-    vec4 normalBias;   // xyz; w: ray push-off
-    uvec4 size;        // width, height, tiles along x, mode (0 normals, 1 cascades)
-    uvec4 options;     // cascades, taps, reject lit pixels, cascade ray interval
-    uvec4 options2;    // tile cut-off, reversed depth, shadow map width, height
-} params;
+#include "shadow_params.glsl"
 BL_TEXTURE(0) uniform sampler2D depthTexture;
 BL_TEXTURE(1) uniform sampler2D normalTexture;
 BL_TEXTURE(2) uniform sampler2D shadowMap;
@@ -57,9 +46,7 @@ void main() {
     float t0 = params.normalBias.w, t1 = kNoEnd;
     bool cascadesMode = params.size.w == 1u && isActive;
     if (cascadesMode) {
-        vec2 ndc = (vec2(pixel) + 0.5) / vec2(params.size.xy) * 2.0 - 1.0;  // y −1 at the top row
-        vec4 w = params.inverseViewProjection * vec4(ndc, depth, 1.0);
-        vec3 world = w.xyz / w.w;
+        vec3 world = blShadowWorldPosition(pixel, depth);
         uint cascade = params.options.x;
         vec3 s = vec3(0.0);
         for (uint c = 0u; c < params.options.x; ++c) {
