@@ -133,7 +133,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     p.size = glm::uvec4(width_, height_, tilesX(), uint32_t(d.mode));
     p.options = glm::uvec4(0u, d.blockerTaps, d.rejectLitPixels ? 1u : 0u, d.cascadeRayInterval ? 1u : 0u);
     p.options2 = glm::uvec4(d.tileCutOff, d.reversedDepth ? 1u : 0u, 1u, 1u);
-    p.trace = glm::vec4(d.rayNormalOffset, 0.0f, 0.0f, 0.0f);
+    p.trace = glm::vec4(d.rayNormalOffset, 1.0f, 0.0f, 0.0f);  // y: the field's hit epsilon scale
     rhi::TextureHandle shadowMap = d.depth;  // bound in Normals mode too (never read there)
     if (d.mode == ShadowClassifyMode::Cascades) {
         if (!sized(d.shadowMap, "shadowMap", true)) return false;

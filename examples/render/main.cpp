@@ -3,7 +3,7 @@
 //   bricklight-render [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]
 //                     [--camera EX,EY,EZ,AX,AY,AZ] [--out FILE.png|.exr] [--aov NAME ...] [--reference --spp N]
 //                     [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none] [--gi-scale 100|75|50|25] [--gi-debug VIEW ...]
-//                     [--shadows bvh|shadowmap] [--shadow-resolution N] [--shadow-lambda L] [--shadow-pcf R]
+//                     [--shadows bvh|shadowmap|hybrid] [--shadow-resolution N] [--shadow-lambda L] [--shadow-pcf R]
 //                     [--single-bounce] [--validate] [--record FILE.jsonl] [--help] [--version]
 //
 // Exit status: 0 the image(s) were written; 1 the render failed (the scene, the device, an error any layer
@@ -131,7 +131,7 @@ Options parse(int argc, char** argv) {
     std::string error;
     if (!render::checkSharedOptions(o, &error)) usage(error);
     if (o.reference && o.shadows != render::ShadowMode::Bvh)
-        usage("--shadows shadowmap needs the fast path (not --reference, whose visibility is exact)");
+        usage("--shadows shadowmap and hybrid need the fast path (not --reference, whose visibility is exact)");
     const bool vct = o.vxao || (o.gi && o.giTechnique == render::GiTechnique::Vct);
     for (const std::string& view : o.giDebug) {
         if (o.reference) usage("--gi-debug needs the fast path (not --reference)");

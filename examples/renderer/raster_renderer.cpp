@@ -284,6 +284,7 @@ void RasterRenderer::render() {
         if (!depthPyramid_->build(depth_, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
     }
     renderShadowMaps();
+    sdfUpdated_ = false;
 
     struct {
         glm::mat4 inverseViewProjection;
@@ -293,7 +294,7 @@ void RasterRenderer::render() {
     SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
     const SceneLightConstants withSun = light;
     // Shadow maps: the BVH path leaves the sun out; shadow_sun_light.comp adds it with the maps' visibility.
-    if (options_.shadows == ShadowMode::ShadowMap) light.sunIrradiance = glm::vec4(0.0f);
+    if (mapsOn()) light.sunIrradiance = glm::vec4(0.0f);
     rhi::DispatchState s;
     s.shader = lighting_;
     s.label = "direct lighting";
@@ -306,13 +307,16 @@ void RasterRenderer::render() {
     device_.beginMarker("direct light");
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();
-    if (options_.shadows == ShadowMode::ShadowMap) lightSunFromShadowMaps(withSun);
+    classifyShadows();
+    if (mapsOn()) lightSunFromShadowMaps(withSun);
 
     if (clipmap_) voxelizeVct();
     if (gi_) {
-        device_.beginMarker("sdf update");
-        sdf_->update(sdfCenter_);
-        device_.endMarker();
+        if (!sdfUpdated_) {
+            device_.beginMarker("sdf update");
+            sdf_->update(sdfCenter_);
+            device_.endMarker();
+        }
         gi::DispatchDesc g;
         g.view = view_;
         g.projection = projection_;

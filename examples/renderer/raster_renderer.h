@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "bricklight/classify.h"
 #include "bricklight/depth_pyramid.h"
 #include "bricklight/gi.h"
 #include "bricklight/sdf.h"
@@ -23,7 +24,10 @@ namespace bricklight::render {
 // Where the sun's visibility in the direct lighting comes from: a ray through the scene's BVH per pixel (exact;
 // the default), or cascaded shadow maps (raster_renderer_shadows.cpp). Emitters, point lights and the sky keep
 // their ray-traced estimator in both modes. docs/render.md, "Shadows".
-enum class ShadowMode { Bvh, ShadowMap };
+// Bvh: the sun's visibility from BVH rays (the path tracer's estimator). ShadowMap: from cascaded shadow maps.
+// Hybrid: the shadow maps classified per 8×4 tile (classify::ShadowClassifier), rays through the distance field
+// where they cannot decide.
+enum class ShadowMode { Bvh, ShadowMap, Hybrid };
 
 // The cascaded shadow maps' parameters (ShadowMode::ShadowMap). checkSunShadowOptions says what is accepted.
 struct SunShadowOptions {
@@ -156,13 +160,15 @@ public:
     void cameraCut() { cut_ = true; }
     Image readMotion();  // rg = UV motion (current - previous), b = 0
     uint32_t triangleCount() const { return scene_->triangleCount(); }
-    // The sun's shadow cascades of the latest frame (ShadowMode::ShadowMap; depth null otherwise).
+    // The sun's shadow cascades of the latest frame (ShadowMode::ShadowMap or Hybrid; depth null otherwise).
     ShadowCascadesView shadowCascades() const;
     // The sun's visibility the direct lighting used in the latest frame (0..1 in every channel, 0 where the
-    // surface faces away from the sun, 1 on the sky); empty unless ShadowMode::ShadowMap.
+    // surface faces away from the sun, 1 on the sky); empty with ShadowMode::Bvh.
     Image readSunVisibility();
     // The G-buffer depth's min/max pyramid of the latest frame (RasterOptions::depthPyramid); null when off.
     const classify::DepthPyramid* depthPyramid() const { return depthPyramid_.get(); }
+    // ShadowMode::Hybrid: the classifier of the latest frame (its tile list, counts and hit mask); null otherwise.
+    classify::ShadowClassifier* shadowClassifier() { return shadowClassifier_.get(); }
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
@@ -185,8 +191,14 @@ private:
     void renderShadowMaps();
     void destroyShadows();
     void setSun(const scenes::SceneGeometry& scene);  // the sun and the scene's bounds the cascades span
-    // ShadowMode::ShadowMap: adds the sun, shadowed by the maps, to the direct lighting (shadow_sun_light.comp).
+    // ShadowMode::ShadowMap: adds the sun, shadowed by the maps, to the direct lighting (shadow_sun_light.comp);
+    // Hybrid: shadowed by the classifier's shadow mask (shadow_sun_light_hybrid.comp), after classifyShadows().
     void lightSunFromShadowMaps(const SceneLightConstants& light);
+    bool mapsOn() const { return options_.shadows == ShadowMode::ShadowMap || options_.shadows == ShadowMode::Hybrid; }
+    void classifyShadows();  // Hybrid: the classification, the rays through the field and the shadow mask
+    std::unique_ptr<classify::ShadowClassifier> shadowClassifier_;
+    rhi::TextureHandle sunMask_;  // Hybrid: R16F, 1 lit
+    bool sdfUpdated_ = false;     // this frame's field update is done (Hybrid does it before the direct light)
     // shadow_sun.glsl's read buffer: the cascades of this frame and the sun.
     struct ShadowData {
         glm::mat4 viewProjection[kShadowCascades];

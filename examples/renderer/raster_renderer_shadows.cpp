@@ -51,13 +51,13 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
     };
     std::string why;
     if (!checkSunShadowOptions(options_.sunShadows, &why)) return fail(why);
-    const bool maps = options_.shadows == ShadowMode::ShadowMap;
+    const bool maps = mapsOn();
     setSun(scene);
     if (maps) {
         const uint32_t r = options_.sunShadows.resolution;
         if (2 * r > device_.capabilities().limits.maxTextureSize2D)
             return fail("the shadow atlas (2 x 2 cascades of " + std::to_string(r) + "²) exceeds the device's 2D texture size");
-        for (auto [name, handle] : {std::pair{"render/shadow_depth.vert", &shadowVertex_}, std::pair{"render/shadow_sun_light.comp", &sunLight_}}) {
+        for (auto [name, handle] : {std::pair{"render/shadow_depth.vert", &shadowVertex_}, std::pair{options_.shadows == ShadowMode::Hybrid ? "render/shadow_sun_light_hybrid.comp" : "render/shadow_sun_light.comp", &sunLight_}}) {
             rhi::ShaderDesc sd;
             sd.blob = rhi::findShader(name);
             *handle = sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
@@ -76,6 +76,19 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
         if (!shadowVertex_ || !sunLight_ || !shadowData_ || !shadowMap_)
             return fail("the device could not create the sun's shadow maps or their passes (see its messages)");
     }
+    if (options_.shadows == ShadowMode::Hybrid) {
+        if (!sdf_ && !createSdf(scene, error)) return false;
+        shadowClassifier_ = classify::ShadowClassifier::create(device_, options_.width, options_.height, &why);
+        if (!shadowClassifier_) return fail(why);
+        rhi::TextureDesc md;
+        md.format = rhi::Format::R16_FLOAT;
+        md.width = options_.width;
+        md.height = options_.height;
+        md.usage = rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage;
+        md.debugName = "sun shadow mask";
+        sunMask_ = device_.createTexture(md);
+        if (!sunMask_) return fail("the device could not create the sun's shadow mask");
+    }
     if (options_.depthPyramid) {
         depthPyramid_ = classify::DepthPyramid::create(device_, options_.width, options_.height, &why);
         if (!depthPyramid_) return fail(why);
@@ -85,6 +98,9 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
 
 void RasterRenderer::destroyShadows() {
     depthPyramid_.reset();
+    shadowClassifier_.reset();
+    if (sunMask_) device_.destroy(sunMask_);
+    sunMask_ = {};
     if (shadowMap_) device_.destroy(shadowMap_);
     for (rhi::ShaderHandle sh : {shadowVertex_, sunLight_})
         if (sh) device_.destroy(sh);
@@ -95,7 +111,7 @@ void RasterRenderer::destroyShadows() {
 }
 
 void RasterRenderer::renderShadowMaps() {
-    if (options_.shadows != ShadowMode::ShadowMap) return;
+    if (!mapsOn()) return;
     const SunShadowOptions& o = options_.sunShadows;
     CascadeFitDesc f;
     f.eye = camera_.eye;
@@ -171,16 +187,17 @@ void RasterRenderer::lightSunFromShadowMaps(const SceneLightConstants& light) {
     uint8_t slot = 0;
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_}) s.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     s.bindings.textures.push({5, rhi::wholeTexture(shadowMap_), point_});
+    if (sunMask_) s.bindings.textures.push({6, rhi::wholeTexture(sunMask_), point_});
     s.bindings.readBuffers.push({7, shadowData_, {}});
     s.bindings.storageBuffers.push({0, direct_, {}, rhi::Access::ReadWrite});
-    device_.beginMarker("sun shadow light");
+    device_.beginMarker(sunMask_ ? "sun hybrid shadow light" : "sun shadow light");
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();
 }
 
 ShadowCascadesView RasterRenderer::shadowCascades() const {
     ShadowCascadesView v;
-    if (options_.shadows != ShadowMode::ShadowMap) return v;
+    if (!mapsOn()) return v;
     v.depth = shadowMap_;
     v.cascades = cascades_;
     v.resolution = options_.sunShadows.resolution;
@@ -190,7 +207,7 @@ ShadowCascadesView RasterRenderer::shadowCascades() const {
 
 Image RasterRenderer::readSunVisibility() {
     Image img;
-    if (options_.shadows != ShadowMode::ShadowMap) return img;
+    if (!mapsOn()) return img;
     img.width = options_.width;
     img.height = options_.height;
     const size_t pixels = size_t(img.width) * img.height;
@@ -199,6 +216,52 @@ Image RasterRenderer::readSunVisibility() {
     img.rgb.resize(pixels * 3);
     for (size_t i = 0; i < pixels; ++i) img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = v[i].w;
     return img;
+}
+
+// Hybrid: the shadow classifier over the cascades as shadow_sun.glsl reads them (the atlas's tiles), rays through
+// the distance field for the tiles it lists, and the shadow mask the sun pass reads.
+void RasterRenderer::classifyShadows() {
+    if (options_.shadows != ShadowMode::Hybrid) return;
+    if (!sdfUpdated_) {
+        device_.beginMarker("sdf update");
+        sdf_->update(sdfCenter_);
+        device_.endMarker();
+        sdfUpdated_ = true;
+    }
+    classify::ShadowClassifyDesc d;
+    d.view = view_;
+    d.projection = projection_;
+    d.depth = depth_;
+    d.normals = normal_;
+    d.normalsUnpackScale = glm::vec3(1.0f);
+    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.sunDirection = sunDirection_;
+    d.shadowMap = shadowMap_;
+    d.cascadeCount = kShadowCascades;
+    for (uint32_t i = 0; i < kShadowCascades; ++i) {
+        // Cascade i's clip space onto its tile of the 2 × 2 atlas: uv = tile / 2 + (clip.xy / 2 + 1/2) / 2.
+        const glm::vec2 tile(shadowAtlasTile(i));
+        glm::mat4 toAtlas(1.0f);
+        toAtlas[0][0] = toAtlas[1][1] = 0.25f;
+        toAtlas[3] = glm::vec4(0.25f + 0.5f * tile.x, 0.25f + 0.5f * tile.y, 0.0f, 1.0f);
+        d.cascades[i].worldToShadow = toAtlas * cascades_[i].viewProjection;
+        d.cascades[i].uvRect = glm::vec4(0.5f * tile, 0.5f * tile + 0.5f);
+        d.cascades[i].depthRange = std::max(cascades_[i].depthRange, 1e-6f);
+    }
+    // Two of the finest cascade's texels of depth: the maps' own precision, as their PCF bias takes it.
+    d.blockerOffset = std::min(2.0f * cascades_[0].texelSize / d.cascades[0].depthRange, 0.5f);
+    // The rays leave the surface by a voxel of the field's finest cascade: nearer, the field's own surface (within its
+    // hit epsilon of the true one) stops them at once.
+    d.rayNormalOffset = std::max(0.5f * cascades_[0].texelSize, sdf_->desc().finestVoxelSize);
+    std::string why;
+    device_.beginMarker("shadow classify");
+    bool ok = shadowClassifier_->classify(d, &why);
+    device_.endMarker();
+    device_.beginMarker("shadow rays");
+    ok = ok && shadowClassifier_->trace(*sdf_, &why);
+    device_.endMarker();
+    ok = ok && shadowClassifier_->resolve(sunMask_, &why);
+    if (!ok && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
 }
 
 }  // namespace bricklight::render

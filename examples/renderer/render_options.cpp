@@ -115,11 +115,11 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
     if (a == "--shadows") {
         if (!value()) return OptionParse::Error;
         const std::string s = v;
-        if (s != "bvh" && s != "shadowmap") {
-            *error = "--shadows must be bvh or shadowmap (got '" + s + "')";
+        if (s != "bvh" && s != "shadowmap" && s != "hybrid") {
+            *error = "--shadows must be bvh, shadowmap or hybrid (got '" + s + "')";
             return OptionParse::Error;
         }
-        o.shadows = s == "shadowmap" ? ShadowMode::ShadowMap : ShadowMode::Bvh;
+        o.shadows = s == "shadowmap" ? ShadowMode::ShadowMap : s == "hybrid" ? ShadowMode::Hybrid : ShadowMode::Bvh;
         return OptionParse::Consumed;
     }
     if (a == "--shadow-resolution") return whole(kMinShadowResolution, kMaxShadowResolution, &o.sunShadows.resolution);
@@ -219,7 +219,7 @@ const char* sharedOptionsUsage() {
     return "  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]\n"
            "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
            "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--gi-unseen vxgi|none]\n"
-           "  [--shadows bvh|shadowmap] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
+           "  [--shadows bvh|shadowmap|hybrid] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
            "  [--single-bounce] [--validate]\n"
            "  [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N] [--max-vertices N] [--max-indices N]\n"
            "  [--max-face-indices N] [--max-nodes N] [--max-node-depth N] [--max-texture-pixels N]\n"

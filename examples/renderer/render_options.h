@@ -28,7 +28,7 @@ struct RenderOptions {
     bool vctSdfOcclusion = false;                 // --vct-occlusion sdf (RasterOptions::vctSdfOcclusion)
     bool giUnseenFromVct = false;                 // --gi-unseen vxgi (RasterOptions::giUnseenFromVct)
     gi::InternalResolution giScale = gi::InternalResolution::Native;
-    ShadowMode shadows = ShadowMode::Bvh;         // --shadows bvh|shadowmap (RasterOptions::shadows)
+    ShadowMode shadows = ShadowMode::Bvh;         // --shadows bvh|shadowmap|hybrid (RasterOptions::shadows)
     SunShadowOptions sunShadows;                  // --shadow-resolution, --shadow-lambda, --shadow-pcf
     bool singleBounce = false;
     bool validate = false;      // every call through rhi::createValidationDevice

@@ -28,6 +28,7 @@ void main() {
         vec3 n = normalize(texelFetch(normalTexture, pixel, 0).xyz * params.normalScale.xyz + params.normalBias.xyz);
         vec3 origin = blShadowWorldPosition(pixel, depth) + n * params.trace.x;
         BlSdfRay ray = blSdfMakeRay(origin, params.sun.xyz, uintBitsToFloat(record.z), uintBitsToFloat(record.w));
+        ray.epsilonScale = params.trace.y;
         if (blSdfTrace(ray).hit) atomicOr(hits, bit);
     }
     barrier();

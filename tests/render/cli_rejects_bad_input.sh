@@ -38,15 +38,15 @@ expect_failure "--gi-debug vct-opacity needs voxel cone tracing" --gi-debug vct-
 expect_failure "--aov ao needs --reference" --aov ao --out "$out/x.png"
 expect_failure "--vct-occlusion must be voxels or sdf" --vct-occlusion rays
 expect_failure "--gi-unseen must be vxgi or none" --gi-unseen sdf
-# Sun shadows: bvh or shadowmap (no hybrid yet), and the shadow maps' parameters in range.
-expect_failure "--shadows must be bvh or shadowmap \(got 'hybrid'\)" --shadows hybrid
+# Sun shadows: bvh, shadowmap or hybrid, and the shadow maps' parameters in range.
+expect_failure "--shadows must be bvh, shadowmap or hybrid \(got 'rays'\)" --shadows rays
 expect_failure "--shadows needs a value" --shadows
 expect_failure "--shadow-resolution expects a whole number in 64\.\.4096" --shadow-resolution 32
 expect_failure "--shadow-resolution expects a whole number in 64\.\.4096" --shadow-resolution 1e3
 expect_failure "--shadow-lambda expects a number in 0\.\.1" --shadow-lambda 1.5
 expect_failure "--shadow-lambda expects a number in 0\.\.1" --shadow-lambda nan
 expect_failure "--shadow-pcf expects a whole number in 0\.\.3" --shadow-pcf 4
-expect_failure "--shadows shadowmap needs the fast path" --shadows shadowmap --reference --out "$out/x.png"
+expect_failure "--shadows shadowmap and hybrid need the fast path" --shadows hybrid --reference --out "$out/x.png"
 expect_failure "voxel AO with the SDF GI is not supported" --width 16 --height 16 --frames 1 --gi sdf --ao vxao --out "$out/x.png"
 # Numbers are read as numbers: a negative one cannot wrap around to a valid size.
 expect_failure "--width expects a whole number in 1\.\.8192 \(got '-18446744073709551615'\)" --width -18446744073709551615

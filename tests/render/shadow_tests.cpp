@@ -1,4 +1,5 @@
-// The sun's cascaded shadow maps (RasterOptions::shadows = ShadowMap) against the exact visibility of the sun
+// The sun's cascaded shadow maps (RasterOptions::shadows = ShadowMap, and Hybrid: the maps classified, rays through
+// the distance field where they cannot decide) against the exact visibility of the sun
 // (a CPU ray against every triangle from each G-buffer pixel), the direct-light image against the BVH-shadowed
 // one, and Vulkan against GL. Every record goes through the validation wrapper, the Vulkan layer on.
 #include <cmath>
@@ -48,7 +49,7 @@ bool occluded(const std::vector<glm::dvec3>& tris, const glm::dvec3& o, const gl
 }
 
 struct VisibilityDiff {
-    size_t compared = 0, differ = 0, shadowed = 0;
+    size_t compared = 0, differ = 0, shadowed = 0, falseShadow = 0;
 };
 
 // Pixels facing the sun: lit (no triangle between them and the sun) exactly vs the shadow map's visibility > 0.5.
@@ -80,6 +81,7 @@ VisibilityDiff compareWithExact(TestDevice& td, render::RasterRenderer& r, const
         const bool mapped = vis.rgb[3 * i] > 0.5f;
         v.compared++;
         v.differ += exact != mapped ? 1 : 0;
+        v.falseShadow += exact && !mapped ? 1 : 0;
         v.shadowed += exact ? 0 : 1;
     }
     return v;
@@ -116,6 +118,22 @@ void sunVisibilityMatchesExact(const std::string& backend) {
         CHECK(cv.cascades[render::kShadowCascades - 1].splitFar > cv.cascades[0].splitFar);
         CHECK_FALSE(traced->shadowCascades().depth);
         CHECK(traced->readSunVisibility().rgb.empty());
+        // Hybrid: the classifier's tiles traced through the distance field where the maps cannot decide.
+        auto hybrid = shadowRenderer(td, scene, render::ShadowMode::Hybrid);
+        const VisibilityDiff h = compareWithExact(td, *hybrid, scene);
+        const classify::ShadowClassifyCounts k = hybrid->shadowClassifier()->readCounts();
+        const render::ImageMetrics mh = render::compareImages(hybrid->read(render::Aov::Direct), dt);
+        WARN(scene.name << " " << backend << ": hybrid sun visibility differs on " << h.differ << " of " << h.compared << " pixels (" << h.falseShadow << " shadowed where lit; maps alone " << v.falseShadow << "); "
+                        << k.rayPixels << " of " << k.activePixels << " active pixels traced in " << k.listedTiles
+                        << " tiles; direct vs bvh relMSE " << mh.relMse);
+        // Measured: atrium 187 of 4977 wrong (3.8 %; 145 shadowed where lit), 1562 pixels traced in 95 tiles; two-rooms
+        // 38 of 7151 (0.53 %), 144 traced in 9 tiles. Worse than the maps alone: the renderer's field (64 voxels
+        // across the scene) fattens and thins the blockers at the very edges the classifier sends to it (on the
+        // classifier tests' plate, resolved by the field, the rays fix every pixel the maps get wrong). Bounds:
+        // twice the measured.
+        CHECK(k.listedTiles > 0);
+        CHECK(k.rayPixels < k.activePixels / 2);
+        CHECK(double(h.differ) / double(std::max<size_t>(h.compared, 1)) < 0.08);
     }
     REQUIRE_NO_MESSAGES(td);
 }
