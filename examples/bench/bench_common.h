@@ -98,5 +98,6 @@ std::unique_ptr<sdf::SdfScene> makeBenchScene(rhi::IDevice& device, const scenes
 int runSdf(const Options& o);
 int runGi(const Options& o);
 int runVct(const Options& o);
+int runClassify(const Options& o);
 
 }  // namespace bricklight::bench

@@ -53,7 +53,9 @@ namespace {
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
                  "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
                  "                            [--occlusion voxels|sdf] [--jitter PERCENT] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
-                 "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n");
+                 "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n"
+                 "       bricklight-bench classify [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
+                 "                            [--frames N] [--cascades N]  (the shadow classifier and hybrid shadows)\n");
     std::exit(2);
 }
 
@@ -70,7 +72,7 @@ Options parse(int argc, char** argv) {
     if (argc < 2) usage("");
     if (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
         std::fflush(stderr);
-        std::printf("bricklight-bench sdf|gi|vct [options]: per-pass GPU timings and memory (docs/performance.md); "
+        std::printf("bricklight-bench sdf|gi|vct|classify [options]: per-pass GPU timings and memory (docs/performance.md); "
                     "exit status 0 measured, 1 the run failed, 2 usage error (bricklight-bench with no arguments lists the options)\n");
         std::exit(0);
     }
@@ -79,8 +81,8 @@ Options parse(int argc, char** argv) {
         std::exit(0);
     }
     o.technique = argv[1];
-    if (o.technique != "sdf" && o.technique != "gi" && o.technique != "vct")
-        usage("unknown technique '" + o.technique + "' (available: sdf, gi, vct)");
+    if (o.technique != "sdf" && o.technique != "gi" && o.technique != "vct" && o.technique != "classify")
+        usage("unknown technique '" + o.technique + "' (available: sdf, gi, vct, classify)");
     o.scene = o.technique == "sdf" ? "field" : "atrium";
     for (int i = 2; i < argc; ++i) {
         std::string a = argv[i];
@@ -375,5 +377,5 @@ int bricklight::bench::runSdf(const Options& o) {
 
 int main(int argc, char** argv) {
     Options o = parse(argc, argv);
-    return o.technique == "gi" ? runGi(o) : o.technique == "vct" ? runVct(o) : runSdf(o);
+    return o.technique == "gi" ? runGi(o) : o.technique == "vct" ? runVct(o) : o.technique == "classify" ? runClassify(o) : runSdf(o);
 }

@@ -1,0 +1,126 @@
+// bricklight-bench classify: the shadow classifier and hybrid shadows (include/bricklight/classify.h) at the
+// benchmark's resolution — the G-buffer and one sun shadow map traced through the scene's distance field
+// (shaders/bench/sdf_gbuffer.comp, sun_shadow_map.comp), then per frame: classify, the listed tiles' rays through
+// the field, the resolve — with per-pass GPU times and the fraction of pixels that needed a ray.
+#include <cstdio>
+#include <cstdlib>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bench_common.h"
+#include "bricklight/classify.h"
+
+namespace bricklight::bench {
+
+int runClassify(const Options& o) {
+    scenes::SceneGeometry geometry;
+    std::unique_ptr<rhi::IDevice> device;
+    if (!openBench(o, &geometry, &device)) return 1;
+    const glm::vec3 lo = geometry.boundsMin, hi = geometry.boundsMax, extent = hi - lo;
+    const float size = std::max(extent.x, std::max(extent.y, extent.z));
+    auto scene = makeBenchScene(*device, geometry, o);
+    if (!scene) return 1;
+    for (int i = 0; i < 4; ++i) scene->update(geometry.camera.eye), device->endFrame();
+    BenchGBuffer gbuffer;
+    std::string error;
+    auto classifier = classify::ShadowClassifier::create(*device, o.width, o.height, &error);
+    rhi::TextureDesc td;
+    td.format = rhi::Format::R16_FLOAT;
+    td.width = o.width;
+    td.height = o.height;
+    td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
+    td.debugName = "bench shadow mask";
+    const rhi::TextureHandle mask = device->createTexture(td);
+    const uint32_t mapSize = 2048;
+    td.format = rhi::Format::R32_FLOAT;
+    td.width = td.height = mapSize;
+    td.debugName = "bench sun shadow map";
+    const rhi::TextureHandle shadowMap = device->createTexture(td);
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("bench/sun_shadow_map.comp");
+    const rhi::ShaderHandle mapShader = sd.blob ? device->createShader(sd) : rhi::ShaderHandle{};
+    if (!classifier || !gbuffer.create(*device, o.width, o.height) || !mask || !shadowMap || !mapShader) {
+        std::fprintf(stderr, "bricklight-bench: the device could not create the classifier's inputs%s%s\n", error.empty() ? "" : ": ", error.c_str());
+        return 1;
+    }
+    // The sun of the benchmark's G-buffer (sdf_gbuffer.comp) and an orthographic map around the scene's bounding
+    // sphere, looking along −sun.
+    const glm::vec3 sun = glm::normalize(glm::vec3(-0.4f, 1.0f, 0.3f));
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    const float radius = 0.5f * glm::length(extent) * 1.01f;
+    const glm::mat4 lightView = glm::lookAtRH(centre + sun * radius, centre, std::abs(sun.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+    // Light space → (u, v, depth): x, y over [−radius, radius], depth from the near plane over 2·radius.
+    glm::mat4 toMap(1.0f);
+    toMap[0][0] = toMap[1][1] = 0.5f / radius;
+    toMap[2][2] = -0.5f / radius;
+    toMap[3] = glm::vec4(0.5f, 0.5f, 0.0f, 1.0f);
+    const glm::mat4 worldToShadow = toMap * lightView;
+    const struct {
+        glm::mat4 shadowToWorld;
+        glm::vec4 direction;
+        glm::uvec4 size;
+    } mapParams{glm::inverse(worldToShadow), glm::vec4(-sun, 2.0f * radius), glm::uvec4(mapSize, mapSize, 0, 0)};
+    rhi::DispatchState m;
+    m.shader = mapShader;
+    m.label = "bench sun shadow map";
+    m.bindings.constants.push(rhi::constants(0, mapParams));
+    m.bindings.storageImages.push(rhi::storageImage(0, shadowMap, rhi::Access::Write));
+    scene->traceBindings(m.bindings);
+    device->dispatch(m, mapSize / 8, mapSize / 8, 1);
+
+    const float aspect = float(o.width) / float(o.height);
+    const BenchCamera camera = cameraAt(geometry.camera, 0.0f, aspect, size);
+    gbuffer.record(*device, *scene, camera, camera, o.width, o.height);
+    classify::ShadowClassifyDesc d;
+    d.view = camera.view;
+    d.projection = camera.projection;
+    d.depth = gbuffer.depth;
+    d.normals = gbuffer.normals;
+    d.normalsUnpackScale = glm::vec3(1.0f);
+    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.sunDirection = sun;
+    d.shadowMap = shadowMap;
+    d.cascadeCount = 1;
+    d.cascades[0] = {worldToShadow, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f), 2.0f * radius};
+    d.blockerOffset = 2.0f / float(mapSize);
+    d.rayNormalOffset = scene->desc().finestVoxelSize;
+    classify::ShadowClassifyCounts counts;
+    auto frame = [&]() {
+        device->beginMarker("shadow classify");
+        bool ok = classifier->classify(d, &error);
+        device->endMarker();
+        device->beginMarker("shadow rays");
+        ok = ok && classifier->trace(*scene, &error);
+        device->endMarker();
+        device->beginMarker("shadow resolve");
+        ok = ok && classifier->resolve(mask, &error);
+        device->endMarker();
+        if (!ok) {
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::exit(1);
+        }
+        device->endFrame();
+    };
+    device->setTimingEnabled(false);
+    for (int f = 0; f < 4; ++f) frame();  // warm-up
+    device->waitIdle();
+    device->setTimingEnabled(true);
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) frame();
+    const PhaseTimes t = collect(*device, o.frames);
+    counts = classifier->readCounts();
+    std::printf("scene %s: %s; %ux%u; one %u² sun map traced through the field, %u cascades of the field\n", geometry.name.c_str(),
+                device->capabilities().deviceName.c_str(), o.width, o.height, mapSize, o.cascades);
+    std::printf("shadow classification %.3f ms, rays %.3f ms, resolve %.3f ms (mean of %u frames)\n", t.perFrame("shadow classify"),
+                t.perFrame("shadow rays"), t.perFrame("shadow resolve"), o.frames);
+    const uint32_t pixels = o.width * o.height;
+    std::printf("pixels facing the sun %u of %u; needing a ray %u (%.1f %% of all pixels) in %u listed tiles of %u\n", counts.activePixels, pixels,
+                counts.rayPixels, 100.0 * counts.rayPixels / pixels, counts.listedTiles, classifier->tilesX() * classifier->tilesY());
+    device->destroy(mapShader);
+    device->destroy(shadowMap);
+    device->destroy(mask);
+    gbuffer.destroy(*device);
+    return 0;
+}
+
+}  // namespace bricklight::bench
