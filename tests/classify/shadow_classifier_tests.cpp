@@ -144,6 +144,27 @@ Result run(TestDevice& td, classify::ShadowClassifier& c, const classify::Shadow
     return r;
 }
 
+// A device with the scene's inputs and a classifier of its size.
+struct Fixture {
+    TestDevice td;
+    Scene s = makeScene();
+    Inputs in;
+    std::unique_ptr<classify::ShadowClassifier> c;
+    explicit Fixture(const std::string& backend) : td(makeDevice(backend)) {
+        REQUIRE(td.device);
+        in = upload(td, s);
+        std::string error;
+        c = classify::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
+        INFO(error);
+        REQUIRE(c);
+    }
+    ~Fixture() {
+        c.reset();
+        if (td.device)
+            for (rhi::TextureHandle t : {in.depth, in.normals, in.shadowMap}) td.device->destroy(t);
+    }
+};
+
 float asFloat(uint32_t bits) {
     float f;
     std::memcpy(&f, &bits, 4);
@@ -151,14 +172,11 @@ float asFloat(uint32_t bits) {
 }
 
 void cascadesDecideRight(const std::string& backend) {
-    TestDevice td = makeDevice(backend);
-    REQUIRE(td.device);
-    const Scene s = makeScene();
-    const Inputs in = upload(td, s);
-    std::string error;
-    auto c = classify::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
-    INFO(error);
-    REQUIRE(c);
+    Fixture f(backend);
+    TestDevice& td = f.td;
+    const Scene& s = f.s;
+    const Inputs& in = f.in;
+    classify::ShadowClassifier* c = f.c.get();
     const Result r = run(td, *c, describe(s, in));
     // Which pixels the listed tiles trace, and each listed tile's interval.
     std::vector<uint32_t> rayMask(r.hitMask.size(), 0u);
@@ -232,7 +250,6 @@ void cascadesDecideRight(const std::string& backend) {
     CHECK(rc.counts.cutOffTiles == r.counts.listedTiles);
     CHECK(rc.counts.cutOffPixels == r.counts.rayPixels);
     REQUIRE_NO_MESSAGES(td);
-    for (rhi::TextureHandle t : {in.depth, in.normals, in.shadowMap}) td.device->destroy(t);
 }
 
 
@@ -254,10 +271,11 @@ void addBox(std::vector<float>& positions, std::vector<uint32_t>& indices, glm::
 // answer (the preloaded majority of the taps) is wrong along the outline; with the rays only pixels within a
 // voxel of the outline may be.
 void hybridTraceFixesThePenumbra(const std::string& backend) {
-    TestDevice td = makeDevice(backend);
-    REQUIRE(td.device);
-    const Scene s = makeScene();
-    const Inputs in = upload(td, s);
+    Fixture f(backend);
+    TestDevice& td = f.td;
+    const Scene& s = f.s;
+    const Inputs& in = f.in;
+    classify::ShadowClassifier* c = f.c.get();
     sdf::SceneDesc sd;
     sd.cascadeCount = 3;
     sd.finestVoxelSize = sdf::suggestVoxelSize(17.0f, 3);
@@ -274,8 +292,6 @@ void hybridTraceFixesThePenumbra(const std::string& backend) {
     for (int i = 0; i < 8 && field->update(glm::vec3(0.0f)).jobsDeferred != 0; ++i) {
     }
     std::string error;
-    auto c = classify::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
-    REQUIRE(c);
     classify::ShadowClassifyDesc d = describe(s, in);
     d.rayNormalOffset = 0.05f;
     REQUIRE(c->classify(d, &error));
@@ -320,19 +336,17 @@ void hybridTraceFixesThePenumbra(const std::string& backend) {
     CHECK(hybridWrong <= mapsWrong);
     REQUIRE_NO_MESSAGES(td);
     td.device->destroy(mask);
-    for (rhi::TextureHandle t : {in.depth, in.normals, in.shadowMap}) td.device->destroy(t);
 }
 
 void refusesBadInput(const std::string& backend) {
-    TestDevice td = makeDevice(backend);
-    REQUIRE(td.device);
+    Fixture f(backend);
+    TestDevice& td = f.td;
+    const Scene& s = f.s;
+    const Inputs& in = f.in;
+    classify::ShadowClassifier* c = f.c.get();
     std::string error;
     CHECK(!classify::ShadowClassifier::create(*td.device, 0, 16, &error));
     CHECK(error.find("size 0x16") != std::string::npos);
-    const Scene s = makeScene();
-    const Inputs in = upload(td, s);
-    auto c = classify::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
-    REQUIRE(c);
     auto refused = [&](classify::ShadowClassifyDesc d, const char* expected) {
         error.clear();
         INFO("expected: " << expected << "; got: " << error);
@@ -373,7 +387,6 @@ void refusesBadInput(const std::string& backend) {
     CHECK(!c->resolve(in.depth, &error));  // R32_FLOAT without Storage
     CHECK(error.find("R16_FLOAT") != std::string::npos);
     REQUIRE_NO_MESSAGES(td);
-    for (rhi::TextureHandle t : {in.depth, in.normals, in.shadowMap}) td.device->destroy(t);
 }
 
 }  // namespace
@@ -386,16 +399,9 @@ BACKEND_TEST("hybrid shadows: rays through the distance field decide the penumbr
 TEST_CASE("shadow classifier: Vulkan and GL list the same tiles and masks", "[classify][cross]") {
     std::vector<Result> results;
     for (const char* backend : {"vulkan", "gl"}) {
-        TestDevice td = makeDevice(backend);
-        REQUIRE(td.device);
-        const Scene s = makeScene();
-        const Inputs in = upload(td, s);
-        std::string error;
-        auto c = classify::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
-        REQUIRE(c);
-        results.push_back(run(td, *c, describe(s, in)));
-        REQUIRE_NO_MESSAGES(td);
-        for (rhi::TextureHandle t : {in.depth, in.normals, in.shadowMap}) td.device->destroy(t);
+        Fixture f(backend);
+        results.push_back(run(f.td, *f.c, describe(f.s, f.in)));
+        REQUIRE_NO_MESSAGES(f.td);
     }
     // The same tiles and masks exactly; the intervals to float rounding (the backends' compilers may fuse the world
     // position's arithmetic differently). Measured: the intervals differ by at most 7e-8 relative.

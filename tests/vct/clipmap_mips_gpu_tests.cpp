@@ -120,11 +120,7 @@ void checkMip(const vct::Clipmap& clipmap, const Traced& t, uint32_t m, size_t* 
 void mipsHoldTheLevelDownsampled(const std::string& backend, vct::EmittanceMode mode) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    vct::ClipmapDesc desc;
-    desc.levels = 2;
-    desc.resolution = 32;
-    desc.finestVoxelSize = 1.0f;
-    desc.emittance = mode;
+    vct::ClipmapDesc desc = testClipmapDesc(2, mode);
     VoxelizeHarness h(td, desc);
     REQUIRE(vct::clipmapMipLevels(desc) == 3);
     // Boxes of several sizes across the coarsest level (64 units wide), some near its edges.
@@ -158,20 +154,13 @@ void mipsHoldTheLevelDownsampled(const std::string& backend, vct::EmittanceMode 
     REQUIRE_NO_MESSAGES(td);
 }
 
-struct ConeIn {
-    glm::vec4 origin, direction;  // w: cone factor; w: ambient range
-};
-
 // A wide cone towards a slab of small emissive cubes (2 units, every 4): its samples are wider than the coarsest
 // voxels (2 units) for most of the way, so it reads the mips; the light it gathers must not depend on where its
 // samples fall relative to the pattern. Point-sampling the coarsest level instead would see the cubes or the gaps.
 void wideConesReadTheMips(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    vct::ClipmapDesc desc;
-    desc.levels = 2;
-    desc.resolution = 32;
-    desc.finestVoxelSize = 1.0f;
+    vct::ClipmapDesc desc = testClipmapDesc(2);
     VoxelizeHarness h(td, desc);
     std::string error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));
@@ -190,37 +179,13 @@ void wideConesReadTheMips(const std::string& backend) {
     h.draw(cubes, thin, &one);
     h.clipmap().finishVoxelization();
 
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader("vct_tests/trace_cones.comp");
-    REQUIRE(sd.blob);
-    rhi::ShaderHandle shader = td.device->createShader(sd);
     std::vector<ConeIn> cones;
     for (int sy = 0; sy < 4; ++sy)
         for (int sz = 0; sz < 4; ++sz) cones.push_back({glm::vec4(-10.0f, 14.0f + float(sy), 14.0f + float(sz), 1.2f), glm::vec4(1.0f, 0.0f, 0.0f, 0.0f)});
-    rhi::BufferDesc bd;
-    bd.size = cones.size() * sizeof(ConeIn);
-    bd.usage = rhi::BufferUsage::ShaderRead;
-    bd.debugName = "cones";
-    rhi::BufferHandle in = td.device->createBuffer(bd, cones.data());
-    bd.size = cones.size() * 32;
-    bd.usage = rhi::BufferUsage::ShaderWrite;
-    bd.debugName = "cone results";
-    rhi::BufferHandle out = td.device->createBuffer(bd);
-    REQUIRE(shader);
-    REQUIRE(in);
-    REQUIRE(out);
-    rhi::DispatchState s;
-    s.shader = shader;
-    s.label = "trace test cones";
-    h.clipmap().traceBindings(s.bindings);
-    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, in, {}});
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, out, {}, rhi::Access::Write});
-    REQUIRE(td.device->dispatch(s, 1, 1, 1));
-    std::vector<float> words(cones.size() * 8);
-    REQUIRE(td.device->readBuffer(out, 0, words.size() * 4, words.data()));
+    const std::vector<ConeOut> results = traceCones(td, h, cones);
     float lo = 1e30f, hi = 0.0f, sum = 0.0f;
     for (size_t i = 0; i < cones.size(); ++i) {
-        const float light = words[8 * i];
+        const float light = results[i].radiance.x;
         lo = std::min(lo, light);
         hi = std::max(hi, light);
         sum += light;
@@ -231,9 +196,6 @@ void wideConesReadTheMips(const std::string& backend) {
     INFO("light: min " << lo << " max " << hi << " mean " << mean);
     CHECK(mean > 0.05f);
     CHECK((hi - lo) / mean < 0.15f);
-    td.device->destroy(shader);
-    td.device->destroy(in);
-    td.device->destroy(out);
     REQUIRE_NO_MESSAGES(td);
 }
 

@@ -14,49 +14,6 @@ using namespace bricklight::testing;
 
 namespace {
 
-struct ConeIn {
-    glm::vec4 origin, direction;  // w: cone factor; w: ambient range
-};
-struct ConeOut {
-    glm::vec3 radiance;
-    float ambient, finalOpacity, samples;
-};
-
-std::vector<ConeOut> traceCones(TestDevice& td, VoxelizeHarness& h, const std::vector<ConeIn>& cones) {
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader("vct_tests/trace_cones.comp");
-    REQUIRE(sd.blob);
-    rhi::ShaderHandle shader = td.device->createShader(sd);
-    rhi::BufferDesc bd;
-    bd.size = cones.size() * sizeof(ConeIn);
-    bd.usage = rhi::BufferUsage::ShaderRead;
-    bd.debugName = "cones";
-    rhi::BufferHandle in = td.device->createBuffer(bd, cones.data());
-    bd.size = cones.size() * 32;
-    bd.usage = rhi::BufferUsage::ShaderWrite;
-    bd.debugName = "cone results";
-    rhi::BufferHandle out = td.device->createBuffer(bd);
-    REQUIRE(shader);
-    REQUIRE(in);
-    REQUIRE(out);
-    rhi::DispatchState s;
-    s.shader = shader;
-    s.label = "trace test cones";
-    h.clipmap().traceBindings(s.bindings);
-    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, in, {}});
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, out, {}, rhi::Access::Write});
-    REQUIRE(td.device->dispatch(s, uint32_t(cones.size() + 63) / 64, 1, 1));
-    std::vector<float> words(cones.size() * 8);
-    REQUIRE(td.device->readBuffer(out, 0, words.size() * 4, words.data()));
-    std::vector<ConeOut> results;
-    for (size_t i = 0; i < cones.size(); ++i)
-        results.push_back({glm::vec3(words[8 * i], words[8 * i + 1], words[8 * i + 2]), words[8 * i + 4], words[8 * i + 5], words[8 * i + 6]});
-    td.device->destroy(shader);
-    td.device->destroy(in);
-    td.device->destroy(out);
-    return results;
-}
-
 std::vector<Triangle> inwardBox(const glm::vec3& lo, const glm::vec3& hi) {
     std::vector<Triangle> box = boxTriangles(lo, hi);
     for (Triangle& t : box) t.normal = -t.normal;
@@ -78,11 +35,7 @@ std::vector<glm::vec3> directions() {
 void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mode) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    vct::ClipmapDesc desc;
-    desc.levels = 4;
-    desc.resolution = 32;
-    desc.finestVoxelSize = 1.0f;
-    desc.emittance = mode;
+    vct::ClipmapDesc desc = testClipmapDesc(4, mode);
     VoxelizeHarness h(td, desc);
     std::string error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));
@@ -124,10 +77,7 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
 void conesThroughAnOpenSide(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    vct::ClipmapDesc desc;
-    desc.levels = 2;
-    desc.resolution = 32;
-    desc.finestVoxelSize = 1.0f;
+    vct::ClipmapDesc desc = testClipmapDesc(2);
     VoxelizeHarness h(td, desc);
     std::string error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));

@@ -27,10 +27,7 @@ glm::u8vec4 centrePixel(TestDevice& td, vct::Clipmap& clipmap, vct::DebugViewDes
 void showsTheCube(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    vct::ClipmapDesc desc;
-    desc.levels = 2;
-    desc.resolution = 32;
-    desc.finestVoxelSize = 1.0f;
+    vct::ClipmapDesc desc = testClipmapDesc(2);
     VoxelizeHarness h(td, desc);
     std::string error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));

@@ -105,4 +105,48 @@ uint32_t VoxelizeHarness::opacityAt(const std::vector<uint32_t>& volume, uint32_
     return volume[texelIndex(level, voxel)];
 }
 
+vct::ClipmapDesc testClipmapDesc(uint32_t levels, vct::EmittanceMode mode) {
+    vct::ClipmapDesc d;
+    d.levels = levels;
+    d.resolution = 32;
+    d.finestVoxelSize = 1.0f;
+    d.emittance = mode;
+    return d;
+}
+
+std::vector<ConeOut> traceCones(TestDevice& td, VoxelizeHarness& h, const std::vector<ConeIn>& cones) {
+    rhi::ShaderDesc sd;
+    sd.blob = rhi::findShader("vct_tests/trace_cones.comp");
+    REQUIRE(sd.blob);
+    rhi::ShaderHandle shader = td.device->createShader(sd);
+    rhi::BufferDesc bd;
+    bd.size = cones.size() * sizeof(ConeIn);
+    bd.usage = rhi::BufferUsage::ShaderRead;
+    bd.debugName = "cones";
+    rhi::BufferHandle in = td.device->createBuffer(bd, cones.data());
+    bd.size = cones.size() * 32;
+    bd.usage = rhi::BufferUsage::ShaderWrite;
+    bd.debugName = "cone results";
+    rhi::BufferHandle out = td.device->createBuffer(bd);
+    REQUIRE(shader);
+    REQUIRE(in);
+    REQUIRE(out);
+    rhi::DispatchState s;
+    s.shader = shader;
+    s.label = "trace test cones";
+    h.clipmap().traceBindings(s.bindings);
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, in, {}});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, out, {}, rhi::Access::Write});
+    REQUIRE(td.device->dispatch(s, uint32_t(cones.size() + 63) / 64, 1, 1));
+    std::vector<float> words(cones.size() * 8);
+    REQUIRE(td.device->readBuffer(out, 0, words.size() * 4, words.data()));
+    std::vector<ConeOut> results;
+    for (size_t i = 0; i < cones.size(); ++i)
+        results.push_back({glm::vec3(words[8 * i], words[8 * i + 1], words[8 * i + 2]), words[8 * i + 4], words[8 * i + 5], words[8 * i + 6]});
+    td.device->destroy(shader);
+    td.device->destroy(in);
+    td.device->destroy(out);
+    return results;
+}
+
 }  // namespace bricklight::testing

@@ -18,6 +18,9 @@ struct Triangle {
     glm::vec3 normal;  // the shading normal of all three vertices
 };
 
+// The tests' small clip-map: `levels` levels of 32³ voxels, the finest 1 unit wide.
+vct::ClipmapDesc testClipmapDesc(uint32_t levels, vct::EmittanceMode mode = vct::EmittanceMode::Anisotropic);
+
 // The 12 triangles of an axis-aligned box, normals outward, each face split along its diagonal.
 std::vector<Triangle> boxTriangles(const glm::vec3& lo, const glm::vec3& hi);
 
@@ -43,5 +46,15 @@ private:
     rhi::ShaderHandle vertex_, emissive_;
     std::vector<rhi::BufferHandle> buffers_;
 };
+
+// Cones traced through a clip-map by the test shader vct_tests/trace_cones.comp (bricklight/cone_trace.glsl).
+struct ConeIn {
+    glm::vec4 origin, direction;  // w: cone factor; w: ambient range
+};
+struct ConeOut {
+    glm::vec3 radiance;
+    float ambient, finalOpacity, samples;
+};
+std::vector<ConeOut> traceCones(TestDevice& td, VoxelizeHarness& h, const std::vector<ConeIn>& cones);
 
 }  // namespace bricklight::testing
