@@ -52,8 +52,9 @@ struct VisibilityDiff {
     size_t compared = 0, differ = 0, shadowed = 0, falseShadow = 0;
 };
 
-// Pixels facing the sun: lit (no triangle between them and the sun) exactly vs the shadow map's visibility > 0.5.
-VisibilityDiff compareWithExact(TestDevice& td, render::RasterRenderer& r, const scenes::SceneGeometry& scene) {
+// Per pixel: the exact sun visibility (a ray against every triangle from the G-buffer position; 1 lit, 0 shadowed),
+// or −1 for the sky and pixels facing away from the sun.
+std::vector<int> exactSunVisibility(TestDevice& td, render::RasterRenderer& r, const scenes::SceneGeometry& scene) {
     std::vector<glm::dvec3> tris;
     for (const scenes::MeshInstance& inst : scene.instances) {
         const scenes::TriangleMesh& m = scene.meshes[inst.mesh];
@@ -68,21 +69,31 @@ VisibilityDiff compareWithExact(TestDevice& td, render::RasterRenderer& r, const
     std::vector<uint16_t> normal(pixels * 4);
     REQUIRE(td.device->readTexture(g.position, {}, position.data()));
     REQUIRE(td.device->readTexture(g.normal, {}, normal.data()));
-    const render::Image vis = r.readSunVisibility();
-    REQUIRE(vis.width == kSize);
     const glm::dvec3 sun = glm::normalize(glm::dvec3(scene.environment.sunDirection));
     const double tMin = 1e-4 * glm::length(glm::dvec3(scene.boundsMax - scene.boundsMin));
-    VisibilityDiff v;
+    std::vector<int> exact(pixels, -1);
     for (size_t i = 0; i < pixels; ++i) {
         if (position[i].w == 0.0f) continue;
         const glm::dvec3 n = glm::normalize(glm::dvec3(halfToFloat(normal[4 * i]), halfToFloat(normal[4 * i + 1]), halfToFloat(normal[4 * i + 2])));
         if (glm::dot(n, sun) <= 0.0) continue;
-        const bool exact = !occluded(tris, glm::dvec3(position[i]), sun, tMin);
-        const bool mapped = vis.rgb[3 * i] > 0.5f;
+        exact[i] = occluded(tris, glm::dvec3(position[i]), sun, tMin) ? 0 : 1;
+    }
+    return exact;
+}
+
+// Pixels facing the sun: lit (no triangle between them and the sun) exactly vs the renderer's visibility > 0.5.
+VisibilityDiff compareWithExact(TestDevice& td, render::RasterRenderer& r, const scenes::SceneGeometry& scene) {
+    const std::vector<int> exact = exactSunVisibility(td, r, scene);
+    const render::Image vis = r.readSunVisibility();
+    REQUIRE(vis.width == kSize);
+    VisibilityDiff v;
+    for (size_t i = 0; i < exact.size(); ++i) {
+        if (exact[i] < 0) continue;
+        const bool lit = exact[i] == 1, mapped = vis.rgb[3 * i] > 0.5f;
         v.compared++;
-        v.differ += exact != mapped ? 1 : 0;
-        v.falseShadow += exact && !mapped ? 1 : 0;
-        v.shadowed += exact ? 0 : 1;
+        v.differ += lit != mapped ? 1 : 0;
+        v.falseShadow += lit && !mapped ? 1 : 0;
+        v.shadowed += lit ? 0 : 1;
     }
     return v;
 }
@@ -138,6 +149,44 @@ void sunVisibilityMatchesExact(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The classification is conservative: every sun-facing pixel whose exact visibility differs from the shadow maps'
+// answer (--shadows shadowmap, the same frame) lies in a listed tile's ray mask; and the rays it saves against
+// tracing every such pixel. Measured (both backends): atrium 17 pixels wrong by the maps, all listed, rays for
+// 1562 of 4977 sun-facing pixels (69 % saved); two-rooms 8, all listed, 144 of 7151 (98 % saved).
+void classificationIsConservative(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry rooms = scenes::twoRooms(0.2f);
+    rooms.camera = {glm::vec3(0.4f, 2.6f, 0.4f), glm::vec3(3.0f, 0.0f, 2.6f), glm::vec3(0, 1, 0), 75.0f};
+    for (const scenes::SceneGeometry& scene : {scenes::atrium(), rooms}) {
+        auto mapped = shadowRenderer(td, scene, render::ShadowMode::ShadowMap);
+        const std::vector<int> exact = exactSunVisibility(td, *mapped, scene);
+        const render::Image vis = mapped->readSunVisibility();
+        auto hybrid = shadowRenderer(td, scene, render::ShadowMode::Hybrid);
+        classify::ShadowClassifier& c = *hybrid->shadowClassifier();
+        const classify::ShadowClassifyCounts k = c.readCounts();
+        std::vector<glm::uvec4> tiles(size_t(c.tilesX()) * c.tilesY());
+        REQUIRE(td.device->readBuffer(c.tileList(), 0, tiles.size() * 16, tiles.data()));
+        std::vector<uint32_t> listed(tiles.size(), 0u);
+        for (uint32_t t = 0; t < k.listedTiles; ++t) listed[(tiles[t].x >> 16) * c.tilesX() + (tiles[t].x & 0xFFFFu)] = tiles[t].y;
+        size_t wrongByMaps = 0, wrongNotListed = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const size_t i = size_t(y) * kSize + x;
+                if (exact[i] < 0 || (exact[i] == 1) == (vis.rgb[3 * i] > 0.5f)) continue;
+                ++wrongByMaps;
+                const bool inMask = listed[(y / 4) * c.tilesX() + x / 8] & (1u << ((y % 4) * 8 + (x % 8)));
+                wrongNotListed += inMask ? 0 : 1;
+            }
+        WARN(scene.name << " " << backend << ": " << wrongByMaps << " pixels the maps get wrong, " << wrongNotListed
+                        << " of them outside the listed masks; rays for " << k.rayPixels << " of " << k.activePixels
+                        << " sun-facing pixels (" << 100.0 * (1.0 - double(k.rayPixels) / std::max(1u, k.activePixels)) << " % saved)");
+        CHECK(wrongNotListed == 0);
+        CHECK(k.rayPixels < k.activePixels);
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 void badShadowOptionsRefused(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
@@ -170,6 +219,7 @@ void badShadowOptionsRefused(const std::string& backend) {
 
 BACKEND_TEST("shadows: shadow-map sun visibility matches the exact visibility", "[render][shadows]", sunVisibilityMatchesExact)
 BACKEND_TEST("shadows: bad shadow-map parameters are refused", "[render][shadows]", badShadowOptionsRefused)
+BACKEND_TEST("shadows: the classification lists every pixel the maps get wrong", "[render][shadows]", classificationIsConservative)
 
 #if defined(BRICKLIGHT_HAS_VULKAN) && defined(BRICKLIGHT_HAS_GL)
 TEST_CASE("shadows: Vulkan and GL give the same shadow-map image", "[render][cross][shadows]") {
