@@ -83,6 +83,7 @@ int runClassify(const Options& o) {
     d.cascadeCount = 1;
     d.cascades[0] = {worldToShadow, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f), 2.0f * radius};
     d.blockerOffset = 2.0f / float(mapSize);
+    d.blockerTaps = o.classifyTaps;
     d.rayNormalOffset = scene->desc().finestVoxelSize;
     classify::ShadowClassifyCounts counts;
     auto frame = [&]() {
@@ -109,8 +110,8 @@ int runClassify(const Options& o) {
     for (uint32_t f = 0; f < o.frames; ++f) frame();
     const PhaseTimes t = collect(*device, o.frames);
     counts = classifier->readCounts();
-    std::printf("scene %s: %s; %ux%u; one %u² sun map traced through the field, %u cascades of the field\n", geometry.name.c_str(),
-                device->capabilities().deviceName.c_str(), o.width, o.height, mapSize, o.cascades);
+    std::printf("scene %s: %s; %ux%u; one %u² sun map traced through the field, %u cascades of the field; %u blocker taps\n",
+                geometry.name.c_str(), device->capabilities().deviceName.c_str(), o.width, o.height, mapSize, o.cascades, o.classifyTaps);
     std::printf("shadow classification %.3f ms, rays %.3f ms, resolve %.3f ms (mean of %u frames)\n", t.perFrame("shadow classify"),
                 t.perFrame("shadow rays"), t.perFrame("shadow resolve"), o.frames);
     const uint32_t pixels = o.width * o.height;

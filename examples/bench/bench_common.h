@@ -37,6 +37,7 @@ struct Options {
     bool vctRegistered = false;                   // vct: voxelize through vct::VoxelScene (culled) instead of one draw
     bool vctCompute = false;                      // vct: ... with its compute voxelizer (vct::Voxelizer::Compute)
     float vctSplitVoxels = 8.0f;                  // vct: vct::ComputeVoxelizer::splitVoxels
+    uint32_t classifyTaps = 16;                   // classify: ShadowClassifyDesc::blockerTaps
     bool vctPersistent = false;                   // vct: keep voxels; rewrite what the moving anchor uncovers
     uint32_t vctMoveVoxels = 0;                   // vct: the anchor moves this many finest voxels along x a frame
 };

@@ -55,7 +55,7 @@ namespace {
                  "                            [--occlusion voxels|sdf] [--jitter PERCENT] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
                  "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n"
                  "       bricklight-bench classify [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
-                 "                            [--frames N] [--cascades N]  (the shadow classifier and hybrid shadows)\n");
+                 "                            [--frames N] [--cascades N] [--taps 8|16|24|32]  (the shadow classifier and hybrid shadows)\n");
     std::exit(2);
 }
 
@@ -122,7 +122,10 @@ Options parse(int argc, char** argv) {
             if (o.vctEmittance != "aniso" && o.vctEmittance != "iso" && o.vctEmittance != "none") usage("--emittance must be aniso, iso or none");
         } else if (a == "--cones") o.vctCones = number(value(), "--cones", 1, 32);
         else if (a == "--sparsity") o.vctSparsity = number(value(), "--sparsity", 1, 4);
-        else if (a == "--jitter") o.vctSpecularJitter = float(number(value(), "--jitter (percent)", 0, 100)) / 100.0f;
+        else if (a == "--taps") {
+            o.classifyTaps = number(value(), "--taps", 8, 32);
+            if (o.classifyTaps % 8) usage("--taps must be 8, 16, 24 or 32");
+        } else if (a == "--jitter") o.vctSpecularJitter = float(number(value(), "--jitter (percent)", 0, 100)) / 100.0f;
         else if (a == "--occlusion") {
             const std::string v = value();
             if (v != "voxels" && v != "sdf") usage("--occlusion must be voxels or sdf");
