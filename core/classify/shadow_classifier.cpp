@@ -23,6 +23,7 @@ struct Params {
     glm::vec4 trace;
 };
 static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16);
+static_assert(sizeof(Params) == kShadowParamsBytes);
 
 bool finite(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
@@ -79,6 +80,8 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     c->point_ = device.createSampler(sampler);
     if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->point_)
         return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)");
+    const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
+    device.writeBuffer(c->count_, 0, counts, sizeof(counts));
     return c;
 }
 
@@ -159,9 +162,15 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
         p.options2.w = sm->height;
         shadowMap = d.shadowMap;
     }
-    device_.writeBuffer(params_, 0, &p, sizeof(p));
-    const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};
-    device_.writeBuffer(count_, 0, counts, sizeof(counts));
+    // The parameters only when they changed (a still camera and sun: never), the counts with fills: the dispatch
+    // arguments' y and z (1, 1) were written at creation.
+    if (!paramsWritten_ || std::memcmp(&p, lastParams_.data(), sizeof(p)) != 0) {
+        device_.writeBuffer(params_, 0, &p, sizeof(p));
+        std::memcpy(lastParams_.data(), &p, sizeof(p));
+        paramsWritten_ = true;
+    }
+    device_.clearBuffer(count_, rhi::BufferRange{0, 4}, 0u);
+    device_.clearBuffer(count_, rhi::BufferRange{12, (kCountWords - 3) * 4}, 0u);  // words 3..7
     rhi::DispatchState s;
     s.shader = classify_;
     s.label = "classify shadows";
@@ -172,7 +181,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, tiles_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
-    if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)");
+    if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)");  // 2 × 4 tiles a group
     depth_ = d.depth;
     normals_ = d.normals;
     classified_ = true;
@@ -189,6 +198,7 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
     s.label = "trace shadow rays";
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{1, tiles_, {}});
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{2, count_, {}});
     s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(depth_), point_});
     s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(normals_), point_});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::ReadWrite));
@@ -219,14 +229,14 @@ bool ShadowClassifier::resolve(rhi::TextureHandle output, std::string* error) {
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Read));
     s.bindings.storageImages.push(rhi::storageImage(1, output, rhi::Access::Write));
-    return device_.dispatch(s, (width_ + 7) / 8, (height_ + 3) / 4, 1);
+    return device_.dispatch(s, (width_ + 15) / 16, (height_ + 15) / 16, 1);
 }
 
 ShadowClassifyCounts ShadowClassifier::readCounts() {
     uint32_t w[kCountWords] = {};
     ShadowClassifyCounts c;
     if (!device_.readBuffer(count_, 0, sizeof(w), w)) return c;
-    c.listedTiles = w[0];
+    c.listedTiles = w[7];
     c.cutOffTiles = w[3];
     c.rayPixels = w[4];
     c.cutOffPixels = w[5];

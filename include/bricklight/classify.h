@@ -4,6 +4,8 @@
 // mask and ray interval. docs/classify.md.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -17,6 +19,7 @@ namespace bricklight::classify {
 
 constexpr uint32_t kShadowTileWidth = 8, kShadowTileHeight = 4;  // 32 pixels: bit y·8 + x of a tile's masks
 constexpr uint32_t kMaxShadowCascades = 4;
+constexpr size_t kShadowParamsBytes = 512;  // the classifier's parameter block (internal)
 
 // Normals: every pixel facing the sun needs a ray over [rayPushOff, ∞) (no shadow maps). Cascades: a blocker
 // search in the shadow maps decides what it can and bounds the rays of the rest.
@@ -68,9 +71,10 @@ struct ShadowClassifyCounts {
 
 //   resource                 format                              holds
 //   shadow tile list         buffer, uvec4 per tile (≤ tiles)    the listed tiles (ShadowClassifyDesc's comment)
-//   shadow tile count        buffer, 8 words, indirect args      x: listed tiles, then 1, 1 (dispatchIndirect
-//                                                                arguments: one 32-thread group per tile), then the
-//                                                                other ShadowClassifyCounts
+//   shadow tile count        buffer, 8 words, indirect args      groups of 8 listed tiles, 1, 1 (dispatchIndirect
+//                                                                arguments: 256 threads, 32 per tile), then cut-off
+//                                                                tiles, ray pixels, cut-off pixels, active pixels,
+//                                                                listed tiles
 //   shadow hit mask          R32_UINT, ⌈W/8⌉ × ⌈H/4⌉            per tile, bit 1: shadowed or not known; 0: lit.
 //                                                                Preloaded with the shadow maps' answer (their
 //                                                                filtered taps); trace() replaces the listed
@@ -87,7 +91,7 @@ public:
     // mis-sized inputs or bad parameters.
     bool classify(const ShadowClassifyDesc& desc, std::string* error);
     // Hybrid shadows, after classify(): one ray per masked pixel of each listed tile (dispatchIndirect on tileCount(),
-    // 32 threads a tile) towards the sun's centre through `field` (an updated distance field of the same scene), over
+    // 32 threads a tile, 8 tiles a group) towards the sun's centre through `field` (an updated distance field of the same scene), over
     // the tile's interval; hitMask() takes the rays' answers for those pixels. The last classify()'s depth and normals
     // must still be live. False with *error, recording nothing, before any classify().
     bool trace(const sdf::SdfScene& field, std::string* error);
@@ -111,6 +115,8 @@ private:
     rhi::ShaderHandle classify_, trace_, resolve_;
     rhi::TextureHandle depth_, normals_;  // the last classify()'s (trace())
     bool classified_ = false;
+    std::array<uint8_t, kShadowParamsBytes> lastParams_{};  // what params_ holds
+    bool paramsWritten_ = false;
     rhi::BufferHandle tiles_, count_, params_;
     rhi::TextureHandle hitMask_;
     rhi::SamplerHandle point_;

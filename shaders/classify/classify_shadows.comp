@@ -1,37 +1,41 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
-// The shadow classifier (classify::ShadowClassifier): one 32-thread group per 8×4 tile, one thread per pixel.
+// The shadow classifier (classify::ShadowClassifier): one 32-thread warp-sized slice per 8×4 tile, eight tiles (2 × 4,
+// 16 × 16 pixels) per 256-thread group — a group per tile left the GPU launching groups rather than working.
 // Per pixel: off screen, sky or facing away from the sun needs no ray (facing away: shadowed); in Normals mode the
 // rest need one; in Cascades mode a blocker search in the first cascade that holds the pixel decides — every tap
 // nearer the sun than the receiver: shadowed; none (with rejectLit): lit; a mix: a ray, bounded by the nearest and
 // the farthest blocker the taps saw. The tile's masks and interval are reduced through shared memory (never
 // subgroup operations: lavapipe's subgroups are 8 wide, the tile 32), then one thread appends the tile to the list
 // and writes its hit-mask texel.
-layout(local_size_x = 32, local_size_y = 1, local_size_z = 1) in;
+layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 
 #include "shadow_params.glsl"
 BL_TEXTURE(0) uniform sampler2D depthTexture;
 BL_TEXTURE(1) uniform sampler2D normalTexture;
 BL_TEXTURE(2) uniform sampler2D shadowMap;
 BL_STORAGE_BUFFER(0) Tiles { uvec4 tiles[]; } list;
-BL_STORAGE_BUFFER(1) Counts { uint counts[8]; } count;  // listed, 1, 1, cut-off tiles, ray pixels, cut-off pixels, active
+// Groups of 8 listed tiles (the trace's dispatchIndirect x), 1, 1, cut-off tiles, ray pixels, cut-off pixels, active pixels,
+// listed tiles.
+BL_STORAGE_BUFFER(1) Counts { uint counts[8]; } count;
 BL_IMAGE(0, r32ui) uniform writeonly uimage2D hitMask;
 
 const float kNoEnd = 3.0e38;  // a ray interval without an end
-shared uint rayMask, answerMask, activeMask, minT, maxT;
+shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
 
 void main() {
-    uint lane = gl_LocalInvocationID.x;
-    uvec2 tile = uvec2(gl_WorkGroupID.xy);
+    uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
+    uvec2 tile = uvec2(gl_WorkGroupID.xy) * uvec2(2u, 4u) + uvec2(slot & 1u, slot >> 1u);
+    bool tileOnScreen = all(lessThan(tile, (params.size.xy + uvec2(7u, 3u)) / uvec2(8u, 4u)));
     ivec2 pixel = ivec2(tile * uvec2(8u, 4u) + uvec2(lane & 7u, lane >> 3u));
     uint bit = 1u << lane;  // y · 8 + x
     if (lane == 0u) {
-        rayMask = 0u;
-        answerMask = 0u;
-        activeMask = 0u;
-        minT = floatBitsToUint(kNoEnd);
-        maxT = 0u;
+        rayMask[slot] = 0u;
+        answerMask[slot] = 0u;
+        activeMask[slot] = 0u;
+        minT[slot] = floatBitsToUint(kNoEnd);
+        maxT[slot] = 0u;
     }
     barrier();
 
@@ -97,24 +101,25 @@ void main() {
         }
     }
     if (needsRay) {
-        atomicOr(rayMask, bit);
-        atomicMin(minT, floatBitsToUint(max(t0, 0.0)));  // non-negative floats order as their bits
-        atomicMax(maxT, floatBitsToUint(max(t1, 0.0)));
+        atomicOr(rayMask[slot], bit);
+        atomicMin(minT[slot], floatBitsToUint(max(t0, 0.0)));  // non-negative floats order as their bits
+        atomicMax(maxT[slot], floatBitsToUint(max(t1, 0.0)));
     }
-    if (answer) atomicOr(answerMask, bit);
-    if (isActive) atomicOr(activeMask, bit);
+    if (answer) atomicOr(answerMask[slot], bit);
+    if (isActive) atomicOr(activeMask[slot], bit);
     barrier();
 
-    if (lane != 0u) return;
-    uint rays = bitCount(rayMask);
+    if (lane != 0u || !tileOnScreen) return;
+    uint rays = bitCount(rayMask[slot]);
     if (rays > params.options2.x) {
-        uint slot = atomicAdd(count.counts[0], 1u);
-        list.tiles[slot] = uvec4(tile.x | (tile.y << 16u), rayMask, minT, maxT);
+        uint at = atomicAdd(count.counts[7], 1u);
+        if ((at & 7u) == 0u) atomicAdd(count.counts[0], 1u);  // a new group of 8 for the trace
+        list.tiles[at] = uvec4(tile.x | (tile.y << 16u), rayMask[slot], minT[slot], maxT[slot]);
         atomicAdd(count.counts[4], rays);
     } else if (rays > 0u) {
         atomicAdd(count.counts[3], 1u);
         atomicAdd(count.counts[5], rays);
     }
-    atomicAdd(count.counts[6], bitCount(activeMask));
-    imageStore(hitMask, ivec2(tile), uvec4(answerMask));
+    atomicAdd(count.counts[6], bitCount(activeMask[slot]));
+    imageStore(hitMask, ivec2(tile), uvec4(answerMask[slot]));
 }

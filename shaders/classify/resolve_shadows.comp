@@ -3,7 +3,7 @@
 #include "bricklight/bindings.glsl"
 // The hit mask (one bit per pixel, 8×4 pixels per texel) to a shadow mask (classify::ShadowClassifier::resolve):
 // 1 lit, 0 shadowed or facing away.
-layout(local_size_x = 8, local_size_y = 4, local_size_z = 1) in;
+layout(local_size_x = 16, local_size_y = 16, local_size_z = 1) in;  // large groups: small ones are launch-bound
 #include "shadow_params.glsl"
 BL_IMAGE(0, r32ui) uniform readonly uimage2D hitMask;
 BL_IMAGE(1, r16f) uniform writeonly image2D shadowMask;
