@@ -35,8 +35,8 @@ std::unique_ptr<render::RasterRenderer> vctRenderer(TestDevice& td, const scenes
 
 void cornellAgainstReference(const std::string& backend) {
     // 32 frames (bounces accumulate one per frame through blVoxelIndirect) against 512 spp of the path tracer,
-    // 128². Measured (lavapipe): indirect relMSE 0.048, SSIM 0.66, mean 0.0276 vs 0.0478 (58 %; the SDF GI
-    // has 69 %); combined relMSE 0.016, SSIM 0.86, mean 0.105 vs 0.121. Bounds: about twice the distance.
+    // 128². Measured (lavapipe): indirect relMSE 0.050, SSIM 0.70, mean 0.0276 vs 0.0478 (58 %; the SDF GI
+    // has 69 %); combined relMSE 0.017, SSIM 0.86, mean 0.105 vs 0.121. Bounds: about twice the distance.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry cornell = scenes::cornellBox();
@@ -59,8 +59,8 @@ void cornellAgainstReference(const std::string& backend) {
 }
 
 void cornellSingleBounce(const std::string& backend) {
-    // Bounces off: one bounce, against the path tracer's one bounce. Measured: relMSE 0.0144, SSIM 0.66, mean
-    // 0.0149 vs 0.0240 (62 %; light that wide cones lose through coarse voxels, docs/vct.md).
+    // Bounces off: one bounce, against the path tracer's one bounce. Measured: relMSE 0.018, SSIM 0.68, mean
+    // 0.0134 vs 0.0240 (56 %; light that wide cones lose through coarse voxels and mips, docs/vct.md).
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const scenes::SceneGeometry cornell = scenes::cornellBox();
@@ -80,10 +80,10 @@ void cornellSingleBounce(const std::string& backend) {
 void glossyFloor(const std::string& backend) {
     // The Cornell box with a glossy metal floor (metalness 1, roughness 0.3): its reflections come from the
     // specular cone (tangent jitter on; the default is off). Combined image and the floor (lower third) against 512 spp.
-    // Measured (lavapipe): combined relMSE 0.032, SSIM 0.74, mean 0.0965 vs 0.1187; floor relMSE 0.0280 (0.0283
-    // without jitter), mean 0.0102 vs 0.0217 with direct light alone 0.0060: the cone adds 26 % of the light
-    // missing from the floor (the SDF GI's specular adds 60 %); the floor from one frame to the next: relMSE
-    // 2.2e-4 (the same without jitter).
+    // Measured (lavapipe): combined relMSE 0.035, SSIM 0.73, mean 0.0956 vs 0.1187; floor relMSE 0.0275, mean
+    // 0.0104 vs 0.0217 with direct light alone 0.0060: the cone adds 28 % of the light missing from the floor (the
+    // SDF GI's specular adds 60 %); the floor from one frame to the next: relMSE 2.2e-4. (Before the mips: floor
+    // 0.0280 with jitter, 0.0283 without, the same frame-to-frame.)
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry scene = scenes::cornellBox();
@@ -214,9 +214,9 @@ void aoAgainstReference(const std::string& backend) {
 void sdfOcclusionAgainstReference(const std::string& backend) {
     // Cones that stop where a ray through the distance field meets a surface (--vct-occlusion sdf): their samples
     // narrow before it so as not to average in what lies behind, and the surface's own light is read from its
-    // finest voxels. Measured (lavapipe), Cornell 128² after 32 frames: indirect relMSE 0.020, SSIM 0.78, mean
-    // 0.0377 vs 0.0478 (79 %; voxel opacity alone: 0.048, 58 %; the SDF GI 69 %); combined relMSE 0.0076.
-    // two-rooms, wall of one finest voxel, lag 0: room B / room A 0.62 (voxels alone 0.78): what is left comes
+    // finest voxels. Measured (lavapipe), Cornell 128² after 32 frames: indirect relMSE 0.018, SSIM 0.79, mean
+    // 0.0397 vs 0.0478 (83 %; voxel opacity alone: 0.050, 58 %; the SDF GI 69 %); combined relMSE 0.0071.
+    // two-rooms, wall of one finest voxel, lag 0: room B / room A 0.64 (voxels alone 0.82): what is left comes
     // through coarse samples near the cones' origins, which hold the outer walls' sunlit faces. Bounds: about
     // twice the distance, and below the voxel-only figures.
     TestDevice td = makeDevice(backend);
@@ -249,7 +249,7 @@ void sdfOcclusionAgainstReference(const std::string& backend) {
 void sdfGiWithUnseenLight(const std::string& backend) {
     // The SDF GI whose probe rays read the clip-map's light where they hit a surface no view has lit
     // (--gi sdf --gi-unseen vxgi) instead of their neighbours' as a stand-in. Measured (lavapipe), Cornell 128²
-    // after 64 frames: indirect relMSE 0.0098, SSIM 0.82, mean 0.0397 vs 0.0478 (83 %); the SDF GI alone 0.027,
+    // after 64 frames: indirect relMSE 0.0096, SSIM 0.82, mean 0.0398 vs 0.0478 (83 %); the SDF GI alone 0.027,
     // 0.76, 0.0329 (69 %). Bounds: below the SDF GI alone, with margin.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
