@@ -136,7 +136,10 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     p.size = glm::uvec4(width_, height_, tilesX(), uint32_t(d.mode));
     p.options = glm::uvec4(0u, d.blockerTaps, d.rejectLitPixels ? 1u : 0u, d.cascadeRayInterval ? 1u : 0u);
     p.options2 = glm::uvec4(d.tileCutOff, d.reversedDepth ? 1u : 0u, 1u, 1u);
-    p.trace = glm::vec4(d.rayNormalOffset, 1.0f, 0.0f, 0.0f);  // y: the field's hit epsilon scale
+    // y: the field's hit epsilon scale; z: the radius of the disc the soft rays' directions cover (tan of half the
+    // sun's angle, 0 for hard rays); w: the frame's sample index, as a float (exact below 2^24; a float, not its bits,
+    // so that no denormal flush can touch it).
+    p.trace = glm::vec4(d.rayNormalOffset, 1.0f, d.softShadows ? std::tan(0.5f * d.sunAngle) : 0.0f, float(d.frameIndex & 0xFFFFFFu));
     rhi::TextureHandle shadowMap = d.depth;  // bound in Normals mode too (never read there)
     if (d.mode == ShadowClassifyMode::Cascades) {
         if (!sized(d.shadowMap, "shadowMap", true)) return false;

@@ -45,6 +45,12 @@ struct ShadowClassifyDesc {
     glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
     glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // towards the sun
     float sunAngle = 0.0093f;  // the sun's full angular diameter (radians): widens the blocker search with depth
+    // Soft shadows: trace() jitters each ray's direction uniformly over the sun's disc (sunAngle) with a per-pixel,
+    // per-frame sample (an R2 sequence over frameIndex, rotated per pixel by a hash: deterministic, the same on
+    // every backend), so the hit mask holds one stochastic sample of the penumbra for a denoiser to average
+    // (classify::ShadowDenoiser). Off: rays towards the sun's centre (a hard shadow).
+    bool softShadows = false;
+    uint32_t frameIndex = 0;  // the sample of this frame (soft shadows); only its low 24 bits count
     // Cascades mode: the shadow texture (D32_FLOAT or R32_FLOAT, sampled; read texel by texel) and its cascades,
     // finest first (each pixel takes the first whose uvRect holds it).
     rhi::TextureHandle shadowMap;
@@ -91,8 +97,8 @@ public:
     // mis-sized inputs or bad parameters.
     bool classify(const ShadowClassifyDesc& desc, std::string* error);
     // Hybrid shadows, after classify(): one ray per masked pixel of each listed tile (dispatchIndirect on tileCount(),
-    // 32 threads a tile, 8 tiles a group) towards the sun's centre through `field` (an updated distance field of the same scene), over
-    // the tile's interval; hitMask() takes the rays' answers for those pixels. The last classify()'s depth and normals
+    // 32 threads a tile, 8 tiles a group) towards the sun's centre (softShadows: a point of its disc) through `field`
+    // (an updated distance field of the same scene), over the tile's interval; hitMask() takes the rays' answers for those pixels. The last classify()'s depth and normals
     // must still be live. False with *error, recording nothing, before any classify().
     bool trace(const sdf::SdfScene& field, std::string* error);
     // hitMask() per pixel into `output` (R16_FLOAT with Storage usage, the classifier's size): 1 lit, 0 shadowed or

@@ -13,7 +13,8 @@ BL_READ_BUFFER(0) Params {
     uvec4 size;        // width, height, tiles along x, mode (0 normals, 1 cascades)
     uvec4 options;     // cascades, taps, reject lit pixels, cascade ray interval
     uvec4 options2;    // tile cut-off, reversed depth, shadow map width, height
-    vec4 trace;        // x: ray origin offset along the normal (world units)
+    vec4 trace;        // x: ray origin offset along the normal (world units), y: hit epsilon scale, z: soft rays' disc
+                       // radius (tan of half the sun's angle; 0: hard), w: the frame's sample index
 } params;
 
 // The world position of a pixel's depth (the library's conventions: NDC y −1 at the top row).

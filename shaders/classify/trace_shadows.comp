@@ -2,9 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 // Hybrid shadows' rays (classify::ShadowClassifier::trace): dispatched indirectly, 32 threads per listed tile and 8
-// tiles per group; each pixel of the tile's ray mask traces one ray towards the sun's centre through the distance field
-// (bricklight/trace.glsl) over the tile's interval, and the tile's hit-mask texel takes the rays' answers in place
-// of the shadow maps' for those pixels. The votes meet in shared memory (no subgroup operations).
+// tiles per group; each pixel of the tile's ray mask traces one ray towards the sun's centre (soft shadows: a point of
+// the sun's disc) through the distance field (bricklight/trace.glsl) over the tile's interval, and the tile's hit-mask
+// texel takes the rays' answers in place of the shadow maps' for those pixels. The votes meet in shared memory (no
+// subgroup operations).
+// Soft rays and the interval: a ray θ ≤ α/2 off the centre meets a blocker depth D (along the centre) at D / cos θ ≤
+// D·(1 + tan²(α/2)/2), never before D, so the start holds; the end was widened by the search radius tan(α/2)·Z (Z ≥ D,
+// the receiver's distance from the map's depth 0), more than D·tan²(α/2)/2 for any α < 2 rad, and sideways the ray
+// stays within that radius of the centre ray, the disc the blocker search covered.
 layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 #include "shadow_params.glsl"
 #include "bricklight/trace.glsl"  // the field at its default slots: atlas texture 15, read buffers 4..7
@@ -15,6 +20,27 @@ BL_READ_BUFFER(2) Counts { uint counts[8]; } count;  // [7]: the listed tiles
 BL_IMAGE(0, r32ui) uniform uimage2D hitMask;
 
 shared uint hits[8];
+
+uint hashPixel(uvec2 p) {
+    uint v = (p.x | (p.y << 16u)) * 747796405u + 2891336453u;
+    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
+    return (v >> 22u) ^ v;
+}
+
+// A point of the sun's disc, uniform over the disc in the plane perpendicular to the sun (its tangent plane at
+// distance 1: radius tan(α/2)): the R2 sequence over the frame index (in 32-bit fixed point, exact on every
+// backend) rotated per pixel by a hash, so that neighbours draw different points and each pixel's points over
+// frames cover the disc evenly.
+vec3 sunSample(vec3 sun, ivec2 pixel) {
+    uint h = hashPixel(uvec2(pixel));
+    uint frame = uint(params.trace.w);
+    uvec2 fixedPoint = uvec2(h << 16u, h & 0xFFFF0000u) + frame * uvec2(3242174889u, 2447445413u);
+    vec2 u = vec2(fixedPoint >> 8u) * (1.0 / 16777216.0);
+    float r = params.trace.z * sqrt(u.x), phi = 6.28318530718 * u.y;
+    vec3 t = normalize(cross(sun, abs(sun.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec3 b = cross(sun, t);
+    return normalize(sun + r * (cos(phi) * t + sin(phi) * b));
+}
 
 void main() {
     uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
@@ -30,7 +56,7 @@ void main() {
         float depth = texelFetch(depthTexture, pixel, 0).r;
         vec3 n = normalize(texelFetch(normalTexture, pixel, 0).xyz * params.normalScale.xyz + params.normalBias.xyz);
         vec3 origin = blShadowWorldPosition(pixel, depth) + n * params.trace.x;
-        BlSdfRay ray = blSdfMakeRay(origin, params.sun.xyz, uintBitsToFloat(record.z), uintBitsToFloat(record.w));
+        BlSdfRay ray = blSdfMakeRay(origin, sunSample(params.sun.xyz, pixel), uintBitsToFloat(record.z), uintBitsToFloat(record.w));
         ray.epsilonScale = params.trace.y;
         if (blSdfTrace(ray).hit) atomicOr(hits[slot], bit);
     }
