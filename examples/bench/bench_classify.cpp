@@ -1,7 +1,8 @@
 // bricklight-bench classify: the shadow classifier and hybrid shadows (include/bricklight/classify.h) at the
 // benchmark's resolution — the G-buffer and one sun shadow map traced through the scene's distance field
 // (shaders/bench/sdf_gbuffer.comp, sun_shadow_map.comp), then per frame: classify, the listed tiles' rays through
-// the field, the resolve — with per-pass GPU times and the fraction of pixels that needed a ray.
+// the field, the resolve — with per-pass GPU times and the fraction of pixels that needed a ray; then soft shadows (a sun
+// of 0.5°, one ray a pixel to a point of its disc, a new point each frame) and the shadow denoiser in place of the resolve.
 #include <cstdio>
 #include <cstdlib>
 
@@ -9,6 +10,7 @@
 
 #include "bench_common.h"
 #include "bricklight/classify.h"
+#include "bricklight/shadow_denoiser.h"
 
 namespace bricklight::bench {
 
@@ -117,6 +119,55 @@ int runClassify(const Options& o) {
     const uint32_t pixels = o.width * o.height;
     std::printf("pixels facing the sun %u of %u; needing a ray %u (%.1f %% of all pixels) in %u listed tiles of %u\n", counts.activePixels, pixels,
                 counts.rayPixels, 100.0 * counts.rayPixels / pixels, counts.listedTiles, classifier->tilesX() * classifier->tilesY());
+    // Soft shadows and the denoiser (a still camera: the history accumulates as in a still frame of a game).
+    auto denoiser = classify::ShadowDenoiser::create(*device, o.width, o.height, &error);
+    if (!denoiser) {
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        return 1;
+    }
+    classify::ShadowDenoiseDesc n;
+    n.view = n.previousView = camera.view;
+    n.projection = n.previousProjection = camera.projection;
+    n.depth = gbuffer.depth;
+    n.normals = gbuffer.normals;
+    n.normalsUnpackScale = glm::vec3(1.0f);
+    n.normalsUnpackOffset = glm::vec3(0.0f);
+    n.output = mask;
+    d.sunAngle = glm::radians(0.5f);
+    d.softShadows = true;
+    uint32_t softFrame = 0;
+    auto softFrame_ = [&]() {
+        d.frameIndex = softFrame;
+        n.resetHistory = softFrame == 0;
+        ++softFrame;
+        device->beginMarker("shadow classify");
+        bool ok = classifier->classify(d, &error);
+        device->endMarker();
+        device->beginMarker("soft shadow rays");
+        ok = ok && classifier->trace(*scene, &error);
+        device->endMarker();
+        device->beginMarker("shadow denoise");
+        ok = ok && denoiser->denoise(*classifier, n, &error);
+        device->endMarker();
+        if (!ok) {
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::exit(1);
+        }
+        device->endFrame();
+    };
+    device->setTimingEnabled(false);
+    for (int f = 0; f < 4; ++f) softFrame_();
+    device->waitIdle();
+    device->setTimingEnabled(true);
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) softFrame_();
+    const PhaseTimes soft = collect(*device, o.frames);
+    const classify::ShadowClassifyCounts softCounts = classifier->readCounts();
+    std::printf("soft shadows (sun 0.5 deg): classification %.3f ms, rays %.3f ms, denoise %.3f ms; soft trace + denoise %.3f ms (target 0.3 at "
+                "1080p on the GPU); %u ray pixels in %u listed tiles\n",
+                soft.perFrame("shadow classify"), soft.perFrame("soft shadow rays"), soft.perFrame("shadow denoise"),
+                soft.perFrame("soft shadow rays") + soft.perFrame("shadow denoise"), softCounts.rayPixels, softCounts.listedTiles);
+    denoiser.reset();
     device->destroy(mapShader);
     device->destroy(shadowMap);
     device->destroy(mask);

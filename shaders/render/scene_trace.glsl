@@ -6,7 +6,7 @@
 
 BL_CONSTANTS(1) uniform SceneLight {
     vec4 sky;            // rgb radiance
-    vec4 sunDirection;   // xyz towards the sun
+    vec4 sunDirection;   // xyz towards the sun (the centre of its disc); w: the disc's radius at distance 1 (tan of half its angle)
     vec4 sunIrradiance;  // rgb
     uvec4 counts;        // x emitter count, y seed, z max bounces, w point/spot light count
     vec4 lightWeight;    // x total emitter weight, y ray offset
@@ -328,11 +328,19 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Surface surface, float eps) {
         Hit h;
         if (!traceRay(p, l, eps, sqrt(dist2) * (1.0 - 1e-4), true, h)) sum += evalBrdf(surface, n, v, l) * intensity.rgb * cone * cosP / dist2;
     }
-    float cosS = dot(n, sceneLight.sunDirection.xyz);
+    // The sun: a direction drawn uniformly over its disc (a point sun: its centre). The draw hashes the stream's state
+    // without advancing it, so the other estimates draw the same numbers whatever the sun's size.
+    uint sunRng = pcg(rngState ^ 0x6A09E667u);
+    float r = sceneLight.sunDirection.w * sqrt(float(sunRng >> 8) * (1.0 / 16777216.0));
+    float phi = 6.28318530718 * float(pcg(sunRng) >> 8) * (1.0 / 16777216.0);
+    vec3 sunAxis = sceneLight.sunDirection.xyz;
+    vec3 sunT = normalize(cross(sunAxis, abs(sunAxis.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec3 sunL = normalize(sunAxis + r * (cos(phi) * sunT + sin(phi) * cross(sunAxis, sunT)));
+    float cosS = dot(n, sunL);
     if (cosS > 0.0 && any(greaterThan(sceneLight.sunIrradiance.rgb, vec3(0.0)))) {
         Hit h;
-        if (!traceRay(p, sceneLight.sunDirection.xyz, eps, 1e30, true, h))
-            sum += evalBrdf(surface, n, v, sceneLight.sunDirection.xyz) * sceneLight.sunIrradiance.rgb * cosS;
+        if (!traceRay(p, sunL, eps, 1e30, true, h))
+            sum += evalBrdf(surface, n, v, sunL) * sceneLight.sunIrradiance.rgb * cosS;
     }
     return sum;
 }
