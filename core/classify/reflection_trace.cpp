@@ -38,7 +38,7 @@ bool ReflectionClassifier::traceScreenSpace(const ReflectionTraceDesc& d, std::s
                     std::to_string(height_));
     if (d.output == d.previousLit) return fail("output and previousLit must be different textures");
     if (d.maxIterations < 1 || d.maxIterations > 1024) return fail("maxIterations " + std::to_string(d.maxIterations) + " is outside 1..1024");
-    if (!(d.thickness > 0.0f) || !std::isfinite(d.thickness)) return fail("thickness must be a finite number > 0 (world units)");
+    if (!(d.thickness > 0.0f) || !std::isfinite(d.thickness)) return fail("thickness must be a finite number > 0 (a fraction of the distance from the camera)");
     if (!(d.edgeFade >= 0.0f && d.edgeFade < 0.5f)) return fail("edgeFade " + std::to_string(d.edgeFade) + " is outside 0..0.5");
     if (!(d.confidenceThreshold >= 0.0f && d.confidenceThreshold <= 1.0f))
         return fail("confidenceThreshold " + std::to_string(d.confidenceThreshold) + " is outside 0..1");

@@ -100,6 +100,7 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     shaders_.relight = shader("gi/relight_cache.comp");
     shaders_.reprojectGi = shader("gi/reproject_gi.comp");
     shaders_.specularTrace = shader("gi/specular_trace.comp");
+    shaders_.reflectionTrace = shader("gi/reflection_trace.comp");
     shaders_.project = shader("gi/project_probes.comp");
     shaders_.emit = shader("gi/emit_irradiance.comp");
     shaders_.probeWorld = shader("gi/probe_world_sh.comp");
@@ -202,7 +203,8 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
 
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill, s.fillVct,
-                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck,
+                                s.reflectionTrace})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
               probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_[0] && relightList_[1] && lights_ && slotOfBrick_ && freeSlots_ && cameraCheck_.counts && point_ && linear_ && environment_;
@@ -217,7 +219,8 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
 GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill, s.fillVct,
-                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck})
+                                s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck,
+                                s.reflectionTrace})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],

@@ -52,6 +52,7 @@ public:
     std::vector<Diagnostic> diagnostics() const override { return log_.diagnostics(); }
     void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
     uint32_t radianceCacheBricksInUse() override;
+    bool traceReflectionRays(const ReflectionRaysDesc& desc) override;  // gi_reflections.cpp
 
 private:
     bool fail(ErrorCode code, const std::string& message);  // reports an error, returns false
@@ -93,7 +94,8 @@ private:
 
     struct Shaders {
         rhi::ShaderHandle downsample, clearFreed, inject, propagate, spawn, reprojectProbes, fill, fillVct, pretrace,
-            relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug, cameraCheck;
+            relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug, cameraCheck,
+            reflectionTrace;
     } shaders_;
 
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
@@ -107,6 +109,14 @@ private:
     uint64_t frameIndex_ = 0;
     int lastFrame_ = 0;  // [cur] of the latest dispatch (for the debug views)
     bool historyValid_ = false;
+    // The last dispatch()'s G-buffer and environment, which traceReflectionRays() reads.
+    struct LastInputs {
+        rhi::TextureHandle depth, normals, roughness;
+        DispatchDesc environment;  // only its environment fields are set
+    } lastInputs_;
+    struct {
+        uint32_t list[4];
+    } reflectionPass_{};  // reflection_trace.comp's constants (recorded by pointer)
 
     struct CameraCheck {
         rhi::BufferHandle counts;         // 4 uints (camera_check.comp)

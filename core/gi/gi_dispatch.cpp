@@ -363,6 +363,11 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     }
     recordCameraCheck(d);
     device_.endMarker();
+    lastInputs_.depth = d.depth;
+    lastInputs_.normals = d.normals;
+    lastInputs_.roughness = d.roughness;
+    lastInputs_.environment.environmentKind = d.environmentKind;
+    lastInputs_.environment.environmentMap = d.environmentMap;
     lastFrame_ = cur;
     ++frameIndex_;
     historyValid_ = true;

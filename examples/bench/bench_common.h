@@ -100,5 +100,6 @@ int runSdf(const Options& o);
 int runGi(const Options& o);
 int runVct(const Options& o);
 int runClassify(const Options& o);
+int runReflections(const Options& o);  // bench_reflections.cpp: the second half of `classify`
 
 }  // namespace bricklight::bench

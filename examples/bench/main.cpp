@@ -380,5 +380,5 @@ int bricklight::bench::runSdf(const Options& o) {
 
 int main(int argc, char** argv) {
     Options o = parse(argc, argv);
-    return o.technique == "gi" ? runGi(o) : o.technique == "vct" ? runVct(o) : o.technique == "classify" ? runClassify(o) : runSdf(o);
+    return o.technique == "gi" ? runGi(o) : o.technique == "vct" ? runVct(o) : o.technique == "classify" ? (runClassify(o) ? 1 : runReflections(o)) : runSdf(o);
 }

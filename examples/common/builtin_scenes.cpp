@@ -57,6 +57,21 @@ SceneGeometry cornellGlass() {
     return s;
 }
 
+SceneGeometry cornellMirror(float roughness) {
+    SceneGeometry s = cornellBox();
+    s.name = "cornell-mirror";
+    // A polished metal floor: it shows the back wall and the blocks (on screen) and the box's open front and the
+    // ceiling above the camera (off screen), the cases hybrid reflections split between the screen and the field.
+    for (TriangleMesh& m : s.meshes)
+        if (m.name == "floor") {
+            m.albedo = glm::vec3(0.9f);
+            m.metalness = 1.0f;
+            m.roughness = roughness;
+            m.specular = true;
+        }
+    return s;
+}
+
 SceneGeometry twoRooms(float t) {
     SceneGeometry s;
     s.name = "two-rooms";

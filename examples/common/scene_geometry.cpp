@@ -176,7 +176,7 @@ SceneGeometry proceduralField(uint32_t targetTriangles) {
     return s;
 }
 
-const char* builtinSceneNames() { return "cornell, cornell-glass, two-rooms[:THICKNESS], atrium, dynamic, field"; }
+const char* builtinSceneNames() { return "cornell, cornell-glass, cornell-mirror[:ROUGHNESS], two-rooms[:THICKNESS], atrium, dynamic, field"; }
 
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits) {
     if (nameOrPath == "cornell") return cornellBox();
@@ -184,6 +184,19 @@ SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const
     if (nameOrPath == "field") return proceduralField(1000000);
     if (nameOrPath == "atrium") return atrium();
     if (nameOrPath == "dynamic") return dynamicRoom();
+    if (nameOrPath.rfind("cornell-mirror", 0) == 0) {
+        float roughness = 0.05f;
+        if (nameOrPath.size() > 14) {
+            char* end = nullptr;
+            const std::string value = nameOrPath.substr(nameOrPath[14] == ':' ? 15 : 14);
+            roughness = std::strtof(value.c_str(), &end);
+            if (nameOrPath[14] != ':' || value.empty() || *end || !(roughness >= 0.0f && roughness <= 1.0f)) {
+                if (error) *error = "'" + nameOrPath + "': the floor's roughness must be a number in [0, 1], as in cornell-mirror:0.3";
+                return {};
+            }
+        }
+        return cornellMirror(roughness);
+    }
     if (nameOrPath.rfind("two-rooms", 0) == 0) {
         float thickness = 0.1f;
         if (nameOrPath.size() > 9) {

@@ -47,6 +47,7 @@ struct Environment {
     glm::vec3 skyRadiance{0.0f};
     glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // towards the sun
     glm::vec3 sunIrradiance{0.0f};             // on a surface facing the sun
+    float sunAngle = 0.0f;                     // the sun's full angular diameter (radians, 0..0.5): 0 a point sun
 };
 
 // A point light (radiant intensity in W/sr, in the scene's units) or, with a cone, a spot light.
@@ -109,9 +110,12 @@ SceneGeometry dynamicRoom();
 // The Cornell box with a glass sphere (ior 1.5, roughness 0.1, 1280 triangles) in place of the short block, in
 // front of the tall one: the renderer's example of a custom material that traces cones (docs/vct.md).
 SceneGeometry cornellGlass();
+// The Cornell box with a metal floor (albedo 0.9, metalness 1) of the given perceptual roughness: mirror-like at
+// 0.05 (the default of "cornell-mirror"), glossy at 0.3.
+SceneGeometry cornellMirror(float roughness);
 // The built-in scenes' names, for messages.
 const char* builtinSceneNames();
-// A built-in scene by name ("cornell", "cornell-glass", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model
+// A built-in scene by name ("cornell", "cornell-glass", "cornell-mirror[:ROUGHNESS]", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model
 // file (loadModel, under `limits`).
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits = {});
 

@@ -57,6 +57,12 @@ const char* const kVctDebugNames[] = {"vct-opacity", "vct-emittance", "vct-level
 // The cone tracer's samples of the image's centre pixel (vct::ConeTracer::debugConeSamples).
 const char* const kVctConeSamples = "vct-cone-samples";
 
+// Hybrid reflections' views (--reflections hybrid): the denoised reflections and the classifier's tiles.
+bool isReflectionDebug(const std::string& view) {
+    render::View v;
+    return render::viewFromName(view, &v) && render::viewIsReflection(v);
+}
+
 bool isVctDebug(const std::string& view) {
     for (const char* n : kVctDebugNames)
         if (view == n) return true;
@@ -109,10 +115,11 @@ Options parse(int argc, char** argv) {
             const std::string v = value();
             bool known = false;
             for (const char* n : kGiDebugNames) known = known || v == n;
-            known = known || isVctDebug(v);
+            known = known || isVctDebug(v) || isReflectionDebug(v);
             if (!known)
-                usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (the SDF GI's) "
-                      "or vct-opacity, vct-emittance, vct-level, vct-rewritten or vct-cone-samples (voxel cone tracing's) (got '" + v + "')");
+                usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (the SDF GI's), "
+                      "vct-opacity, vct-emittance, vct-level, vct-rewritten or vct-cone-samples (voxel cone tracing's) "
+                      "or reflections, reflection-tile-class, reflection-rays or reflection-counters (hybrid reflections') (got '" + v + "')");
             o.giDebug.push_back(v);
         }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
@@ -136,6 +143,8 @@ Options parse(int argc, char** argv) {
     for (const std::string& view : o.giDebug) {
         if (o.reference) usage("--gi-debug needs the fast path (not --reference)");
         if (isVctDebug(view) && !vct) usage("--gi-debug " + view + " needs voxel cone tracing (--gi vxgi or --ao vxao)");
+        if (isReflectionDebug(view) && o.reflections != render::ReflectionMode::Hybrid)
+            usage("--gi-debug " + view + " needs hybrid reflections (--reflections hybrid)");
         if (!isVctDebug(view) && !(o.gi && o.giTechnique == render::GiTechnique::Sdf))
             usage("--gi-debug " + view + " needs the SDF GI (--gi sdf, the default)");
     }
@@ -301,7 +310,10 @@ int main(int argc, char** argv) {
     for (const std::string& view : o.giDebug) {
         render::Image img;
         uint32_t mode = 0;
-        if (view == kVctConeSamples) {
+        render::View reflectionView;
+        if (isReflectionDebug(view) && render::viewFromName(view, &reflectionView)) {
+            img = raster->reflectionView(reflectionView);
+        } else if (view == kVctConeSamples) {
             img = raster->vctConeSamplesView();
         } else if (isVctDebug(view)) {
             while (view != kVctDebugNames[mode]) ++mode;

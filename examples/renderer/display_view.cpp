@@ -7,7 +7,8 @@ const char* const kNames[] = {"final", "direct", "indirect-diffuse", "specular-g
                               "sdf-distance", "sdf-normal", "sdf-iterations", "sdf-brick-id", "sdf-cascade-id", "sdf-uvw",
                               "gi-radiance-cache", "gi-irradiance-cache", "gi-probes", "gi-probe-sh", "gi-disocclusion",
                               "gi-samples", "vct-opacity", "vct-emittance", "vct-level", "vct-rewritten",
-                              "vct-cone-samples"};
+                              "vct-cone-samples", "reflections", "reflection-tile-class", "reflection-rays",
+                              "reflection-counters"};
 static_assert(sizeof(kNames) / sizeof(kNames[0]) == size_t(View::Count), "a name for every view");
 }  // namespace
 
@@ -22,7 +23,9 @@ bool viewFromName(const std::string& name, View* out) {
     return false;
 }
 
-bool viewIsVct(View view) { return view >= View::VctOpacity && view < View::Count; }
+bool viewIsVct(View view) { return view >= View::VctOpacity && view <= View::VctConeSamples; }
+
+bool viewIsReflection(View view) { return view >= View::Reflections && view < View::Count; }
 
 bool viewNeedsGi(View view) { return view == View::IndirectDiffuse || view == View::SpecularGi || view >= View::SdfDistance; }
 

@@ -33,6 +33,10 @@ enum class View : uint32_t {
     VctLevel,
     VctRewritten,
     VctConeSamples,  // the cone tracer's samples of one pixel (RasterRenderer::setVctProbePixel)
+    Reflections,     // hybrid reflections (--reflections hybrid): the denoised reflections
+    ReflectionTileClass,  // classify::ReflectionDebugMode, in its order: each 8×8 tile's class,
+    ReflectionRays,       // its screen-space and SDF rays,
+    ReflectionCounters,   // its hit/miss feedback counters
     Count
 };
 
@@ -40,6 +44,7 @@ const char* viewName(View view);  // "final", "direct", ..., "sdf-normal", ..., 
 bool viewFromName(const std::string& name, View* out);
 bool viewNeedsGi(View view);  // the SDF, GI and VCT views and the GI AOVs exist only with GI on
 bool viewIsVct(View view);    // the voxel cone tracing views (--gi vxgi); the SDF and GI views need --gi sdf
+bool viewIsReflection(View view);  // the hybrid reflections' views (--reflections hybrid)
 
 // A rectangle of the display texture, in pixels, row 0 at the top.
 struct DisplayRect {

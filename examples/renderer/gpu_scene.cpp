@@ -106,6 +106,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     if (!finite(env.skyRadiance) || !finite(env.sunIrradiance) || !finite(env.sunDirection) ||
         glm::any(glm::lessThan(env.skyRadiance, glm::vec3(0.0f))) || glm::any(glm::lessThan(env.sunIrradiance, glm::vec3(0.0f))))
         return fail("the environment's sky and sun must be finite and non-negative");
+    if (!(env.sunAngle >= 0.0f && env.sunAngle < 0.5f)) return fail("the sun's angle " + std::to_string(env.sunAngle) + " is outside 0..0.5 radians");
 
     std::vector<glm::vec4> points;
     for (const scenes::PointLight& l : scene.pointLights) {
@@ -281,7 +282,8 @@ void GpuScene::bindVertices(rhi::DrawCallState& d) const {
 SceneLightConstants GpuScene::lightConstants(uint32_t seed, uint32_t maxBounces) const {
     SceneLightConstants c{};
     c.sky = glm::vec4(environment_.skyRadiance, 0.0f);
-    c.sunDirection = glm::vec4(environment_.sunDirection, 0.0f);
+    // w: the radius of the sun's disc at distance 1 (tan of half its angle); 0 a point sun.
+    c.sunDirection = glm::vec4(environment_.sunDirection, std::tan(0.5f * environment_.sunAngle));
     c.sunIrradiance = glm::vec4(environment_.sunIrradiance, 0.0f);
     c.counts[0] = lightCount_;
     c.counts[1] = seed;

@@ -126,6 +126,7 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     r->giLights_ = giLightsOf(scene);
     r->sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
     if ((vct || options.vxao || (options.gi && options.giUnseenFromVct)) && !r->createVct(scene, error)) return nullptr;
+    if (!r->createReflections(error)) return nullptr;
     if (!r->setCamera(scene.camera, error)) return nullptr;
     r->previousViewProjection_ = r->viewProjection_;
     r->previousView_ = r->view_;
@@ -220,6 +221,7 @@ GBufferView RasterRenderer::gbuffer() const {
 }
 
 RasterRenderer::~RasterRenderer() {
+    destroyReflections();
     destroyShadows();
     gi_.reset();
     sdf_.reset();
@@ -346,8 +348,10 @@ void RasterRenderer::render() {
         g.roughnessThreshold = options_.giRoughnessThreshold;
         g.resetHistory = cut_;
         g.unseenLight = options_.giUnseenFromVct ? clipmap_.get() : nullptr;
+        const bool cut = cut_;
         cut_ = false;
         gi_->dispatch(g);
+        traceReflections(cut);
     }
     traceVct();
     renderGlass();
@@ -360,7 +364,7 @@ void RasterRenderer::render() {
     k.label = "composite";
     k.bindings.constants.push(rhi::constants(0, c));
     slot = 0;
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_, glassRadiance_})
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_, glassRadiance_, reflections_})
         k.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     k.bindings.readBuffers.push({0, direct_, {}});
     k.bindings.storageBuffers.push({0, combined_, {}, rhi::Access::Write});
@@ -369,6 +373,7 @@ void RasterRenderer::render() {
     li.view = rhi::textureMip(lit_, 0);
     li.access = rhi::Access::Write;
     k.bindings.storageImages.push(li);
+    k.bindings.storageImages.push(rhi::storageImage(1, reflectionRadiance_, rhi::Access::Write, 0));
     device_.beginMarker("composite");
     device_.dispatch(k, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();

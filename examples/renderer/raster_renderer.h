@@ -12,7 +12,10 @@
 #include "bricklight/classify.h"
 #include "bricklight/depth_pyramid.h"
 #include "bricklight/gi.h"
+#include "bricklight/reflection_classifier.h"
+#include "bricklight/reflection_denoiser.h"
 #include "bricklight/sdf.h"
+#include "bricklight/shadow_denoiser.h"
 #include "bricklight/vct.h"
 #include "display_view.h"
 #include "gpu_scene.h"
@@ -52,6 +55,11 @@ struct ShadowCascadesView {
     glm::vec3 sunDirection{0.0f};  // towards the sun
 };
 
+// Where glossy reflections come from (with the SDF GI): Gi, the GI's specular output alone; Hybrid, the reflection
+// classifier's screen-space and distance-field rays, denoised, over the GI's specular where they resolved
+// (raster_renderer_reflections.cpp; docs/render.md, "Reflections").
+enum class ReflectionMode { Gi, Hybrid };
+
 // Which technique gives the indirect light when RasterOptions::gi is on.
 enum class GiTechnique { Sdf, Vct };
 
@@ -90,6 +98,8 @@ struct RasterOptions {
     uint32_t sdfCascades = 3;  // the finest covers the scene's bounds; each next one doubles
     sdf::Budgets sdfBudgets;   // the distance field's per-update budgets (deferred work goes to later updates)
     ShadowMode shadows = ShadowMode::Bvh;
+    ReflectionMode reflections = ReflectionMode::Gi;
+    float reflectionRoughness = 0.4f;  // Hybrid: perceptual roughness from which pixels keep the GI's specular
     SunShadowOptions sunShadows;
     // Build the hierarchical depth pyramid of the G-buffer depth each frame (depthPyramid()); off, it costs nothing.
     bool depthPyramid = false;
@@ -169,6 +179,12 @@ public:
     const classify::DepthPyramid* depthPyramid() const { return depthPyramid_.get(); }
     // ShadowMode::Hybrid: the classifier of the latest frame (its tile list, counts and hit mask); null otherwise.
     classify::ShadowClassifier* shadowClassifier() { return shadowClassifier_.get(); }
+    // ReflectionMode::Hybrid: the reflection classifier of the latest frame (its lists, counts and debug view) and the
+    // denoised reflections (rgb, a = weight over GI's specular); null otherwise.
+    classify::ReflectionClassifier* reflectionClassifier() { return reflectionClassifier_.get(); }
+    Image readReflections();  // the denoised reflections (rgb) of the latest frame; empty when off
+    // One of the hybrid reflections' views (View::Reflections.. the tile views; 0..1 for the tile views); empty when off.
+    Image reflectionView(View view);
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
@@ -198,6 +214,10 @@ private:
     void classifyShadows();  // Hybrid: the classification, the rays through the field and the shadow mask
     std::unique_ptr<classify::ShadowClassifier> shadowClassifier_;
     rhi::TextureHandle sunMask_;  // Hybrid: R16F, 1 lit
+    // Hybrid with a sun of angular size: soft rays (a new sample each frame) denoised into sunMask_.
+    std::unique_ptr<classify::ShadowDenoiser> shadowDenoiser_;
+    float sunAngle_ = 0.0f;
+    uint32_t softShadowFrames_ = 0;  // frames the denoiser has accumulated (0: its history starts over)
     bool sdfUpdated_ = false;     // this frame's field update is done (Hybrid does it before the direct light)
     // shadow_sun.glsl's read buffer: the cascades of this frame and the sun.
     struct ShadowData {
@@ -212,6 +232,14 @@ private:
     glm::vec3 sunDirection_{0.0f, 1.0f, 0.0f}, sunIrradiance_{0.0f};
     glm::vec3 sceneMin_{0.0f}, sceneMax_{0.0f};
     std::unique_ptr<classify::DepthPyramid> depthPyramid_;
+    // raster_renderer_reflections.cpp
+    bool createReflections(std::string* error);
+    void destroyReflections();
+    void traceReflections(bool resetHistory);  // after GI, before the composite
+    std::unique_ptr<classify::ReflectionClassifier> reflectionClassifier_;
+    std::unique_ptr<classify::ReflectionDenoiser> reflectionDenoiser_;
+    rhi::TextureHandle reflections_, reflectionRadiance_, reflectionTraced_;  // 1×1 stand-ins when off
+    uint32_t reflectionFrame_ = 0;
     Image readGi(rhi::TextureHandle t);
     bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_
     rhi::IDevice& device_;

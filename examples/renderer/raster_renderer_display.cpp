@@ -33,6 +33,10 @@ bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error
         return coneTracer_->debugConeSamples(std::min(probePixel_.x, options_.width - 1), std::min(probePixel_.y, options_.height - 1),
                                              debugView_, error);
     }
+    if (view >= View::ReflectionTileClass) {
+        return reflectionClassifier_->debugView(debugView_, classify::ReflectionDebugMode(uint32_t(view) - uint32_t(View::ReflectionTileClass)),
+                                                error);
+    }
     if (viewIsVct(view)) {
         vct::DebugViewDesc desc;
         desc.mode = vct::DebugMode(uint32_t(view) - uint32_t(View::VctOpacity));
@@ -76,6 +80,7 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
     if (viewIsVct(view) && !clipmap_) return fail("needs voxel cone tracing (--gi vxgi or --ao vxao)");
     if (viewNeedsGi(view) && !viewIsVct(view) && view >= View::SdfDistance && !gi_) return fail("needs the SDF GI (--gi sdf)");
     if (viewNeedsGi(view) && !giOn() && !gi_) return fail("needs GI, which is off");
+    if (viewIsReflection(view) && !reflectionClassifier_) return fail("needs hybrid reflections (--reflections hybrid)");
     const rhi::TextureDesc* d = device_.describe(display);
     if (!d || d->format != rhi::Format::RGBA8_UNORM || !(d->usage & rhi::TextureUsage::Storage))
         return fail("the display texture must be a live RGBA8_UNORM texture with Storage usage");
@@ -103,6 +108,7 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
         case View::Normal: texture = normal_, map = Signed; break;
         case View::Depth: texture = position_, map = Depth; break;
         case View::Motion: texture = motion_, map = Motion; break;
+        case View::Reflections: texture = reflections_; break;
         default:
             if (!drawDebugView(view, exposure, &why)) return fail(why);
             texture = debugView_, map = Display;

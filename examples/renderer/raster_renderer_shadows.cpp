@@ -21,6 +21,7 @@ glm::vec3 towardsSun(const scenes::SceneGeometry& scene) {
 void RasterRenderer::setSun(const scenes::SceneGeometry& scene) {
     sunDirection_ = towardsSun(scene);
     sunIrradiance_ = scene.environment.sunIrradiance;
+    sunAngle_ = scene.environment.sunAngle;
     sceneMin_ = scene.boundsMin;
     sceneMax_ = scene.boundsMax;
 }
@@ -88,6 +89,11 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
         md.debugName = "sun shadow mask";
         sunMask_ = device_.createTexture(md);
         if (!sunMask_) return fail("the device could not create the sun's shadow mask");
+        if (sunAngle_ > 0.0f) {
+            shadowDenoiser_ = classify::ShadowDenoiser::create(device_, options_.width, options_.height, &why);
+            if (!shadowDenoiser_) return fail(why);
+            softShadowFrames_ = 0;
+        }
     }
     if (options_.depthPyramid) {
         depthPyramid_ = classify::DepthPyramid::create(device_, options_.width, options_.height, &why);
@@ -98,6 +104,7 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
 
 void RasterRenderer::destroyShadows() {
     depthPyramid_.reset();
+    shadowDenoiser_.reset();
     shadowClassifier_.reset();
     if (sunMask_) device_.destroy(sunMask_);
     sunMask_ = {};
@@ -219,7 +226,8 @@ Image RasterRenderer::readSunVisibility() {
 }
 
 // Hybrid: the shadow classifier over the cascades as shadow_sun.glsl reads them (the atlas's tiles), rays through
-// the distance field for the tiles it lists, and the shadow mask the sun pass reads.
+// the distance field for the tiles it lists, and the shadow mask the sun pass reads (with a sun of angular size:
+// soft rays and the shadow denoiser's visibility).
 void RasterRenderer::classifyShadows() {
     if (options_.shadows != ShadowMode::Hybrid) return;
     if (!sdfUpdated_) {
@@ -253,6 +261,14 @@ void RasterRenderer::classifyShadows() {
     // The rays leave the surface by a voxel of the field's finest cascade: nearer, the field's own surface (within its
     // hit epsilon of the true one) stops them at once.
     d.rayNormalOffset = std::max(0.5f * cascades_[0].texelSize, sdf_->desc().finestVoxelSize);
+    // A sun of angular size: one ray a pixel to a point of its disc, a new point each frame, denoised over frames and
+    // neighbours; the blocker search then spans the sun's real size.
+    const bool soft = shadowDenoiser_ != nullptr;
+    if (soft) {
+        d.sunAngle = sunAngle_;
+        d.softShadows = true;
+        d.frameIndex = softShadowFrames_;
+    }
     std::string why;
     device_.beginMarker("shadow classify");
     bool ok = shadowClassifier_->classify(d, &why);
@@ -260,7 +276,25 @@ void RasterRenderer::classifyShadows() {
     device_.beginMarker("shadow rays");
     ok = ok && shadowClassifier_->trace(*sdf_, &why);
     device_.endMarker();
-    ok = ok && shadowClassifier_->resolve(sunMask_, &why);
+    if (soft) {
+        classify::ShadowDenoiseDesc n;
+        n.view = view_;
+        n.projection = projection_;
+        n.previousView = previousView_;
+        n.previousProjection = previousProjection_;
+        n.depth = depth_;
+        n.normals = normal_;
+        n.normalsUnpackScale = glm::vec3(1.0f);
+        n.normalsUnpackOffset = glm::vec3(0.0f);
+        n.output = sunMask_;
+        n.resetHistory = softShadowFrames_ == 0;
+        device_.beginMarker("shadow denoise");
+        ok = ok && shadowDenoiser_->denoise(*shadowClassifier_, n, &why);
+        device_.endMarker();
+        softShadowFrames_ += ok ? 1u : 0u;
+    } else {
+        ok = ok && shadowClassifier_->resolve(sunMask_, &why);
+    }
     if (!ok && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
 }
 

@@ -122,8 +122,29 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
         o.shadows = s == "shadowmap" ? ShadowMode::ShadowMap : s == "hybrid" ? ShadowMode::Hybrid : ShadowMode::Bvh;
         return OptionParse::Consumed;
     }
+    if (a == "--reflections") {
+        if (!value()) return OptionParse::Error;
+        const std::string s = v;
+        if (s != "gi" && s != "hybrid") {
+            *error = "--reflections must be gi or hybrid (got '" + s + "')";
+            return OptionParse::Error;
+        }
+        o.reflections = s == "hybrid" ? ReflectionMode::Hybrid : ReflectionMode::Gi;
+        return OptionParse::Consumed;
+    }
     if (a == "--shadow-resolution") return whole(kMinShadowResolution, kMaxShadowResolution, &o.sunShadows.resolution);
     if (a == "--shadow-pcf") return whole(0, kMaxShadowPcfRadius, &o.sunShadows.pcfRadius);
+    if (a == "--sun-angle") {
+        if (!value()) return OptionParse::Error;
+        char* end = nullptr;
+        const float degrees = std::strtof(v, &end);
+        if (!*v || *end || !(degrees >= 0.0f && degrees < 28.0f)) {
+            *error = "--sun-angle expects degrees in 0..28 (got '" + std::string(v) + "')";
+            return OptionParse::Error;
+        }
+        o.sunAngleDegrees = degrees;
+        return OptionParse::Consumed;
+    }
     if (a == "--shadow-lambda") {
         if (!value()) return OptionParse::Error;
         char* end = nullptr;
@@ -212,6 +233,10 @@ bool checkSharedOptions(const RenderOptions& o, std::string* error) {
         *error = "--backend must be vulkan or gl (got '" + o.backend + "')";
         return false;
     }
+    if (o.reflections == ReflectionMode::Hybrid && !(o.gi && o.giTechnique == GiTechnique::Sdf)) {
+        *error = "--reflections hybrid needs --gi sdf: its rays read the SDF GI's radiance cache";
+        return false;
+    }
     return true;
 }
 
@@ -220,7 +245,8 @@ const char* sharedOptionsUsage() {
            "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
            "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--gi-unseen vxgi|none]\n"
            "  [--shadows bvh|shadowmap|hybrid] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
-           "  [--single-bounce] [--validate]\n"
+           "  [--sun-angle DEGREES]\n"
+           "  [--reflections gi|hybrid] [--single-bounce] [--validate]\n"
            "  [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N] [--max-vertices N] [--max-indices N]\n"
            "  [--max-face-indices N] [--max-nodes N] [--max-node-depth N] [--max-texture-pixels N]\n"
            "  [--allow-outside-paths] [--import-timeout SECONDS] [--import-memory BYTES]\n";
@@ -236,6 +262,7 @@ scenes::SceneGeometry loadSceneOf(const RenderOptions& o, std::string* error) {
         scene.camera.eye = glm::vec3(o.camera[0], o.camera[1], o.camera[2]);
         scene.camera.at = glm::vec3(o.camera[3], o.camera[4], o.camera[5]);
     }
+    if (o.sunAngleDegrees >= 0.0f) scene.environment.sunAngle = glm::radians(o.sunAngleDegrees);
     return scene;
 }
 
@@ -252,6 +279,7 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.giFeedback = !o.singleBounce;
     ro.shadows = o.shadows;
     ro.sunShadows = o.sunShadows;
+    ro.reflections = o.reflections;
     return ro;
 }
 

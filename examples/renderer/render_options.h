@@ -29,7 +29,9 @@ struct RenderOptions {
     bool giUnseenFromVct = false;                 // --gi-unseen vxgi (RasterOptions::giUnseenFromVct)
     gi::InternalResolution giScale = gi::InternalResolution::Native;
     ShadowMode shadows = ShadowMode::Bvh;         // --shadows bvh|shadowmap|hybrid (RasterOptions::shadows)
+    ReflectionMode reflections = ReflectionMode::Gi;  // --reflections gi|hybrid (RasterOptions::reflections)
     SunShadowOptions sunShadows;                  // --shadow-resolution, --shadow-lambda, --shadow-pcf
+    float sunAngleDegrees = -1.0f;                // --sun-angle: the scene's sun's angular diameter (< 0: the scene's own)
     bool singleBounce = false;
     bool validate = false;      // every call through rhi::createValidationDevice
     scenes::LoadLimits limits;  // what a model file may cost (docs/render.md, "Untrusted files")

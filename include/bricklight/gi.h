@@ -171,6 +171,31 @@ struct DispatchDesc {
     const vct::Clipmap* unseenLight = nullptr;
 };
 
+// Hybrid reflections' distance-field half (docs/classify.md, "Hybrid reflections"): after this frame's dispatch(),
+// one reflection ray per listed display pixel, traced through the whole field (not only inside a pre-traced brick as
+// the GI's own specular rays are), reading the radiance cache where it hits and the environment where it leaves the
+// field. Each pixel's ray is classify::reflectionDirection's (shaders/include/bricklight/reflection_ray.glsl) for its
+// normal, roughness and `frameIndex`, so that a ray the screen-space trace gave up on continues as the same ray.
+//   input / output        holds
+//   rays                  uint per entry: display pixel x | y << 15, bits 29..31 copy flags (the pixel's horizontal,
+//                         vertical and diagonal quad neighbours take its result too); 0xFFFFFFFF: skipped
+//   arguments             dispatchIndirect arguments (groups of kReflectionRaysPerGroup entries) at argumentsOffset
+//   count                 the number of entries, a uint at countOffset (entries past it are skipped)
+//   output                RGBA16_FLOAT, display size, Storage: at each traced pixel rgb radiance and a = 1; a = 0
+//                         where the ray gave up (out of iterations) or hit a surface no light was cached for yet.
+//                         Other texels are left as they are.
+// The depth, normals and roughness are the last dispatch()'s (still live).
+constexpr uint32_t kReflectionRaysPerGroup = 64;
+struct ReflectionRaysDesc {
+    rhi::BufferHandle rays;
+    rhi::BufferHandle arguments;
+    uint64_t argumentsOffset = 0;
+    rhi::BufferHandle count;
+    uint64_t countOffset = 0;
+    uint32_t frameIndex = 0;
+    rhi::TextureHandle output;
+};
+
 enum class DebugMode : uint32_t {
     RadianceCache,     // primary rays through the SDF, coloured by the radiance cache at the hit
     IrradianceCache,   // primary rays, the brick SH irradiance for the hit normal
@@ -201,6 +226,9 @@ public:
     // Records one frame of GI. False (changing nothing, recording nothing) on missing or mismatched inputs,
     // with a message that names the input and the problem.
     virtual bool dispatch(const DispatchDesc& desc) = 0;
+    // Traces a list of reflection rays (ReflectionRaysDesc) after this frame's dispatch(). False (recording
+    // nothing) before any dispatch or on missing or mismatched resources, with a message naming them.
+    virtual bool traceReflectionRays(const ReflectionRaysDesc& desc) = 0;
     // Draws a debug view of the latest dispatch into desc.output.
     virtual bool debugView(const DebugViewDesc& desc) = 0;
     // Drops everything: the world-space caches and the screen history.

@@ -83,7 +83,9 @@ struct ReflectionTraceDesc {
     // else (no ray, a ray for the SDF pass, a miss): the whole texture is written.
     rhi::TextureHandle output;
     uint32_t maxIterations = 96;        // hierarchical steps a ray may take (1..1024)
-    float thickness = 0.25f;            // world units behind a surface's depth that still count as the surface
+    // How far behind a surface's depth still counts as the surface, as a fraction of its distance from the camera
+    // (scale-free: the same for a scene in millimetres and one in metres).
+    float thickness = 0.05f;
     float edgeFade = 0.05f;             // confidence fades to 0 within this fraction of the screen from its edges
     float confidenceThreshold = 0.9f;   // hits less confident than this are misses (to the SDF list)
 };

@@ -4,8 +4,8 @@
 // Screen-space reflections (classify::ReflectionClassifier::traceScreenSpace): dispatched indirectly over the padded
 // screen-space list, 32 entries a group, all of one tile. Each ray (reflection_ray.glsl's, the same the SDF pass
 // traces) marches the min/max depth pyramid in (pixel, depth) space, where a ray stays a straight line: a cell
-// whose closest depth lies behind the ray's stretch through it, or whose farthest lies more than `thickness`
-// in front of it, is skipped a level coarser; otherwise the march refines, and a pixel the ray reaches within the
+// whose closest depth lies behind the ray's stretch through it, or whose farthest lies more than `thickness` (a
+// fraction of its distance from the camera) in front of it, is skipped a level coarser; otherwise the march refines, and a pixel the ray reaches within the
 // thickness is the hit. A hit facing the ray, away from the screen's edges and seen by the previous camera takes
 // its radiance from the previous frame's lit image; the rest go on to the SDF list. Each group adds the pixels its
 // rays resolved and missed to its tile's hit counter (shared-memory sums, one atomic).
@@ -70,7 +70,8 @@ bool march(vec3 origin, vec3 d, float tMax, out float tHit, out float behind) {
         float zIn = s.z, zOut = origin.z + d.z * tExit;
         float segmentNear = min(zIn, zOut), segmentFar = max(zIn, zOut);
         bool inFront = segmentFar < closest;
-        bool behindAll = blReflectionViewDistance(segmentNear) > blReflectionViewDistance(farthest) + thickness;
+        float farthestDistance = blReflectionViewDistance(farthest);
+        bool behindAll = blReflectionViewDistance(segmentNear) > farthestDistance * (1.0 + thickness);
         if (inFront || behindAll) {
             t = tExit + 1.0e-3;
             level = min(level + 1, maxLevel);
@@ -84,7 +85,9 @@ bool march(vec3 origin, vec3 d, float tMax, out float tHit, out float behind) {
             continue;
         }
         tHit = tReach;
-        behind = max(blReflectionViewDistance(origin.z + d.z * tReach) - blReflectionViewDistance(closest), 0.0);
+        // How far behind the surface, in thicknesses (a fraction of the surface's distance: scale-free).
+        float closestDistance = blReflectionViewDistance(closest);
+        behind = max(blReflectionViewDistance(origin.z + d.z * tReach) - closestDistance, 0.0) / max(thickness * closestDistance, 1.0e-30);
         return true;
     }
     return false;
@@ -141,7 +144,7 @@ void main() {
     vec2 uv = s.xy / vec2(size);
     float edge = min(min(uv.x, 1.0 - uv.x), min(uv.y, 1.0 - uv.y));
     float confidence = params.trace2.y > 0.0 ? clamp(edge / params.trace2.y, 0.0, 1.0) : 1.0;
-    confidence *= clamp(2.0 - 2.0 * behind / params.trace2.x, 0.0, 1.0);  // full up to half the thickness
+    confidence *= clamp(2.0 - 2.0 * behind, 0.0, 1.0);  // full up to half the thickness
     bool facing = dot(hitNormal, ray.direction) < 0.0;
     bool seenBefore = previousClip.w > 0.0 && all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThanEqual(previousUv, vec2(1.0)));
     bool resolved = hit && facing && seenBefore && confidence >= params.trace2.z;

@@ -9,7 +9,9 @@
 // emitters' own emission (direct lighting already samples the emitters; counting their emission again
 // through GI would count it twice). Glass pixels (alpha 1 in the glass pass's target: render/glass.frag) take
 // the glass's radiance in the combined image; the lit image keeps the opaque surface behind the glass, which is
-// what the G-buffer that GI reads holds there.
+// what the G-buffer that GI reads holds there. With hybrid reflections (classify::ReflectionClassifier, docs/render.md)
+// their denoised result replaces the GI's specular by its weight, and the combined radiance of the opaque surfaces
+// (emission included) goes to `radianceForReflections`, which the next frame's screen-space reflections read.
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_CONSTANTS(0) uniform Params {
     vec4 eye;     // xyz
@@ -22,9 +24,11 @@ BL_TEXTURE(3) uniform sampler2D gPosition;  // xyz, w = 1 where geometry was dra
 BL_TEXTURE(4) uniform sampler2D diffuseGI;
 BL_TEXTURE(5) uniform sampler2D specularGI;
 BL_TEXTURE(6) uniform sampler2D glassRadiance;  // 1×1 and transparent while no glass is drawn
+BL_TEXTURE(7) uniform sampler2D reflections;    // rgb, a = weight over the GI's specular; 1×1 and transparent when off
 BL_READ_BUFFER(0) Direct { vec4 direct[]; };
 BL_STORAGE_BUFFER(0) Combined { vec4 combined[]; };
 BL_IMAGE(0, rgba16f) uniform writeonly image2D lit;
+BL_IMAGE(1, rgba16f) uniform writeonly image2D radianceForReflections;  // 1×1 when hybrid reflections are off
 
 vec2 splitSum(float roughness, float nDotV) {
     const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
@@ -57,7 +61,10 @@ void main() {
         vec3 gi = (1.0 - metalness) * albedo.rgb * texelFetch(diffuseGI, ivec2(pixel), 0).rgb;
         if (any(greaterThan(f0, vec3(0.0)))) {
             vec2 ab = splitSum(albedo.a, nDotV);
-            gi += texelFetch(specularGI, ivec2(pixel), 0).rgb * (f0 * ab.x + ab.y);
+            vec3 specular = texelFetch(specularGI, ivec2(pixel), 0).rgb;
+            vec4 reflection = texelFetch(reflections, min(ivec2(pixel), textureSize(reflections, 0) - 1), 0);
+            specular = mix(specular, reflection.rgb, clamp(reflection.a, 0.0, 1.0));
+            gi += specular * (f0 * ab.x + ab.y);
         }
         radiance += gi;
         sent = params.size.w != 0u ? radiance : sent;  // a select, not a branch on a constant
@@ -67,4 +74,6 @@ void main() {
     vec4 glass = texelFetch(glassRadiance, min(ivec2(pixel), textureSize(glassRadiance, 0) - 1), 0);
     combined[index] = vec4(glass.a > 0.0 ? glass.rgb : radiance, 1.0);
     imageStore(lit, ivec2(pixel), vec4(max(sent - emission, vec3(0.0)), 1.0));
+    // A size query, not a branch on a constant (docs/notes/soak.md): the 1×1 stand-in takes no writes.
+    if (all(lessThan(ivec2(pixel), imageSize(radianceForReflections)))) imageStore(radianceForReflections, ivec2(pixel), vec4(radiance, 1.0));
 }
