@@ -145,6 +145,10 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
     sd.cascadeCount = options_.sdfCascades;
     // The finest cascade holds the whole scene with a margin; coarser ones catch rays that leave it.
     sd.finestVoxelSize = sdf::suggestVoxelSize(side * 1.1f, 1);
+    // Hybrid shadows: finer cascades in front, centred on the camera (raster_renderer_shadows.cpp).
+    const uint32_t finer = hybridShadowFinerCascades();
+    sd.cascadeCount += finer;
+    sd.finestVoxelSize /= float(1u << finer);
     sd.budgets = options_.sdfBudgets;
     sd.debugName = "render sdf";
     sd.errorCallback = options_.errorCallback;
@@ -373,7 +377,6 @@ void RasterRenderer::render() {
     li.view = rhi::textureMip(lit_, 0);
     li.access = rhi::Access::Write;
     k.bindings.storageImages.push(li);
-    k.bindings.storageImages.push(rhi::storageImage(1, reflectionRadiance_, rhi::Access::Write, 0));
     device_.beginMarker("composite");
     device_.dispatch(k, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();

@@ -212,6 +212,7 @@ private:
     void lightSunFromShadowMaps(const SceneLightConstants& light);
     bool mapsOn() const { return options_.shadows == ShadowMode::ShadowMap || options_.shadows == ShadowMode::Hybrid; }
     void classifyShadows();  // Hybrid: the classification, the rays through the field and the shadow mask
+    uint32_t hybridShadowFinerCascades() const;  // Hybrid: cascades the field adds below its finest, around the camera
     std::unique_ptr<classify::ShadowClassifier> shadowClassifier_;
     rhi::TextureHandle sunMask_;  // Hybrid: R16F, 1 lit
     // Hybrid with a sun of angular size: soft rays (a new sample each frame) denoised into sunMask_.
@@ -238,7 +239,7 @@ private:
     void traceReflections(bool resetHistory);  // after GI, before the composite
     std::unique_ptr<classify::ReflectionClassifier> reflectionClassifier_;
     std::unique_ptr<classify::ReflectionDenoiser> reflectionDenoiser_;
-    rhi::TextureHandle reflections_, reflectionRadiance_, reflectionTraced_;  // 1×1 stand-ins when off
+    rhi::TextureHandle reflections_, reflectionTraced_;  // reflections_ is a 1×1 transparent stand-in when off
     uint32_t reflectionFrame_ = 0;
     Image readGi(rhi::TextureHandle t);
     bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_

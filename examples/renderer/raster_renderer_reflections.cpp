@@ -28,14 +28,11 @@ bool RasterRenderer::createReflections(std::string* error) {
     };
     const bool hybrid = options_.reflections == ReflectionMode::Hybrid;
     if (hybrid && !gi_) return fail("hybrid reflections need the SDF GI (--gi sdf): their rays read its radiance cache");
-    // Off: the composite reads one transparent texel and writes no radiance for reflections.
+    // Off: the composite reads one transparent texel.
     const uint32_t w = hybrid ? options_.width : 1, h = hybrid ? options_.height : 1;
     reflections_ = reflectionTexture(device_, w, h, "reflections");
-    reflectionRadiance_ = reflectionTexture(device_, w, h, "radiance for reflections");
-    if (!reflections_ || !reflectionRadiance_) return fail("the device could not create the reflections' textures (see its messages)");
-    const rhi::ClearValue zero{};
-    device_.clearTexture(reflections_, 0, 1, zero);
-    device_.clearTexture(reflectionRadiance_, 0, 1, zero);
+    if (!reflections_) return fail("the device could not create the reflections' textures (see its messages)");
+    device_.clearTexture(reflections_, 0, 1, rhi::ClearValue{});
     if (!hybrid) return true;
     std::string why;
     reflectionTraced_ = reflectionTexture(device_, w, h, "reflections traced");
@@ -49,7 +46,7 @@ bool RasterRenderer::createReflections(std::string* error) {
 void RasterRenderer::destroyReflections() {
     reflectionClassifier_.reset();
     reflectionDenoiser_.reset();
-    for (rhi::TextureHandle t : {reflections_, reflectionRadiance_, reflectionTraced_})
+    for (rhi::TextureHandle t : {reflections_, reflectionTraced_})
         if (t) device_.destroy(t);
 }
 
@@ -81,7 +78,7 @@ void RasterRenderer::traceReflections(bool resetHistory) {
     }
     classify::ReflectionTraceDesc t;
     t.depthPyramid = depthPyramid_->texture();
-    t.previousLit = reflectionRadiance_;
+    t.previousLit = lit_;  // the previous frame's (the composite rewrites it after this)
     t.output = reflectionTraced_;
     if (!reflectionClassifier_->traceScreenSpace(t, &why)) {
         device_.endMarker();

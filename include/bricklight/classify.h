@@ -19,7 +19,7 @@ namespace bricklight::classify {
 
 constexpr uint32_t kShadowTileWidth = 8, kShadowTileHeight = 4;  // 32 pixels: bit y·8 + x of a tile's masks
 constexpr uint32_t kMaxShadowCascades = 4;
-constexpr size_t kShadowParamsBytes = 512;  // the classifier's parameter block (internal)
+constexpr size_t kShadowParamsBytes = 528;  // the classifier's parameter block (internal)
 
 // Normals: every pixel facing the sun needs a ray over [rayPushOff, ∞) (no shadow maps). Cascades: a blocker
 // search in the shadow maps decides what it can and bounds the rays of the rest.
@@ -62,6 +62,22 @@ struct ShadowClassifyDesc {
     bool cascadeRayInterval = true;  // false: rays over [rayPushOff, ∞)
     float rayPushOff = 0.04f;        // world units: the least ray start
     float rayNormalOffset = 0.01f;   // world units the rays' origins move along the normal (trace())
+    // Sure rays only (trace()): a ray replaces the maps' answer only where the field's answer is sure, judged by the
+    // distance at which the field sees a blocker, not by one hit epsilon. A ray that hits with the field's hit epsilon
+    // scaled by sureHitEpsilon (< 1: only where the ray passes through a surface, never beside one) is shadowed; a
+    // ray that misses with it scaled by sureMissEpsilon (> 1: a blocker fattened past the field's interpolation
+    // error, which can only thin one) is lit, provided the tile's interval starts beyond the ray's own start (no
+    // blocker the taps saw nearer than the field can tell from the receiver); every other ray keeps the maps'
+    // answer in the hit mask. Each ray starts along its own direction where the field no longer sees its receiver:
+    // (its epsilon + selfClearance brixels of the cascade that holds it) / the cosine to the normal (at least 0.1).
+    // Off: one ray with the field's epsilon over the tile's interval decides every listed pixel. sureMask() says which
+    // pixels' answers are sure (decided by the search or by a sure ray); with markUnsurePixels, resolve() writes −1
+    // for the others, so that the application can put its own filtered shadow-map answer there (the hit mask's
+    // majority of the taps is a coarser one).
+    bool sureRaysOnly = false;
+    bool markUnsurePixels = false;
+    float sureHitEpsilon = 0.25f, sureMissEpsilon = 2.0f;  // in units of the field's hit epsilon (0.6 brixel); ≤ 3
+    float selfClearance = 0.5f;                          // brixels
     // Tiles with this many ray pixels or fewer are not listed: their pixels keep the shadow maps' answer in the
     // hit mask, and readCounts() counts them (0: every tile with a ray is listed).
     uint32_t tileCutOff = 0;
@@ -102,12 +118,17 @@ public:
     // must still be live. False with *error, recording nothing, before any classify().
     bool trace(const sdf::SdfScene& field, std::string* error);
     // hitMask() per pixel into `output` (R16_FLOAT with Storage usage, the classifier's size): 1 lit, 0 shadowed or
-    // facing away from the sun.
+    // facing away from the sun; −1 where the answer is not sure (sureMask()) if the last classify() asked
+    // markUnsurePixels.
     bool resolve(rhi::TextureHandle output, std::string* error);
 
     rhi::BufferHandle tileList() const { return tiles_; }
     rhi::BufferHandle tileCount() const { return count_; }  // dispatchIndirect arguments at offset 0
     rhi::TextureHandle hitMask() const { return hitMask_; }
+    // R32_UINT like hitMask(): bit set where the pixel's answer is sure — decided by the blocker search (every tap
+    // or none blocking, facing away, sky) or by a sure ray (ShadowClassifyDesc::sureRaysOnly); clear where it is the
+    // majority of mixed taps (or beyond every cascade).
+    rhi::TextureHandle sureMask() const { return sureMask_; }
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     uint32_t tilesX() const { return (width_ + kShadowTileWidth - 1) / kShadowTileWidth; }
@@ -124,7 +145,7 @@ private:
     std::array<uint8_t, kShadowParamsBytes> lastParams_{};  // what params_ holds
     bool paramsWritten_ = false;
     rhi::BufferHandle tiles_, count_, params_;
-    rhi::TextureHandle hitMask_;
+    rhi::TextureHandle hitMask_, sureMask_;
     rhi::SamplerHandle point_;
 };
 

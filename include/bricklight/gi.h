@@ -174,7 +174,7 @@ struct DispatchDesc {
 // Hybrid reflections' distance-field half (docs/classify.md, "Hybrid reflections"): after this frame's dispatch(),
 // one reflection ray per listed display pixel, traced through the whole field (not only inside a pre-traced brick as
 // the GI's own specular rays are), reading the radiance cache where it hits and the environment where it leaves the
-// field. Each pixel's ray is classify::reflectionDirection's (shaders/include/bricklight/reflection_ray.glsl) for its
+// field. Each pixel's ray is blReflectionDirection's (shaders/include/bricklight/reflection_ray.glsl) for its
 // normal, roughness and `frameIndex`, so that a ray the screen-space trace gave up on continues as the same ray.
 //   input / output        holds
 //   rays                  uint per entry: display pixel x | y << 15, bits 29..31 copy flags (the pixel's horizontal,

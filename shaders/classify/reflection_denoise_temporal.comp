@@ -4,7 +4,7 @@
 // The reflection denoiser's temporal pass (classify::ReflectionDenoiser), over the listed tiles only: each pixel's
 // history is found by surface motion (its world position in the previous camera), kept only where the previous
 // depth there rebuilds the same point, clipped to this frame's 3×3 neighbourhood (mean ± 1.25 σ of the resolved
-// samples, against ghosting), and blended with this frame's sample by sample count. Mirrors keep a short history:
+// samples for mirrors, wider for glossy surfaces; against ghosting), and blended with this frame's sample by sample count. Mirrors keep a short history:
 // their reflections move against the surface when the camera moves.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "reflection_denoise_params.glsl"
@@ -58,7 +58,10 @@ void main() {
     if (previous.a > 0.0 && n > 0.0) {
         vec3 mean = sum / n;
         vec3 sigma = sqrt(max(sumSq / n - mean * mean, vec3(0.0)));
-        previous.rgb = clamp(previous.rgb, mean - 1.25 * sigma, mean + 1.25 * sigma);
+        // Glossy samples scatter widely about their mean: a tight box clips their history's bright tail and darkens
+        // them (roughness 0.3, 1.25 σ: 5 % of the floor's light), so the box widens with roughness.
+        float box = 1.25 + 2.75 * clamp(roughness / 0.3, 0.0, 1.0);
+        previous.rgb = clamp(previous.rgb, mean - box * sigma, mean + box * sigma);
     }
     float most = mix(4.0, params.normalScale.w, clamp(roughness / 0.3, 0.0, 1.0));
     vec4 result;

@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 // Screen-space reflections (classify::ReflectionClassifier::traceScreenSpace): dispatched indirectly over the padded
-// screen-space list, 32 entries a group, all of one tile. Each ray (reflection_ray.glsl's, the same the SDF pass
-// traces) marches the min/max depth pyramid in (pixel, depth) space, where a ray stays a straight line: a cell
+// screen-space list, 32 entries a group, all of one tile. Each ray (bricklight/reflection_ray.glsl's, the same the SDF
+// pass traces) marches the min/max depth pyramid in (pixel, depth) space, where a ray stays a straight line: a cell
 // whose closest depth lies behind the ray's stretch through it, or whose farthest lies more than `thickness` (a
 // fraction of its distance from the camera) in front of it, is skipped a level coarser; otherwise the march refines, and a pixel the ray reaches within the
 // thickness is the hit. A hit facing the ray, away from the screen's edges and seen by the previous camera takes
@@ -12,7 +12,7 @@
 layout(local_size_x = 32, local_size_y = 1, local_size_z = 1) in;
 
 #include "reflection_params.glsl"
-#include "reflection_ray.glsl"
+#include "bricklight/reflection_ray.glsl"  // the ray GiContext::traceReflectionRays continues
 BL_TEXTURE(0) uniform sampler2D depthTexture;
 BL_TEXTURE(1) uniform sampler2D normalTexture;
 BL_TEXTURE(2) uniform sampler2D roughnessTexture;
@@ -115,15 +115,17 @@ void main() {
     float roughness = blReflectionRoughness(texelFetch(roughnessTexture, p, 0));
     vec2 centre = vec2(p) + 0.5;
     vec3 world = blReflectionWorldPosition(centre, depth);
-    BlReflectionRay ray = blReflectionRay(pixel, params.frame.x, world, normal, blReflectionToViewer(centre, world), roughness * roughness);
+    vec3 toViewer = blReflectionToViewer(centre, world);
+    if (dot(normal, toViewer) < 0.0) normal = -normal;  // as the SDF pass: the side the camera sees
+    vec3 rayDirection = blReflectionDirection(pixel, params.frame.x, normal, toViewer, roughness);
 
     // The ray on screen: a straight line in (pixel, depth). Its far end is kept in front of the camera (w > 0).
     vec3 origin = vec3(centre, blReflectionNearSmall(depth));
     vec4 start = toScreen(world);
     float reach = max(length(blReflectionWorldPosition(centre, params.options.w != 0u ? 1.0 : 0.0) - world), 1.0e-3);
-    vec4 end = toScreen(world + ray.direction * reach);
+    vec4 end = toScreen(world + rayDirection * reach);
     float shrink = end.w < 0.1 * start.w ? 0.9 * start.w / max(start.w - end.w, 1.0e-20) : 1.0;
-    end = toScreen(world + ray.direction * reach * shrink);
+    end = toScreen(world + rayDirection * reach * shrink);
     vec3 d = end.xyz - start.xyz;
     float screenLength = length(d.xy);
     bool marchable = valid && screenLength > 1.0e-4;
@@ -145,7 +147,7 @@ void main() {
     float edge = min(min(uv.x, 1.0 - uv.x), min(uv.y, 1.0 - uv.y));
     float confidence = params.trace2.y > 0.0 ? clamp(edge / params.trace2.y, 0.0, 1.0) : 1.0;
     confidence *= clamp(2.0 - 2.0 * behind, 0.0, 1.0);  // full up to half the thickness
-    bool facing = dot(hitNormal, ray.direction) < 0.0;
+    bool facing = dot(hitNormal, rayDirection) < 0.0;
     bool seenBefore = previousClip.w > 0.0 && all(greaterThanEqual(previousUv, vec2(0.0))) && all(lessThanEqual(previousUv, vec2(1.0)));
     bool resolved = hit && facing && seenBefore && confidence >= params.trace2.z;
     vec3 radiance = textureLod(previousLit, previousUv, 0.0).rgb;

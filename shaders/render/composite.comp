@@ -10,8 +10,9 @@
 // through GI would count it twice). Glass pixels (alpha 1 in the glass pass's target: render/glass.frag) take
 // the glass's radiance in the combined image; the lit image keeps the opaque surface behind the glass, which is
 // what the G-buffer that GI reads holds there. With hybrid reflections (classify::ReflectionClassifier, docs/render.md)
-// their denoised result replaces the GI's specular by its weight, and the combined radiance of the opaque surfaces
-// (emission included) goes to `radianceForReflections`, which the next frame's screen-space reflections read.
+// their denoised result replaces the GI's specular by its weight; their screen-space rays read the lit image of the
+// previous frame, without the emitters' emission for the same reason as GI (the direct light samples the emitters
+// through the full BRDF, specular lobe included).
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_CONSTANTS(0) uniform Params {
     vec4 eye;     // xyz
@@ -28,7 +29,6 @@ BL_TEXTURE(7) uniform sampler2D reflections;    // rgb, a = weight over the GI's
 BL_READ_BUFFER(0) Direct { vec4 direct[]; };
 BL_STORAGE_BUFFER(0) Combined { vec4 combined[]; };
 BL_IMAGE(0, rgba16f) uniform writeonly image2D lit;
-BL_IMAGE(1, rgba16f) uniform writeonly image2D radianceForReflections;  // 1×1 when hybrid reflections are off
 
 vec2 splitSum(float roughness, float nDotV) {
     const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
@@ -74,6 +74,5 @@ void main() {
     vec4 glass = texelFetch(glassRadiance, min(ivec2(pixel), textureSize(glassRadiance, 0) - 1), 0);
     combined[index] = vec4(glass.a > 0.0 ? glass.rgb : radiance, 1.0);
     imageStore(lit, ivec2(pixel), vec4(max(sent - emission, vec3(0.0)), 1.0));
-    // A size query, not a branch on a constant (docs/notes/soak.md): the 1×1 stand-in takes no writes.
-    if (all(lessThan(ivec2(pixel), imageSize(radianceForReflections)))) imageStore(radianceForReflections, ivec2(pixel), vec4(radiance, 1.0));
+
 }

@@ -5,21 +5,21 @@
 #ifndef BRICKLIGHT_REFLECTION_RAY_GLSL
 #define BRICKLIGHT_REFLECTION_RAY_GLSL
 
-uint blReflectionHash(uint v) {  // PCG
+uint blReflectionRayHash(uint v) {  // PCG
     uint state = v * 747796405u + 2891336453u;
     uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return (word >> 22u) ^ word;
 }
 
 // Two numbers in [0, 1) for a pixel and frame.
-vec2 blReflectionRandom(uvec2 pixel, uint frameIndex) {
-    uint h = blReflectionHash(blReflectionHash(pixel.x * 0x8da6b343u ^ pixel.y * 0xd8163841u) ^ (frameIndex * 0x9e3779b9u));
-    uint h2 = blReflectionHash(h);
+vec2 blReflectionRayRandom(uvec2 pixel, uint frameIndex) {
+    uint h = blReflectionRayHash(blReflectionRayHash(pixel.x * 0x8da6b343u ^ pixel.y * 0xd8163841u) ^ (frameIndex * 0x9e3779b9u));
+    uint h2 = blReflectionRayHash(h);
     return vec2(float(h >> 8), float(h2 >> 8)) / 16777216.0;
 }
 
 // An orthonormal basis around unit n (Duff et al. 2017).
-void blReflectionBasis(vec3 n, out vec3 t, out vec3 b) {
+void blReflectionRayBasis(vec3 n, out vec3 t, out vec3 b) {
     float s = n.z >= 0.0 ? 1.0 : -1.0;
     float a = -1.0 / (s + n.z);
     float c = n.x * n.y * a;
@@ -28,13 +28,14 @@ void blReflectionBasis(vec3 n, out vec3 t, out vec3 b) {
 }
 
 // The reflection direction of a surface with unit normal n (facing the eye) and perceptual roughness r, seen
-// along unit `toEye` (surface to camera). GGX α = r² (at least 1e-3: below that, a mirror). Never below the surface.
+// along unit `toEye` (surface to camera). GGX α = r² (below 1e-4, a mirror). Never below the surface.
 vec3 blReflectionDirection(uvec2 pixel, uint frameIndex, vec3 n, vec3 toEye, float roughness) {
+    float alpha = roughness * roughness;
+    if (alpha < 1e-4) return normalize(reflect(-toEye, n));  // a mirror: its own direction, no sampling noise
     vec3 t, b;
-    blReflectionBasis(n, t, b);
+    blReflectionRayBasis(n, t, b);
     vec3 v = normalize(vec3(dot(toEye, t), dot(toEye, b), max(dot(toEye, n), 1e-4)));
-    float alpha = max(roughness * roughness, 1e-3);
-    vec2 u = blReflectionRandom(pixel, frameIndex);
+    vec2 u = blReflectionRayRandom(pixel, frameIndex);
     // The visible normal, sampled in the hemisphere configuration of the stretched view vector.
     vec3 vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
     float lensq = vh.x * vh.x + vh.y * vh.y;
