@@ -20,9 +20,9 @@ struct Params {
     glm::vec4 uvRect[kMaxShadowCascades];
     glm::vec4 sun, depthRange, normalScale, normalBias;
     glm::uvec4 size, options, options2;
-    glm::vec4 trace;
+    glm::vec4 trace, trust;
 };
-static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16);
+static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16 * 2);
 static_assert(sizeof(Params) == kShadowParamsBytes);
 
 bool finite(const glm::mat4& m) {
@@ -74,11 +74,13 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
     td.debugName = "shadow hit mask";
     c->hitMask_ = device.createTexture(td);
+    td.debugName = "shadow sure mask";
+    c->sureMask_ = device.createTexture(td);
     rhi::SamplerDesc sampler;
     sampler.minFilter = sampler.magFilter = sampler.mipFilter = rhi::Filter::Nearest;
     sampler.debugName = "shadow classifier point";
     c->point_ = device.createSampler(sampler);
-    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->point_)
+    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->sureMask_ || !c->point_)
         return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)");
     const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
     device.writeBuffer(c->count_, 0, counts, sizeof(counts));
@@ -88,7 +90,8 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
 ShadowClassifier::~ShadowClassifier() {
     for (rhi::BufferHandle b : {tiles_, count_, params_})
         if (b) device_.destroy(b);
-    if (hitMask_) device_.destroy(hitMask_);
+    for (rhi::TextureHandle t : {hitMask_, sureMask_})
+        if (t) device_.destroy(t);
     if (point_) device_.destroy(point_);
     for (rhi::ShaderHandle s : {classify_, trace_, resolve_})
         if (s) device_.destroy(s);
@@ -127,6 +130,11 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     if (!(d.sunAngle >= 0.0f && d.sunAngle < 0.5f)) return fail("sunAngle " + std::to_string(d.sunAngle) + " is outside 0..0.5 radians");
     if (!(d.rayPushOff >= 0.0f) || !std::isfinite(d.rayPushOff)) return fail("rayPushOff must be a finite number ≥ 0");
     if (!(d.rayNormalOffset >= 0.0f) || !std::isfinite(d.rayNormalOffset)) return fail("rayNormalOffset must be a finite number ≥ 0");
+    // The field saturates at 2 brixels (kDistanceBandBrixels), 3.33 hit epsilons: a larger sure-miss epsilon would
+    // take every voxel with a brick for a hit.
+    if (!(d.sureHitEpsilon > 0.0f && d.sureHitEpsilon <= d.sureMissEpsilon && d.sureMissEpsilon <= 3.0f))
+        return fail("sureHitEpsilon and sureMissEpsilon must satisfy 0 < sureHitEpsilon <= sureMissEpsilon <= 3");
+    if (!(d.selfClearance >= 0.0f && d.selfClearance <= 16.0f)) return fail("selfClearance must lie in 0..16 brixels");
     if (d.tileCutOff > 32) return fail("tileCutOff " + std::to_string(d.tileCutOff) + " is more than a tile's 32 pixels");
     Params p{};
     p.inverseViewProjection = inverse;
@@ -136,10 +144,12 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     p.size = glm::uvec4(width_, height_, tilesX(), uint32_t(d.mode));
     p.options = glm::uvec4(0u, d.blockerTaps, d.rejectLitPixels ? 1u : 0u, d.cascadeRayInterval ? 1u : 0u);
     p.options2 = glm::uvec4(d.tileCutOff, d.reversedDepth ? 1u : 0u, 1u, 1u);
+    p.size.w |= d.markUnsurePixels ? 2u : 0u;  // bit 1: resolve() marks unsure pixels
     // y: the field's hit epsilon scale; z: the radius of the disc the soft rays' directions cover (tan of half the
     // sun's angle, 0 for hard rays); w: the frame's sample index, as a float (exact below 2^24; a float, not its bits,
     // so that no denormal flush can touch it).
     p.trace = glm::vec4(d.rayNormalOffset, 1.0f, d.softShadows ? std::tan(0.5f * d.sunAngle) : 0.0f, float(d.frameIndex & 0xFFFFFFu));
+    p.trust = glm::vec4(d.sureHitEpsilon, d.sureMissEpsilon, d.selfClearance, d.sureRaysOnly ? 1.0f : 0.0f);
     rhi::TextureHandle shadowMap = d.depth;  // bound in Normals mode too (never read there)
     if (d.mode == ShadowClassifyMode::Cascades) {
         if (!sized(d.shadowMap, "shadowMap", true)) return false;
@@ -184,6 +194,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, tiles_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
+    s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::Write));
     if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)");  // 2 × 4 tiles a group
     depth_ = d.depth;
     normals_ = d.normals;
@@ -205,6 +216,7 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
     s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(depth_), point_});
     s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(normals_), point_});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::ReadWrite));
+    s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::ReadWrite));
     field.traceBindings(s.bindings);
     if (!device_.dispatchIndirect(s, count_, 0)) {
         if (error) *error = "shadow classifier: the device refused the trace (see its messages)";
@@ -232,6 +244,7 @@ bool ShadowClassifier::resolve(rhi::TextureHandle output, std::string* error) {
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Read));
     s.bindings.storageImages.push(rhi::storageImage(1, output, rhi::Access::Write));
+    s.bindings.storageImages.push(rhi::storageImage(2, sureMask_, rhi::Access::Read));
     return device_.dispatch(s, (width_ + 15) / 16, (height_ + 15) / 16, 1);
 }
 

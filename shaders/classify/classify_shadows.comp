@@ -20,6 +20,7 @@ BL_STORAGE_BUFFER(0) Tiles { uvec4 tiles[]; } list;
 // listed tiles.
 BL_STORAGE_BUFFER(1) Counts { uint counts[8]; } count;
 BL_IMAGE(0, r32ui) uniform writeonly uimage2D hitMask;
+BL_IMAGE(1, r32ui) uniform writeonly uimage2D sureMask;  // bit set: the answer is sure (no ray, or a sure ray later)
 
 const float kNoEnd = 3.0e38;  // a ray interval without an end
 shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
@@ -48,7 +49,7 @@ void main() {
     bool isActive = surface && facing;
     bool needsRay = isActive, answer = surface && !facing;  // facing away: shadowed, no ray
     float t0 = params.normalBias.w, t1 = kNoEnd;
-    bool cascadesMode = params.size.w == 1u && isActive;
+    bool cascadesMode = (params.size.w & 1u) == 1u && isActive;
     if (cascadesMode) {
         vec3 world = blShadowWorldPosition(pixel, depth);
         uint cascade = params.options.x;
@@ -122,4 +123,7 @@ void main() {
     }
     atomicAdd(count.counts[6], bitCount(activeMask[slot]));
     imageStore(hitMask, ivec2(tile), uvec4(answerMask[slot]));
+    // Every pixel without a ray was decided (sky, facing away, all or no taps blocking); cut-off tiles' ray pixels
+    // keep the taps' majority, unsure.
+    imageStore(sureMask, ivec2(tile), uvec4(~rayMask[slot]));
 }

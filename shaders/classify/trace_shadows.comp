@@ -18,8 +18,9 @@ BL_TEXTURE(1) uniform sampler2D normalTexture;
 BL_READ_BUFFER(1) Tiles { uvec4 tiles[]; } list;
 BL_READ_BUFFER(2) Counts { uint counts[8]; } count;  // [7]: the listed tiles
 BL_IMAGE(0, r32ui) uniform uimage2D hitMask;
+BL_IMAGE(1, r32ui) uniform uimage2D sureMask;
 
-shared uint hits[8];
+shared uint hits[8], decided[8];
 
 uint hashPixel(uvec2 p) {
     uint v = (p.x | (p.y << 16u)) * 747796405u + 2891336453u;
@@ -42,6 +43,24 @@ vec3 sunSample(vec3 sun, ivec2 pixel) {
     return normalize(sun + r * (cos(phi) * t + sin(phi) * b));
 }
 
+// The hit epsilon and brixel (world units) of the finest cascade that holds p: the field's resolution at the receiver.
+vec2 fieldResolutionAt(vec3 p) {
+    vec2 r = vec2(0.0);
+    bool found = false;
+    uint cascades = blSdfTable.header.x;
+    for (uint c = 0u; c < cascades; ++c) {
+        BlSdfCascade info = blSdfTable.cascades[c];
+        vec3 local = p * info.voxelSize.y - vec3(info.origin.xyz);
+        bool inside = info.origin.w != 0 && all(greaterThanEqual(local, vec3(0.0))) && all(lessThan(local, vec3(64.0)));
+        if (inside && !found) {
+            r = vec2(info.voxelSize.z, info.voxelSize.x / 7.0);
+            found = true;
+        }
+        if (!found) r = vec2(info.voxelSize.z, info.voxelSize.x / 7.0);  // beyond every cascade: the coarsest
+    }
+    return r;
+}
+
 void main() {
     uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
     uint index = gl_WorkGroupID.x * 8u + slot;
@@ -50,19 +69,55 @@ void main() {
     ivec2 tile = ivec2(record.x & 0xFFFFu, record.x >> 16u);
     ivec2 pixel = tile * ivec2(8, 4) + ivec2(lane & 7u, lane >> 3u);
     uint bit = 1u << lane;
-    if (lane == 0u) hits[slot] = 0u;
+    if (lane == 0u) {
+        hits[slot] = 0u;
+        decided[slot] = 0u;
+    }
     barrier();
     if ((record.y & bit) != 0u) {
         float depth = texelFetch(depthTexture, pixel, 0).r;
         vec3 n = normalize(texelFetch(normalTexture, pixel, 0).xyz * params.normalScale.xyz + params.normalBias.xyz);
-        vec3 origin = blShadowWorldPosition(pixel, depth) + n * params.trace.x;
-        BlSdfRay ray = blSdfMakeRay(origin, sunSample(params.sun.xyz, pixel), uintBitsToFloat(record.z), uintBitsToFloat(record.w));
-        ray.epsilonScale = params.trace.y;
-        if (blSdfTrace(ray).hit) atomicOr(hits[slot], bit);
+        vec3 position = blShadowWorldPosition(pixel, depth);
+        vec3 origin = position + n * params.trace.x;
+        vec3 direction = sunSample(params.sun.xyz, pixel);
+        float t0 = uintBitsToFloat(record.z), t1 = uintBitsToFloat(record.w);
+        bool sure = params.trust.w != 0.0;
+        bool hit = false, known = true;
+        if (sure) {
+            // Sure rays: a thin ray (a fraction of the hit epsilon) hits only where it passes through a surface; a fat
+            // one misses only where nothing lies within the field's interpolation error of it. Each starts where its
+            // own epsilon no longer sees the receiver's plane along the ray.
+            vec2 res = fieldResolutionAt(position);
+            float cosine = dot(n, direction);
+            float slope = 1.0 / max(cosine, 0.1);
+            float thinStart = (params.trust.x * res.x + params.trust.z * res.y) * slope;
+            float fatStart = (params.trust.y * res.x + params.trust.z * res.y) * slope;
+            BlSdfRay thin = blSdfMakeRay(origin, direction, max(t0, thinStart), t1);
+            thin.epsilonScale = params.trust.x;
+            BlSdfHit h = blSdfTrace(thin);
+            // A disc sample below the receiver's horizon: the receiver itself blocks it.
+            hit = h.hit || cosine <= 0.0;
+            if (!hit) {
+                BlSdfRay fat = blSdfMakeRay(origin, direction, max(t0, fatStart), t1);
+                fat.epsilonScale = params.trust.y;
+                BlSdfHit f = blSdfTrace(fat);
+                // A miss is sure only where the fat ray covered the whole interval the taps asked for.
+                known = !f.hit && !f.gaveUp && t0 >= fatStart;
+            }
+        } else {
+            BlSdfRay ray = blSdfMakeRay(origin, direction, t0, t1);
+            ray.epsilonScale = params.trace.y;
+            hit = blSdfTrace(ray).hit;
+        }
+        if (hit) atomicOr(hits[slot], bit);
+        if (known) atomicOr(decided[slot], bit);
     }
     barrier();
     if (lane == 0u && listed) {
+        // Only the decided bits change: the others keep the shadow maps' answer.
+        uint mask = record.y & decided[slot];
         uint before = imageLoad(hitMask, tile).x;
-        imageStore(hitMask, tile, uvec4((before & ~record.y) | hits[slot]));
+        imageStore(hitMask, tile, uvec4((before & ~mask) | (hits[slot] & mask)));
+        imageStore(sureMask, tile, uvec4(imageLoad(sureMask, tile).x | mask));
     }
 }

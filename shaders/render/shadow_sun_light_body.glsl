@@ -43,6 +43,8 @@ void main() {
     if (cosSun > 0.0) {
 #ifdef SUN_VISIBILITY_FROM_MASK
         visibility = texelFetch(sunMask, ivec2(pixel), 0).r;
+        // −1: neither the classification nor a sure ray decided the pixel; the maps' own filtered answer.
+        if (visibility < 0.0) visibility = sunShadowVisibility(p, n, params.eye.xyz);
 #else
         visibility = sunShadowVisibility(p, n, params.eye.xyz);
 #endif

@@ -137,14 +137,14 @@ void sunVisibilityMatchesExact(const std::string& backend) {
         WARN(scene.name << " " << backend << ": hybrid sun visibility differs on " << h.differ << " of " << h.compared << " pixels (" << h.falseShadow << " shadowed where lit; maps alone " << v.falseShadow << "); "
                         << k.rayPixels << " of " << k.activePixels << " active pixels traced in " << k.listedTiles
                         << " tiles; direct vs bvh relMSE " << mh.relMse);
-        // Measured: atrium 187 of 4977 wrong (3.8 %; 145 shadowed where lit), 1562 pixels traced in 95 tiles; two-rooms
-        // 38 of 7151 (0.53 %), 144 traced in 9 tiles. Worse than the maps alone: the renderer's field (64 voxels
-        // across the scene) fattens and thins the blockers at the very edges the classifier sends to it (on the
-        // classifier tests' plate, resolved by the field, the rays fix every pixel the maps get wrong). Bounds:
-        // twice the measured.
+        // Measured (lavapipe; llvmpipe within a pixel): atrium 13 of 4977 wrong (0.26 %; 8 shadowed where lit) vs the
+        // maps' 17 (0.34 %), two-rooms 4 of 7151 (0.06 %) vs 8 (0.11 %); 1562 and 144 pixels traced. Sure rays
+        // only (a thin ray's hit, a fat ray's miss; the maps' PCF answer elsewhere) through a field with 3 cascades
+        // finer than the scene-wide one, around the camera. Before: 187 (3.8 %) and 38 (0.53 %), every ray deciding
+        // from an origin a voxel out along the normal. The wrong-pixel fraction must beat the maps'.
         CHECK(k.listedTiles > 0);
         CHECK(k.rayPixels < k.activePixels / 2);
-        CHECK(double(h.differ) / double(std::max<size_t>(h.compared, 1)) < 0.08);
+        CHECK(h.differ < v.differ);
     }
     REQUIRE_NO_MESSAGES(td);
 }
@@ -187,6 +187,131 @@ void classificationIsConservative(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The sun-disc visibility a sun of angular size casts (what the path tracer integrates: directions uniform over the
+// disc, SceneLight.sunDirection.w = tan of half the angle), exactly on the CPU: per sun-facing pixel, the centre and
+// 8 rim directions; where they disagree (the penumbra) 64 stratified directions over the disc. 1 lit .. 0 shadowed,
+// −1 for the sky and pixels facing away.
+std::vector<float> exactSunDiscVisibility(TestDevice& td, render::RasterRenderer& r, const scenes::SceneGeometry& scene) {
+    std::vector<glm::dvec3> tris;
+    for (const scenes::MeshInstance& inst : scene.instances) {
+        const scenes::TriangleMesh& m = scene.meshes[inst.mesh];
+        for (uint32_t index : m.indices)
+            tris.emplace_back(inst.transform * glm::vec4(m.positions[3 * index], m.positions[3 * index + 1], m.positions[3 * index + 2], 1.0f));
+    }
+    const render::GBufferView g = r.gbuffer();
+    const size_t pixels = size_t(kSize) * kSize;
+    std::vector<glm::vec4> position(pixels);
+    std::vector<uint16_t> normal(pixels * 4);
+    REQUIRE(td.device->readTexture(g.position, {}, position.data()));
+    REQUIRE(td.device->readTexture(g.normal, {}, normal.data()));
+    const glm::dvec3 sun = glm::normalize(glm::dvec3(scene.environment.sunDirection));
+    const glm::dvec3 t = glm::normalize(glm::cross(sun, std::fabs(sun.y) < 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0)));
+    const glm::dvec3 b = glm::cross(sun, t);
+    const double radius = std::tan(0.5 * double(scene.environment.sunAngle));
+    const double tMin = 1e-4 * glm::length(glm::dvec3(scene.boundsMax - scene.boundsMin));
+    auto towards = [&](double r01, double phi) { return glm::normalize(sun + radius * r01 * (std::cos(phi) * t + std::sin(phi) * b)); };
+    std::vector<float> exact(pixels, -1.0f);
+    for (size_t i = 0; i < pixels; ++i) {
+        if (position[i].w == 0.0f) continue;
+        const glm::dvec3 n = glm::normalize(glm::dvec3(halfToFloat(normal[4 * i]), halfToFloat(normal[4 * i + 1]), halfToFloat(normal[4 * i + 2])));
+        if (glm::dot(n, sun) <= 0.0) continue;
+        const glm::dvec3 p(position[i]);
+        auto lit = [&](const glm::dvec3& d) { return glm::dot(n, d) > 0.0 && !occluded(tris, p, d, tMin); };
+        int probes = lit(sun) ? 1 : 0;
+        for (int k = 0; k < 8; ++k) probes += lit(towards(1.0, 0.785398 * k)) ? 1 : 0;
+        if (probes == 0 || probes == 9) {
+            exact[i] = probes == 9 ? 1.0f : 0.0f;
+            continue;
+        }
+        int litCount = 0;
+        for (int a = 0; a < 8; ++a)
+            for (int c = 0; c < 8; ++c) litCount += lit(towards(std::sqrt((a + 0.5) / 8.0), 6.283185307 * (c + 0.5 + 0.5 * (a & 1)) / 8.0)) ? 1 : 0;
+        exact[i] = float(litCount) / 64.0f;
+    }
+    return exact;
+}
+
+struct PenumbraError {
+    double relMse = 0.0;
+    size_t pixels = 0;
+};
+
+// relMSE of the renderer's sun visibility against the exact sun-disc visibility over the penumbra (the pixels whose
+// exact visibility is neither 0 nor 1).
+PenumbraError penumbraError(render::RasterRenderer& r, const std::vector<float>& exact) {
+    const render::Image vis = r.readSunVisibility();
+    REQUIRE(vis.width == kSize);
+    render::Image ref = vis;
+    std::vector<uint8_t> mask(exact.size(), 0);
+    PenumbraError e;
+    for (size_t i = 0; i < exact.size(); ++i) {
+        ref.rgb[3 * i] = ref.rgb[3 * i + 1] = ref.rgb[3 * i + 2] = std::max(exact[i], 0.0f);
+        mask[i] = exact[i] > 0.0f && exact[i] < 1.0f ? 1 : 0;
+        e.pixels += mask[i];
+    }
+    e.relMse = render::compareImages(vis, ref, &mask).relMse;
+    return e;
+}
+
+void softHybridBeatsMapsInPenumbra(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    for (float degrees : {3.0f, 0.5f}) {
+        scenes::SceneGeometry scene = scenes::atrium();
+        scene.environment.sunAngle = glm::radians(degrees);
+        auto mapped = shadowRenderer(td, scene, render::ShadowMode::ShadowMap);
+        const std::vector<float> exact = exactSunDiscVisibility(td, *mapped, scene);
+        const PenumbraError m = penumbraError(*mapped, exact);
+        auto hybrid = shadowRenderer(td, scene, render::ShadowMode::Hybrid);
+        frames(td, *hybrid, 15);
+        const PenumbraError h = penumbraError(*hybrid, exact);
+        WARN(scene.name << " " << backend << " sun " << degrees << " deg: penumbra relMSE hybrid " << h.relMse << ", maps " << m.relMse << " over " << m.pixels << " pixels");
+        CHECK(h.relMse < m.relMse);
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
+// The denoiser after the camera moves: soft hybrid shadows converged over 12 frames at the atrium's camera, then the
+// camera steps 0.6 m sideways and turns; 3 frames later the visibility must be as close to the exact sun-disc one as
+// that of a renderer that started at the new camera 3 frames ago (its history holds only the new view). History
+// reprojected from the old view without the disocclusion test or the clamp would drag old penumbrae along (ghosts).
+void softShadowsFollowAMovingCamera(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry scene = scenes::atrium();
+    scene.environment.sunAngle = glm::radians(3.0f);
+    scenes::Camera moved = scene.camera;
+    moved.eye += glm::vec3(0.6f, 0.0f, -0.3f);
+    moved.at += glm::vec3(-1.0f, 0.0f, 1.5f);
+    auto error = [&](render::RasterRenderer& r, const std::vector<float>& exact) {
+        const render::Image vis = r.readSunVisibility();
+        double sum = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < exact.size(); ++i)
+            if (exact[i] >= 0.0f) {
+                sum += std::fabs(vis.rgb[3 * i] - exact[i]);
+                ++n;
+            }
+        return sum / double(std::max<size_t>(n, 1));
+    };
+    auto walker = shadowRenderer(td, scene, render::ShadowMode::Hybrid);
+    frames(td, *walker, 11);
+    std::string why;
+    REQUIRE(walker->setCamera(moved, &why));
+    frames(td, *walker, 3);
+    const std::vector<float> exact = exactSunDiscVisibility(td, *walker, scene);
+    const double afterMove = error(*walker, exact);
+    scenes::SceneGeometry there = scene;
+    there.camera = moved;
+    auto fresh = shadowRenderer(td, there, render::ShadowMode::Hybrid);
+    frames(td, *fresh, 2);
+    const double started = error(*fresh, exact);
+    WARN("atrium " << backend << " 3 deg sun, camera moved: mean |visibility - exact| " << afterMove << " 3 frames after the move, "
+                   << started << " for a renderer started there 3 frames ago");
+    CHECK(afterMove < 1.25 * started + 1e-3);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 void badShadowOptionsRefused(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
@@ -220,6 +345,8 @@ void badShadowOptionsRefused(const std::string& backend) {
 BACKEND_TEST("shadows: shadow-map sun visibility matches the exact visibility", "[render][shadows]", sunVisibilityMatchesExact)
 BACKEND_TEST("shadows: bad shadow-map parameters are refused", "[render][shadows]", badShadowOptionsRefused)
 BACKEND_TEST("shadows: the classification lists every pixel the maps get wrong", "[render][shadows]", classificationIsConservative)
+BACKEND_TEST("shadows: soft hybrid shadows beat the maps in the penumbra", "[render][shadows]", softHybridBeatsMapsInPenumbra)
+BACKEND_TEST("shadows: the shadow denoiser leaves no ghosts when the camera moves", "[render][shadows]", softShadowsFollowAMovingCamera)
 
 #if defined(BRICKLIGHT_HAS_VULKAN) && defined(BRICKLIGHT_HAS_GL)
 TEST_CASE("shadows: Vulkan and GL give the same shadow-map image", "[render][cross][shadows]") {
