@@ -3,6 +3,7 @@
 // trace and the debug view are in reflection_trace.cpp. docs/classify.md.
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "bricklight/reflection_classifier.h"
 #include "reflection_params.h"
@@ -41,7 +42,8 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
     c->width_ = width;
     c->height_ = height;
     for (auto [name, shader] : {std::pair{"classify/classify_reflections.comp", &c->classify_}, std::pair{"classify/reflection_args.comp", &c->args_},
-                                std::pair{"classify/trace_reflections_screen.comp", &c->trace_}, std::pair{"classify/reflection_debug.comp", &c->debug_}}) {
+                                std::pair{"classify/trace_reflections_screen.comp", &c->trace_}, std::pair{"classify/reflection_debug.comp", &c->debug_},
+                                std::pair{"classify/clear_rgba16f.comp", &c->clear_}}) {
         rhi::ShaderDesc sd;
         sd.blob = rhi::findShader(name);
         *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
@@ -71,6 +73,8 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
     c->hitCounters_[1] = device.createTexture(td);
     td.debugName = "reflection tile info";
     c->tileInfo_ = device.createTexture(td);
+    td.debugName = "reflection tile statistics";
+    c->tileStats_ = device.createTexture(td);
     const float still[2] = {0.0f, 0.0f};
     td.format = rhi::Format::RG32_FLOAT;
     td.width = td.height = 1;
@@ -84,22 +88,22 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
     sampler.minFilter = sampler.magFilter = rhi::Filter::Linear;
     sampler.debugName = "reflection classifier linear";
     c->linear_ = device.createSampler(sampler);
-    if (!c->classify_ || !c->args_ || !c->trace_ || !c->debug_ || !c->screenList_ || !c->sdfList_ || !c->denoiseList_ || !c->counts_ || !c->params_ ||
-        !c->hitCounters_[0] || !c->hitCounters_[1] || !c->tileInfo_ || !c->noMotion_ || !c->point_ || !c->linear_)
+    if (!c->classify_ || !c->args_ || !c->trace_ || !c->debug_ || !c->clear_ || !c->screenList_ || !c->sdfList_ || !c->denoiseList_ || !c->counts_ || !c->params_ ||
+        !c->hitCounters_[0] || !c->hitCounters_[1] || !c->tileInfo_ || !c->tileStats_ || !c->noMotion_ || !c->point_ || !c->linear_)
         return fail("the device could not create the classifier's buffers, textures or passes (see its messages)");
     rhi::ClearValue zero{};
-    for (rhi::TextureHandle t : {c->hitCounters_[0], c->hitCounters_[1], c->tileInfo_}) device.clearTexture(t, 0, 1, zero);
+    for (rhi::TextureHandle t : {c->hitCounters_[0], c->hitCounters_[1], c->tileInfo_, c->tileStats_}) device.clearTexture(t, 0, 1, zero);
     return c;
 }
 
 ReflectionClassifier::~ReflectionClassifier() {
     for (rhi::BufferHandle b : {screenList_, sdfList_, denoiseList_, counts_, params_})
         if (b) device_.destroy(b);
-    for (rhi::TextureHandle t : {hitCounters_[0], hitCounters_[1], tileInfo_, noMotion_})
+    for (rhi::TextureHandle t : {hitCounters_[0], hitCounters_[1], tileInfo_, tileStats_, noMotion_})
         if (t) device_.destroy(t);
     for (rhi::SamplerHandle s : {point_, linear_})
         if (s) device_.destroy(s);
-    for (rhi::ShaderHandle s : {classify_, args_, trace_, debug_})
+    for (rhi::ShaderHandle s : {classify_, args_, trace_, debug_, clear_})
         if (s) device_.destroy(s);
 }
 
@@ -171,8 +175,11 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string
     p.options = glm::uvec4(d.samplesPerQuad, d.roughnessChannel, d.roughnessPerceptual ? 1u : 0u, d.reversedDepth ? 1u : 0u);
     p.options2 = glm::uvec4(d.useHitCounter ? 1u : 0u, d.useScreenSpace ? 1u : 0u, d.useSdf ? 1u : 0u, d.motionVectors ? 1u : 0u);
     p.frame = glm::uvec4(d.frameIndex, 0u, 0u, 0u);
-    if (!writeParams(&p, 0, offsetof(ReflectionParams, trace))) return fail("the device refused the parameters (see its messages)");
-    device_.clearBuffer(counts_, {}, 0u);
+    device_.beginMarker("parameters and counts");
+    const bool paramsOk = writeParams(&p, 0, offsetof(ReflectionParams, trace));
+    if (paramsOk) device_.clearBuffer(counts_, {}, 0u);
+    device_.endMarker();
+    if (!paramsOk) return fail("the device refused the parameters (see its messages)");
 
     const rhi::TextureHandle history = hitCounters_[current_], written = hitCounters_[current_ ^ 1u];
     rhi::DispatchState s;
@@ -190,6 +197,7 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string
     s.bindings.storageImages.push(rhi::storageImage(0, history, rhi::Access::Read));
     s.bindings.storageImages.push(rhi::storageImage(1, written, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(2, tileInfo_, rhi::Access::Write));
+    s.bindings.storageImages.push(rhi::storageImage(3, tileStats_, rhi::Access::Write));
     if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)");
     if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)");
     current_ ^= 1u;
@@ -212,19 +220,28 @@ bool ReflectionClassifier::recordArgs() {
 ReflectionClassifyCounts ReflectionClassifier::readCounts() {
     uint32_t w[kReflectionCountWords] = {};
     ReflectionClassifyCounts c;
-    if (!device_.readBuffer(counts_, 0, sizeof(w), w)) return c;
+    const size_t tiles = size_t(tilesX()) * tilesY();
+    std::vector<uint32_t> info(tiles), stats(tiles);
+    if (!device_.readBuffer(counts_, 0, sizeof(w), w) || !device_.readTexture(tileInfo_, {}, info.data()) ||
+        !device_.readTexture(tileStats_, {}, stats.data()))
+        return c;
     c.screenEntries = w[9];
-    c.screenRays = w[10];
     c.sdfRays = w[11];
     c.denoiseTiles = w[12];
-    c.rayPixels = w[13];
-    c.surfacePixels = w[14];
-    c.screenSpaceFirstTiles = w[15];
-    c.checkerboardTiles = w[16];
-    c.sdfOnlyTiles = w[17];
-    c.screenHits = w[18];
-    c.screenMisses = w[19];
-    c.glossyPixels = w[20];
+    uint32_t classifiedSdf = 0, sdfAfterTrace = 0;
+    for (size_t t = 0; t < tiles; ++t) {
+        const uint32_t i = info[t], st = stats[t];
+        uint32_t* perClass[3] = {&c.screenSpaceFirstTiles, &c.checkerboardTiles, &c.sdfOnlyTiles};
+        if ((i & 3u) < 3u) ++*perClass[i & 3u];
+        c.screenRays += (i >> 8) & 0xFFu;
+        sdfAfterTrace += (i >> 16) & 0xFFu;
+        c.screenHits += i >> 24;
+        c.surfacePixels += st & 0xFFu;
+        c.glossyPixels += (st >> 8) & 0xFFu;
+        classifiedSdf += (st >> 16) & 0xFFu;
+        c.rayPixels += st >> 24;
+    }
+    c.screenMisses = sdfAfterTrace - classifiedSdf;  // what the trace appended
     return c;
 }
 

@@ -43,7 +43,8 @@ std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& dev
     d->width_ = width;
     d->height_ = height;
     for (auto [name, shader] : {std::pair{"classify/reflection_denoise_temporal.comp", &d->temporal_},
-                                std::pair{"classify/reflection_denoise_spatial.comp", &d->spatial_}}) {
+                                std::pair{"classify/reflection_denoise_spatial.comp", &d->spatial_},
+                                std::pair{"classify/clear_rgba16f.comp", &d->clear_}}) {
         rhi::ShaderDesc sd;
         sd.blob = rhi::findShader(name);
         *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
@@ -69,7 +70,7 @@ std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& dev
     sampler.minFilter = sampler.magFilter = sampler.mipFilter = rhi::Filter::Nearest;
     sampler.debugName = "reflection denoiser point";
     d->point_ = device.createSampler(sampler);
-    if (!d->temporal_ || !d->spatial_ || !d->history_[0] || !d->history_[1] || !d->historyDepth_[0] || !d->historyDepth_[1] || !d->params_ || !d->point_)
+    if (!d->temporal_ || !d->spatial_ || !d->clear_ || !d->history_[0] || !d->history_[1] || !d->historyDepth_[0] || !d->historyDepth_[1] || !d->params_ || !d->point_)
         return fail("the device could not create the denoiser's histories, parameters or passes (see its messages)");
     return d;
 }
@@ -79,7 +80,7 @@ ReflectionDenoiser::~ReflectionDenoiser() {
         if (t) device_.destroy(t);
     if (params_) device_.destroy(params_);
     if (point_) device_.destroy(point_);
-    for (rhi::ShaderHandle s : {temporal_, spatial_})
+    for (rhi::ShaderHandle s : {temporal_, spatial_, clear_})
         if (s) device_.destroy(s);
 }
 
@@ -154,9 +155,16 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
     device_.beginMarker("reflection denoiser");
     // Unlisted pixels hold nothing this frame: their history restarts when their tile is listed again, and the
     // composite keeps the GI's specular there.
-    const rhi::ClearValue zero{};
-    device_.clearTexture(history_[cur], 0, 1, zero);
-    device_.clearTexture(d.output, 0, 1, zero);
+    device_.beginMarker("clears");
+    for (rhi::TextureHandle t : {history_[cur], d.output}) {
+        rhi::DispatchState s;
+        s.shader = clear_;
+        s.label = "reflection denoise clear";
+        s.bindings.storageImages.push(rhi::storageImage(0, t, rhi::Access::Write, 0));
+        device_.dispatch(s, (width_ + 15) / 16, (height_ + 15) / 16, 1);
+    }
+    device_.endMarker();
+    device_.beginMarker("temporal");
     {
         rhi::DispatchState s;
         s.shader = temporal_;
@@ -173,6 +181,8 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
         s.bindings.storageImages.push(rhi::storageImage(1, historyDepth_[cur], rhi::Access::Write, 0));
         device_.dispatchIndirect(s, d.arguments, d.argumentsOffset);
     }
+    device_.endMarker();
+    device_.beginMarker("spatial");
     {
         rhi::DispatchState s;
         s.shader = spatial_;
@@ -187,6 +197,7 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
         s.bindings.storageImages.push(rhi::storageImage(0, d.output, rhi::Access::Write, 0));
         device_.dispatchIndirect(s, d.arguments, d.argumentsOffset);
     }
+    device_.endMarker();
     device_.endMarker();
     ++frame_;
     historyValid_ = true;

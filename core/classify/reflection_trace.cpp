@@ -50,8 +50,15 @@ bool ReflectionClassifier::traceScreenSpace(const ReflectionTraceDesc& d, std::s
     static_assert(sizeof(section) == offsetof(ReflectionParams, debug) - offsetof(ReflectionParams, trace));
     if (!writeParams(&section, offsetof(ReflectionParams, trace), sizeof(section))) return fail("the device refused the parameters (see its messages)");
     // Texels without a resolved ray read a = 0 (the pass writes only the resolved ones).
-    rhi::ClearValue zero{};
-    device_.clearTexture(d.output, 0, 1, zero);
+    device_.beginMarker("clear");
+    {
+        rhi::DispatchState s;
+        s.shader = clear_;
+        s.label = "reflection output clear";
+        s.bindings.storageImages.push(rhi::storageImage(0, d.output, rhi::Access::Write, 0));
+        device_.dispatch(s, (width_ + 15) / 16, (height_ + 15) / 16, 1);
+    }
+    device_.endMarker();
     rhi::DispatchState s;
     s.shader = trace_;
     s.label = "trace screen-space reflections";

@@ -182,8 +182,10 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
         std::memcpy(lastParams_.data(), &p, sizeof(p));
         paramsWritten_ = true;
     }
+    device_.beginMarker("counts");
     device_.clearBuffer(count_, rhi::BufferRange{0, 4}, 0u);
     device_.clearBuffer(count_, rhi::BufferRange{12, (kCountWords - 3) * 4}, 0u);  // words 3..7
+    device_.endMarker();
     rhi::DispatchState s;
     s.shader = classify_;
     s.label = "classify shadows";

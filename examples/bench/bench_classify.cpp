@@ -116,6 +116,8 @@ int runClassify(const Options& o) {
                 geometry.name.c_str(), device->capabilities().deviceName.c_str(), o.width, o.height, mapSize, o.cascades, o.classifyTaps);
     std::printf("shadow classification %.3f ms, rays %.3f ms, resolve %.3f ms (mean of %u frames)\n", t.perFrame("shadow classify"),
                 t.perFrame("shadow rays"), t.perFrame("shadow resolve"), o.frames);
+    for (const auto& [label, ms] : t.total)  // the classifier's own markers inside the classification
+        if (label.rfind("shadow classify/", 0) == 0) std::printf("  %-40s %9.3f ms\n", label.c_str(), ms / o.frames);
     const uint32_t pixels = o.width * o.height;
     std::printf("pixels facing the sun %u of %u; needing a ray %u (%.1f %% of all pixels) in %u listed tiles of %u\n", counts.activePixels, pixels,
                 counts.rayPixels, 100.0 * counts.rayPixels / pixels, counts.listedTiles, classifier->tilesX() * classifier->tilesY());

@@ -23,12 +23,12 @@ constexpr uint32_t kReflectionSdfGroupRays = 64;       // SDF trace: 64 SDF-list
 constexpr uint32_t kReflectionHelperEntry = 0xFFFFFFFFu;  // padding in the screen-space list: no ray
 constexpr size_t kReflectionParamsBytes = 512;         // the passes' parameter block (internal)
 
-// The arguments buffer (rayCounts()): dispatchIndirect arguments at these byte offsets, then the counts.
+// The arguments buffer (rayCounts()): dispatchIndirect arguments at these byte offsets, then the counts (the rest of
+// readCounts()'s figures are per tile: tile info and tile statistics).
 constexpr uint64_t kReflectionArgsScreenTrace = 0;  // {padded entries / 32, 1, 1}: traceScreenSpace()
 constexpr uint64_t kReflectionArgsSdfTrace = 12;    // {⌈SDF rays / 64⌉, 1, 1}: the SDF pass, 64 rays a group
 constexpr uint64_t kReflectionArgsDenoise = 24;     // {denoiser tiles, 1, 1}: one 8×8 group per listed tile
 constexpr uint64_t kReflectionCountScreenEntries = 36;  // uint: screen-space list length, helpers included
-constexpr uint64_t kReflectionCountScreenRays = 40;     // uint: screen-space rays (no helpers)
 constexpr uint64_t kReflectionCountSdfRays = 44;        // uint: SDF list length (the SDF pass's ray count)
 constexpr uint64_t kReflectionCountDenoiseTiles = 48;   // uint: denoiser list length
 constexpr uint32_t kReflectionCountWords = 24;
@@ -118,7 +118,11 @@ enum class ReflectionDebugMode : uint32_t { TileClass, RaysPerTile, HitCounter }
 //   hit counters ×2          R32_UINT ⌈W/8⌉ × ⌈H/8⌉, ping-pong     per tile: new hits (bits 0..7), new misses (8..15),
 //                                                                 previous hits (16..23), previous misses (24..31)
 //   tile info                R32_UINT ⌈W/8⌉ × ⌈H/8⌉               class (bits 0..1), screen rays (8..15), SDF rays
-//                                                                 (16..23, misses included after the trace)
+//                                                                 (16..23, misses included after the trace), screen
+//                                                                 rays resolved (24..31, after the trace)
+//   tile statistics          R32_UINT ⌈W/8⌉ × ⌈H/8⌉               surface pixels (0..7), glossy pixels (8..15), the
+//                                                                 classifier's SDF rays (16..23), pixels with a ray
+//                                                                 (24..31): readCounts() sums them on the CPU
 class ReflectionClassifier {
 public:
     // Null with *error for a zero or too large size (1..16384 a side), or a device that cannot create the resources.
@@ -154,7 +158,7 @@ public:
     uint32_t tilesY() const { return (height_ + kReflectionTileSize - 1) / kReflectionTileSize; }
     uint32_t screenListCapacity() const { return tilesX() * tilesY() * 64; }
     uint32_t sdfListCapacity() const { return width_ * height_; }
-    ReflectionClassifyCounts readCounts();  // waits for the GPU (tests and tools)
+    ReflectionClassifyCounts readCounts();  // waits for the GPU and sums the tiles' statistics (tests and tools)
 
 private:
     explicit ReflectionClassifier(rhi::IDevice& device) : device_(device) {}
@@ -162,9 +166,9 @@ private:
     bool recordArgs();
     rhi::IDevice& device_;
     uint32_t width_ = 0, height_ = 0;
-    rhi::ShaderHandle classify_, args_, trace_, debug_;
+    rhi::ShaderHandle classify_, args_, trace_, debug_, clear_;
     rhi::BufferHandle screenList_, sdfList_, denoiseList_, counts_, params_;
-    rhi::TextureHandle hitCounters_[2], tileInfo_, noMotion_;
+    rhi::TextureHandle hitCounters_[2], tileInfo_, tileStats_, noMotion_;
     rhi::SamplerHandle point_, linear_;
     uint32_t current_ = 0;  // which hit counter the last classify() wrote
     rhi::TextureHandle depth_, normals_, roughness_;  // the last classify()'s, for the trace

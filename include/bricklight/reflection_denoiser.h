@@ -70,7 +70,7 @@ private:
     uint32_t width_ = 0, height_ = 0;
     uint32_t frame_ = 0;  // which history is written this frame (frame_ & 1)
     bool historyValid_ = false;
-    rhi::ShaderHandle temporal_, spatial_;
+    rhi::ShaderHandle temporal_, spatial_, clear_;
     rhi::TextureHandle history_[2], historyDepth_[2];
     rhi::BufferHandle params_;
     rhi::SamplerHandle point_, linear_;

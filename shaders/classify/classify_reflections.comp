@@ -20,12 +20,13 @@ BL_STORAGE_BUFFER(0) ScreenList { uint screenRays[]; } screenList;
 BL_STORAGE_BUFFER(1) SdfList { uint sdfRays[]; } sdfList;
 BL_STORAGE_BUFFER(2) DenoiseList { uint denoiseTiles[]; } denoiseList;
 // Words (ReflectionClassifier's header): 0..8 dispatch arguments (reflection_args.comp), 9 screen entries,
-// 10 screen rays, 11 SDF rays, 12 denoiser tiles, 13 ray pixels, 14 surface pixels, 15..17 tiles per class,
-// 18 screen hits, 19 screen misses, 20 glossy pixels.
+// 11 SDF rays, 12 denoiser tiles: the only global atomics, three per tile. The statistics go per tile to tileInfo
+// and tileStats and are summed on the CPU (readCounts): same-address atomics from every group bound the pass.
 BL_STORAGE_BUFFER(3) Counts { uint counts[24]; } count;
 BL_IMAGE(0, r32ui) uniform readonly uimage2D history;
 BL_IMAGE(1, r32ui) uniform writeonly uimage2D counter;
 BL_IMAGE(2, r32ui) uniform writeonly uimage2D tileInfo;
+BL_IMAGE(3, r32ui) uniform writeonly uimage2D tileStats;  // surface, glossy, SDF rays, ray pixels: a byte each
 
 shared uint glossyBits[2];  // bit (y·8 + x) of the tile: glossy
 shared uint tileClass, screenCount, sdfCount, screenBase, sdfBase, surfaceCount, glossyCount;
@@ -134,12 +135,8 @@ void main() {
             uint at = atomicAdd(count.counts[12], 1u);
             denoiseList.denoiseTiles[at] = ((tile.y * 8u) << 16u) | (tile.x * 8u);
         }
-        atomicAdd(count.counts[10], rays);
-        atomicAdd(count.counts[13], rays + sdfCount);
-        atomicAdd(count.counts[14], surfaceCount);
-        atomicAdd(count.counts[15u + cls], 1u);
-        atomicAdd(count.counts[20], glossyCount);
         imageStore(tileInfo, ivec2(tile), uvec4(cls | (rays << 8u) | (sdfCount << 16u)));
+        imageStore(tileStats, ivec2(tile), uvec4(surfaceCount | (glossyCount << 8u) | (sdfCount << 16u) | ((rays + sdfCount) << 24u)));
     }
     barrier();
     uint record = blReflectionPack(uvec2(pixel), copyFlags);

@@ -24,6 +24,9 @@ BL_IMAGE(1, r32ui) uniform writeonly uimage2D sureMask;  // bit set: the answer 
 
 const float kNoEnd = 3.0e38;  // a ray interval without an end
 shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
+// The group's sums: its tiles go to the list and the counts with one global atomic per word and group, not per tile
+// (same-address atomics from every tile bounded the pass).
+shared uint listIndex[8], groupListed, groupBase, groupRays, groupCutTiles, groupCutPixels, groupActive;
 
 void main() {
     uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
@@ -37,6 +40,13 @@ void main() {
         activeMask[slot] = 0u;
         minT[slot] = floatBitsToUint(kNoEnd);
         maxT[slot] = 0u;
+    }
+    if (gl_LocalInvocationID.x == 0u) {
+        groupListed = 0u;
+        groupRays = 0u;
+        groupCutTiles = 0u;
+        groupCutPixels = 0u;
+        groupActive = 0u;
     }
     barrier();
 
@@ -110,20 +120,37 @@ void main() {
     if (isActive) atomicOr(activeMask[slot], bit);
     barrier();
 
-    if (lane != 0u || !tileOnScreen) return;
     uint rays = bitCount(rayMask[slot]);
-    if (rays > params.options2.x) {
-        uint at = atomicAdd(count.counts[7], 1u);
-        if ((at & 7u) == 0u) atomicAdd(count.counts[0], 1u);  // a new group of 8 for the trace
-        list.tiles[at] = uvec4(tile.x | (tile.y << 16u), rayMask[slot], minT[slot], maxT[slot]);
-        atomicAdd(count.counts[4], rays);
-    } else if (rays > 0u) {
-        atomicAdd(count.counts[3], 1u);
-        atomicAdd(count.counts[5], rays);
+    bool tileLead = lane == 0u && tileOnScreen;
+    bool listTile = tileLead && rays > params.options2.x;
+    if (tileLead) {
+        if (listTile) {
+            listIndex[slot] = atomicAdd(groupListed, 1u);
+            atomicAdd(groupRays, rays);
+        } else if (rays > 0u) {
+            atomicAdd(groupCutTiles, 1u);
+            atomicAdd(groupCutPixels, rays);
+        }
+        atomicAdd(groupActive, bitCount(activeMask[slot]));
+        imageStore(hitMask, ivec2(tile), uvec4(answerMask[slot]));
+        // Every pixel without a ray was decided (sky, facing away, all or no taps blocking); cut-off tiles' ray pixels
+        // keep the taps' majority, unsure.
+        imageStore(sureMask, ivec2(tile), uvec4(~rayMask[slot]));
     }
-    atomicAdd(count.counts[6], bitCount(activeMask[slot]));
-    imageStore(hitMask, ivec2(tile), uvec4(answerMask[slot]));
-    // Every pixel without a ray was decided (sky, facing away, all or no taps blocking); cut-off tiles' ray pixels
-    // keep the taps' majority, unsure.
-    imageStore(sureMask, ivec2(tile), uvec4(~rayMask[slot]));
+    barrier();
+    if (gl_LocalInvocationID.x == 0u) {
+        if (groupListed > 0u) {
+            groupBase = atomicAdd(count.counts[7], groupListed);
+            // Groups of 8 listed tiles for the trace: the group that ends the list sets the largest value.
+            atomicMax(count.counts[0], (groupBase + groupListed + 7u) / 8u);
+            atomicAdd(count.counts[4], groupRays);
+        }
+        if (groupCutTiles > 0u) {
+            atomicAdd(count.counts[3], groupCutTiles);
+            atomicAdd(count.counts[5], groupCutPixels);
+        }
+        if (groupActive > 0u) atomicAdd(count.counts[6], groupActive);
+    }
+    barrier();
+    if (listTile) list.tiles[groupBase + listIndex[slot]] = uvec4(tile.x | (tile.y << 16u), rayMask[slot], minT[slot], maxT[slot]);
 }

@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 // The reflection denoiser's spatial pass (classify::ReflectionDenoiser), over the listed tiles only: an edge-aware
-// 5×5 filter of the accumulated history whose footprint grows with roughness (a mirror keeps its own pixel, a
-// glossy surface averages over up to 9 pixels each way), weighted by depth and normal agreement so that
+// 3×3 filter of the accumulated history whose taps spread with roughness (a mirror keeps its own pixel, a glossy
+// surface averages over up to 4 pixels each way), weighted by depth and normal agreement so that
 // reflections do not bleed across edges. Pixels without any sample get weight 0 (the composite keeps the GI's).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "reflection_denoise_params.glsl"
@@ -27,12 +27,13 @@ void main() {
     float distanceToEye = distance(p, params.eye.xyz);
     vec3 n = normalize(texelFetch(normalTexture, pixel, 0).xyz * params.normalScale.xyz + params.normalOffset.xyz);
     float roughness = blDenoiseRoughness(texelFetch(roughnessTexture, pixel, 0));
-    // Tap spacing in pixels: 0 for mirrors (the pixel alone), up to 2 (a 9×9 footprint) at roughness 0.5.
-    int step = int(floor(clamp(roughness * 4.0, 0.0, 2.0)));
+    // 3×3 taps (9: the pass runs on nearly every glossy pixel) spaced by roughness: 0 for mirrors (the pixel alone),
+    // up to 4 pixels (a 9×9 footprint) from roughness 0.5.
+    int step = int(floor(clamp(roughness * 8.0, 0.0, 4.0)));
     vec3 sum = vec3(0.0);
     float weight = 0.0;
-    for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
             if (step == 0 && (dx != 0 || dy != 0)) continue;
             ivec2 q = pixel + ivec2(dx, dy) * step;
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(params.size.xy)))) continue;
@@ -43,7 +44,7 @@ void main() {
             vec3 pq = blDenoiseWorld((vec2(q) + 0.5) / size, dq, params.inverseViewProjection);
             vec3 nq = normalize(texelFetch(normalTexture, q, 0).xyz * params.normalScale.xyz + params.normalOffset.xyz);
             float plane = abs(dot(pq - p, n)) / (0.01 * distanceToEye);  // off the centre's plane, in 1 % of the distance
-            float w = exp(-0.5 * float(dx * dx + dy * dy) / 2.25) * exp(-plane * plane) * pow(max(dot(n, nq), 0.0), 32.0) * min(s.a, 4.0);
+            float w = exp(-0.5 * float(dx * dx + dy * dy)) * exp(-plane * plane) * pow(max(dot(n, nq), 0.0), 32.0) * min(s.a, 4.0);
             sum += s.rgb * w;
             weight += w;
         }

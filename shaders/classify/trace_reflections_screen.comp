@@ -20,7 +20,7 @@ BL_TEXTURE(3) uniform sampler2D depthPyramid;  // RG32F: min, max depth
 BL_TEXTURE(4) uniform sampler2D previousLit;   // bilinear
 BL_READ_BUFFER(1) ScreenList { uint screenRays[]; } screenList;
 BL_STORAGE_BUFFER(0) SdfList { uint sdfRays[]; } sdfList;
-BL_STORAGE_BUFFER(1) Counts { uint counts[24]; } count;  // 9: screen entries, 11: SDF rays, 18/19: hits/misses
+BL_STORAGE_BUFFER(1) Counts { uint counts[24]; } count;  // 9: screen entries, 11: SDF rays
 BL_IMAGE(0, rgba16f) uniform writeonly image2D outputImage;
 BL_IMAGE(1, r32ui) uniform uimage2D counter;
 BL_IMAGE(2, r32ui) uniform uimage2D tileInfo;
@@ -179,10 +179,9 @@ void main() {
         ivec2 tile = ivec2(blReflectionPixel(first) / 8u);
         // A tile's pixels count once each (≤ 64), and the classifier zeroed the new bytes: no byte overflows.
         imageAtomicAdd(counter, tile, min(hitWeight, 255u) | (min(missWeight, 255u) << 8u));
-        imageAtomicAdd(tileInfo, tile, missRays << 16u);
+        // The tile's SDF rays grow by the misses; its resolved rays go to the top byte (readCounts sums them).
+        imageAtomicAdd(tileInfo, tile, (missRays << 16u) | (hitRays << 24u));
         missBase = missRays > 0u ? atomicAdd(count.counts[11], missRays) : 0u;
-        atomicAdd(count.counts[18], hitRays);
-        atomicAdd(count.counts[19], missRays);
     }
     barrier();
     if (toSdf) sdfList.sdfRays[missBase + missIndex] = entry;
