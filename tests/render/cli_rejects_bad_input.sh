@@ -47,6 +47,12 @@ expect_failure "--shadow-lambda expects a number in 0\.\.1" --shadow-lambda 1.5
 expect_failure "--shadow-lambda expects a number in 0\.\.1" --shadow-lambda nan
 expect_failure "--shadow-pcf expects a whole number in 0\.\.3" --shadow-pcf 4
 expect_failure "--shadows shadowmap and hybrid need the fast path" --shadows hybrid --reference --out "$out/x.png"
+# Reflections: gi or hybrid; hybrid needs the SDF GI, and its debug views need hybrid reflections.
+expect_failure "--reflections must be gi or hybrid \(got 'ssr'\)" --reflections ssr
+expect_failure "--reflections hybrid needs --gi sdf" --reflections hybrid --gi none --out "$out/x.png"
+expect_failure "--reflections hybrid needs --gi sdf" --reflections hybrid --gi vxgi --out "$out/x.png"
+expect_failure "--gi-debug reflection-rays needs hybrid reflections" --gi-debug reflection-rays --out "$out/x.png"
+expect_failure "cornell-mirror:2': the floor's roughness must be a number in \[0, 1\]" --width 8 --height 8 --frames 1 --scene cornell-mirror:2 --out "$out/x.png"
 expect_failure "voxel AO with the SDF GI is not supported" --width 16 --height 16 --frames 1 --gi sdf --ao vxao --out "$out/x.png"
 # Numbers are read as numbers: a negative one cannot wrap around to a valid size.
 expect_failure "--width expects a whole number in 1\.\.8192 \(got '-18446744073709551615'\)" --width -18446744073709551615
