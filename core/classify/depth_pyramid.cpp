@@ -4,23 +4,15 @@
 
 #include <algorithm>
 
-#include "../core_shaders.h"
+#include "classify_checks.h"
 
 namespace bricklight::classify {
 
 namespace {
 
-constexpr uint32_t kMaxSize = 16384;
-
 struct Size {
     uint32_t v[4];  // uvec4 size in both passes
 };
-
-rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader(name);
-    return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-}
 
 }  // namespace
 
@@ -38,19 +30,17 @@ std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, uint32_
         if (error) *error = "depth pyramid: " + why;
         return nullptr;
     };
-    const uint32_t limit = std::min(kMaxSize, device.capabilities().limits.maxTextureSize2D);
+    const uint32_t limit = std::min(detail::kMaxSize, device.capabilities().limits.maxTextureSize2D);
     if (width == 0 || height == 0 || width > limit || height > limit)
         return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(limit) +
                     " on each side");
     if (!device.capabilities().supports(rhi::Format::RG32_FLOAT, rhi::FormatSupport::Storage | rhi::FormatSupport::Sampled))
         return fail("the device cannot use RG32_FLOAT as a storage image");
-    shaders::link_bricklight_core();
     std::unique_ptr<DepthPyramid> p(new DepthPyramid(device));
     p->width_ = width;
     p->height_ = height;
     p->mipCount_ = depthPyramidMipCount(width, height);
-    p->copy_ = makeShader(device, "classify/depth_pyramid_copy.comp");
-    p->reduce_ = makeShader(device, "classify/depth_pyramid_reduce.comp");
+    detail::createShaders(device, {{"classify/depth_pyramid_copy.comp", &p->copy_}, {"classify/depth_pyramid_reduce.comp", &p->reduce_}});
     rhi::TextureDesc td;
     td.format = rhi::Format::RG32_FLOAT;
     td.width = width;

@@ -7,25 +7,14 @@
 
 #include "bricklight/reflection_classifier.h"
 #include "reflection_params.h"
-#include "../core_shaders.h"
+#include "classify_checks.h"
 
 namespace bricklight::classify {
 
 namespace {
 
-constexpr uint32_t kMaxSize = 16384;
-
-bool finite(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-
 bool invertible(const glm::mat4& m) {
-    return finite(m) && std::abs(glm::determinant(m)) > 1.0e-30f && finite(glm::inverse(m));
+    return detail::finite(m) && std::abs(glm::determinant(m)) > 1.0e-30f && detail::finite(glm::inverse(m));
 }
 
 }  // namespace
@@ -35,19 +24,13 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
         if (error) *error = "reflection classifier: " + why;
         return nullptr;
     };
-    if (width == 0 || height == 0 || width > kMaxSize || height > kMaxSize)
-        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(kMaxSize) + " on each side");
-    shaders::link_bricklight_core();
+    if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ReflectionClassifier> c(new ReflectionClassifier(device));
     c->width_ = width;
     c->height_ = height;
-    for (auto [name, shader] : {std::pair{"classify/classify_reflections.comp", &c->classify_}, std::pair{"classify/reflection_args.comp", &c->args_},
+    detail::createShaders(device, {std::pair{"classify/classify_reflections.comp", &c->classify_}, std::pair{"classify/reflection_args.comp", &c->args_},
                                 std::pair{"classify/trace_reflections_screen.comp", &c->trace_}, std::pair{"classify/reflection_debug.comp", &c->debug_},
-                                std::pair{"classify/clear_rgba16f.comp", &c->clear_}}) {
-        rhi::ShaderDesc sd;
-        sd.blob = rhi::findShader(name);
-        *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-    }
+                                std::pair{"classify/clear_rgba16f.comp", &c->clear_}});
     const uint64_t tiles = uint64_t(c->tilesX()) * c->tilesY();
     auto buffer = [&](uint64_t bytes, uint32_t usage, const char* name) {
         rhi::BufferDesc bd;
@@ -147,13 +130,13 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string
     if (d.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is outside 0..3");
     if (!check(d.roughness, "roughness", d.roughnessChannel + 1, false, false)) return false;
     if (d.motionVectors && !check(d.motionVectors, "motionVectors", 2, false, true)) return false;
-    if (!finite(d.view) || !finite(d.projection) || !finite(d.previousView) || !finite(d.previousProjection))
+    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection))
         return fail("the camera matrices (view, projection, previousView, previousProjection) must be finite");
     const glm::mat4 viewProjection = d.projection * d.view, previousViewProjection = d.previousProjection * d.previousView;
     if (!invertible(viewProjection) || !invertible(d.projection)) return fail("the camera's view-projection is not invertible");
     if (!invertible(previousViewProjection)) return fail("the previous camera's view-projection is not invertible");
-    if (!finite(d.normalsUnpackScale) || !finite(d.normalsUnpackOffset)) return fail("the normals' unpack scale and offset must be finite");
-    if (!finite(d.motionVectorScale)) return fail("motionVectorScale must be finite");
+    if (!detail::finite(d.normalsUnpackScale) || !detail::finite(d.normalsUnpackOffset)) return fail("the normals' unpack scale and offset must be finite");
+    if (!detail::finite(d.motionVectorScale)) return fail("motionVectorScale must be finite");
     if (!(d.roughnessThreshold >= 0.0f && d.roughnessThreshold <= 1.0f)) return fail("roughnessThreshold " + std::to_string(d.roughnessThreshold) + " is outside 0..1");
     if (!(d.sdfRoughnessThreshold >= 0.0f && d.sdfRoughnessThreshold <= 1.0f))
         return fail("sdfRoughnessThreshold " + std::to_string(d.sdfRoughnessThreshold) + " is outside 0..1");

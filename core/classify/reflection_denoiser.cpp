@@ -4,13 +4,11 @@
 #include <cstring>
 
 #include "bricklight/reflection_denoiser.h"
-#include "../core_shaders.h"
+#include "classify_checks.h"
 
 namespace bricklight::classify {
 
 namespace {
-
-constexpr uint32_t kMaxSize = 16384;
 
 // reflection_denoise_params.glsl's Params (std430).
 struct Params {
@@ -20,15 +18,6 @@ struct Params {
 };
 static_assert(sizeof(Params) == 64 * 3 + 16 * 5);
 
-bool finite(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 }  // namespace
 
 std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
@@ -36,19 +25,13 @@ std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& dev
         if (error) *error = "reflection denoiser: " + why;
         return nullptr;
     };
-    if (width == 0 || height == 0 || width > kMaxSize || height > kMaxSize)
-        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(kMaxSize) + " on each side");
-    shaders::link_bricklight_core();
+    if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ReflectionDenoiser> d(new ReflectionDenoiser(device));
     d->width_ = width;
     d->height_ = height;
-    for (auto [name, shader] : {std::pair{"classify/reflection_denoise_temporal.comp", &d->temporal_},
+    detail::createShaders(device, {std::pair{"classify/reflection_denoise_temporal.comp", &d->temporal_},
                                 std::pair{"classify/reflection_denoise_spatial.comp", &d->spatial_},
-                                std::pair{"classify/clear_rgba16f.comp", &d->clear_}}) {
-        rhi::ShaderDesc sd;
-        sd.blob = rhi::findShader(name);
-        *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-    }
+                                std::pair{"classify/clear_rgba16f.comp", &d->clear_}});
     rhi::TextureDesc td;
     td.width = width;
     td.height = height;
@@ -130,8 +113,8 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
                     std::to_string(width_) + "x" + std::to_string(height_));
     for (rhi::TextureHandle in : {d.radiance, d.depth, d.normals, d.roughness})
         if (in == d.output) return fail("output '" + out->debugName + "' is also an input");
-    if (!finite(d.view) || !finite(d.projection) || !finite(d.previousView) || !finite(d.previousProjection) || !finite(d.normalsUnpackScale) ||
-        !finite(d.normalsUnpackOffset))
+    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection) || !detail::finite(d.normalsUnpackScale) ||
+        !detail::finite(d.normalsUnpackOffset))
         return fail("the camera matrices and the normals' unpacking must be finite");
     if (d.maxHistory < 1 || d.maxHistory > 256) return fail("maxHistory " + std::to_string(d.maxHistory) + " is outside 1..256");
     // In double: a float inverse of a projection with a far-away far plane loses the depth's precision.

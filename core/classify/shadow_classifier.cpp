@@ -4,13 +4,12 @@
 #include <cstring>
 
 #include "bricklight/classify.h"
-#include "../core_shaders.h"
+#include "classify_checks.h"
 
 namespace bricklight::classify {
 
 namespace {
 
-constexpr uint32_t kMaxSize = 16384;
 constexpr uint32_t kCountWords = 8;
 
 // The pass's parameters (the Params block of classify_shadows.comp, std430).
@@ -25,15 +24,6 @@ struct Params {
 static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16 * 2);
 static_assert(sizeof(Params) == kShadowParamsBytes);
 
-bool finite(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 }  // namespace
 
 std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
@@ -41,18 +31,12 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
         if (error) *error = "shadow classifier: " + why;
         return nullptr;
     };
-    if (width == 0 || height == 0 || width > kMaxSize || height > kMaxSize)
-        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(kMaxSize) + " on each side");
-    shaders::link_bricklight_core();
+    if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ShadowClassifier> c(new ShadowClassifier(device));
     c->width_ = width;
     c->height_ = height;
-    for (auto [name, shader] : {std::pair{"classify/classify_shadows.comp", &c->classify_}, std::pair{"classify/trace_shadows.comp", &c->trace_},
-                                std::pair{"classify/resolve_shadows.comp", &c->resolve_}}) {
-        rhi::ShaderDesc sd;
-        sd.blob = rhi::findShader(name);
-        *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-    }
+    detail::createShaders(device, {std::pair{"classify/classify_shadows.comp", &c->classify_}, std::pair{"classify/trace_shadows.comp", &c->trace_},
+                                std::pair{"classify/resolve_shadows.comp", &c->resolve_}});
     const uint64_t tiles = uint64_t(c->tilesX()) * c->tilesY();
     rhi::BufferDesc bd;
     bd.size = tiles * 16;
@@ -120,12 +104,12 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
             return fail("'" + td->debugName + "' is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", the classifier " +
                         std::to_string(width_) + "x" + std::to_string(height_));
     }
-    if (!finite(d.view) || !finite(d.projection) || !finite(d.normalsUnpackScale) || !finite(d.normalsUnpackOffset))
+    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.normalsUnpackScale) || !detail::finite(d.normalsUnpackOffset))
         return fail("the camera matrices and the normals' unpacking must be finite");
     const glm::mat4 viewProjection = d.projection * d.view;
     const glm::mat4 inverse = glm::inverse(viewProjection);
-    if (!finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
-    const float sunLength = finite(d.sunDirection) ? glm::length(d.sunDirection) : 0.0f;
+    if (!detail::finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
+    const float sunLength = detail::finite(d.sunDirection) ? glm::length(d.sunDirection) : 0.0f;
     if (!(sunLength > 1.0e-6f) || !std::isfinite(sunLength)) return fail("sunDirection must be a finite, non-zero vector");
     if (!(d.sunAngle >= 0.0f && d.sunAngle < 0.5f)) return fail("sunAngle " + std::to_string(d.sunAngle) + " is outside 0..0.5 radians");
     if (!(d.rayPushOff >= 0.0f) || !std::isfinite(d.rayPushOff)) return fail("rayPushOff must be a finite number ≥ 0");
@@ -161,7 +145,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
         for (uint32_t c = 0; c < d.cascadeCount; ++c) {
             const ShadowCascade& s = d.cascades[c];
             const glm::vec4 r = s.uvRect;
-            if (!finite(s.worldToShadow) || !(s.depthRange > 0.0f) || !std::isfinite(s.depthRange))
+            if (!detail::finite(s.worldToShadow) || !(s.depthRange > 0.0f) || !std::isfinite(s.depthRange))
                 return fail("cascade " + std::to_string(c) + ": worldToShadow must be finite and depthRange positive");
             if (!(r.x >= 0.0f && r.y >= 0.0f && r.z <= 1.0f && r.w <= 1.0f && r.x < r.z && r.y < r.w))
                 return fail("cascade " + std::to_string(c) + ": uvRect must be a non-empty part of [0, 1]²");

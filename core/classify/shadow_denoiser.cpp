@@ -5,13 +5,11 @@
 #include <cstring>
 
 #include "bricklight/shadow_denoiser.h"
-#include "../core_shaders.h"
+#include "classify_checks.h"
 
 namespace bricklight::classify {
 
 namespace {
-
-constexpr uint32_t kMaxSize = 16384;
 
 // The passes' parameters (the Params block of denoise_shadows_common.glsl, std430).
 struct Params {
@@ -21,15 +19,6 @@ struct Params {
 };
 static_assert(sizeof(Params) == 272);
 
-bool finite(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 }  // namespace
 
 std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
@@ -37,18 +26,12 @@ std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, uin
         if (error) *error = "shadow denoiser: " + why;
         return nullptr;
     };
-    if (width == 0 || height == 0 || width > kMaxSize || height > kMaxSize)
-        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(kMaxSize) + " on each side");
-    shaders::link_bricklight_core();
+    if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ShadowDenoiser> d(new ShadowDenoiser(device));
     d->width_ = width;
     d->height_ = height;
-    for (auto [name, shader] : {std::pair{"classify/denoise_shadows_temporal.comp", &d->temporal_}, std::pair{"classify/denoise_shadows_decided.comp", &d->decided_},
-                                std::pair{"classify/denoise_shadows_filter.comp", &d->filter_}}) {
-        rhi::ShaderDesc sd;
-        sd.blob = rhi::findShader(name);
-        *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-    }
+    detail::createShaders(device, {std::pair{"classify/denoise_shadows_temporal.comp", &d->temporal_}, std::pair{"classify/denoise_shadows_decided.comp", &d->decided_},
+                                std::pair{"classify/denoise_shadows_filter.comp", &d->filter_}});
     rhi::TextureDesc td;
     td.width = width;
     td.height = height;
@@ -126,13 +109,13 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     if (out->width != width_ || out->height != height_)
         return fail("output '" + out->debugName + "' is " + std::to_string(out->width) + "x" + std::to_string(out->height) + ", the denoiser " + size);
     if (!d.resetHistory && !hasHistory_) return fail("there is no history to reproject yet: the first denoise() after create() must set resetHistory");
-    if (!finite(d.view) || !finite(d.projection) || !finite(d.previousView) || !finite(d.previousProjection) || !finite(d.normalsUnpackScale) ||
-        !finite(d.normalsUnpackOffset))
+    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection) || !detail::finite(d.normalsUnpackScale) ||
+        !detail::finite(d.normalsUnpackOffset))
         return fail("the cameras and the normals' unpacking must be finite");
     const glm::mat4 viewProjection = d.projection * d.view, previous = d.previousProjection * d.previousView;
     const glm::mat4 inverse = glm::inverse(viewProjection), inversePrevious = glm::inverse(previous);
-    if (!finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
-    if (!finite(inversePrevious) || std::abs(glm::determinant(previous)) < 1.0e-30f) return fail("the previous camera's view-projection is not invertible");
+    if (!detail::finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
+    if (!detail::finite(inversePrevious) || std::abs(glm::determinant(previous)) < 1.0e-30f) return fail("the previous camera's view-projection is not invertible");
     if (d.maxHistory < 1 || d.maxHistory > kMaxShadowDenoiseHistory)
         return fail("maxHistory " + std::to_string(d.maxHistory) + " is outside 1.." + std::to_string(kMaxShadowDenoiseHistory));
     if (!(d.clampSigma > 0.0f) || !std::isfinite(d.clampSigma)) return fail("clampSigma must be a finite number > 0");
