@@ -21,7 +21,9 @@ AssimpApi loadAssimp() {
     api.materialColor = reinterpret_cast<decltype(api.materialColor)>(dlsym(lib, "aiGetMaterialColor"));
     api.materialTexture = reinterpret_cast<decltype(api.materialTexture)>(dlsym(lib, "aiGetMaterialTexture"));
     api.materialFloats = reinterpret_cast<decltype(api.materialFloats)>(dlsym(lib, "aiGetMaterialFloatArray"));
-    if (!api.importFileEx || !api.releaseImport || !api.errorString || !api.materialColor || !api.materialTexture || !api.materialFloats)
+    api.materialString = reinterpret_cast<decltype(api.materialString)>(dlsym(lib, "aiGetMaterialString"));
+    if (!api.importFileEx || !api.releaseImport || !api.errorString || !api.materialColor || !api.materialTexture || !api.materialFloats ||
+        !api.materialString)
         api.loadError = "libassimp lacks its C API";
     return api;
 }

@@ -17,6 +17,7 @@ struct AssimpApi {
     decltype(&aiGetMaterialColor) materialColor = nullptr;
     decltype(&aiGetMaterialTexture) materialTexture = nullptr;
     decltype(&aiGetMaterialFloatArray) materialFloats = nullptr;
+    decltype(&aiGetMaterialString) materialString = nullptr;
     std::string loadError;  // empty: all of the above are there
 };
 

@@ -1,5 +1,6 @@
 #include "assimp_import.h"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/texture.h>
@@ -137,8 +138,82 @@ void importLights(const aiScene* scene, SceneGeometry& s) {
     }
 }
 
-// The material's base colour factor and texture, roughness, metalness and emission. False with `error`
-// for a texture the scene may not use (outside the model's folder).
+// A texture file the material names, as a path the renderer opens: relative names are relative to the model's
+// folder; Windows separators become '/' where no file has the name as written (spider.obj's MTL says
+// ".\\SpiderTex.jpg"). False with `error` for a file outside the model's folder (unless allowed).
+bool textureFile(const std::string& name, const std::string& path, const LoadLimits& limits, const std::string& what, const TriangleMesh& m,
+                 std::string* file, std::string* error) {
+    const size_t slash = path.find_last_of('/');
+    *file = name[0] == '/' || slash == std::string::npos ? name : path.substr(0, slash + 1) + name;
+    if (name.find('\\') != std::string::npos && ::access(file->c_str(), F_OK) != 0)
+        std::replace(file->begin() + long(file->size() - name.size()), file->end(), '\\', '/');
+    if (limits.allowOutsidePaths) return true;
+    const std::string folder = canonicalFolderOf(path);
+    if (isInsideFolder(*file, folder)) return true;
+    if (error) *error = "mesh '" + m.name + "': its " + what + " " + outsideFolderMessage(*file, path, folder);
+    return false;
+}
+
+// Alpha testing: glTF's alphaMode MASK with its alphaCutoff (default 0.5) and the base colour factor's alpha;
+// BLEND, which a renderer without sorted transparency cannot draw, as MASK at 0.5 (with a warning); OBJ's map_d
+// (an opacity map) as the coverage at 0.5. False with `error` for a cut-off that is not a number or an
+// opacity map outside the model's folder.
+bool importAlpha(const aiMaterial* mat, const std::string& path, const LoadLimits& limits, TriangleMesh& m, SceneGeometry& s,
+                 std::string* error) {
+    const AssimpApi& api = assimp();
+    aiString mode;
+    if (api.materialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS) {
+        const std::string name = mode.C_Str();
+        if (name == "MASK" || name == "BLEND") {
+            aiColor4D c;
+            // The factor's alpha: glTF's baseColorFactor (assimp gives it as the diffuse colour too).
+            if (api.materialColor(mat, AI_MATKEY_BASE_COLOR, &c) == aiReturn_SUCCESS ||
+                api.materialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) {
+                if (!std::isfinite(c.a)) {
+                    if (error) *error = "mesh '" + m.name + "': the base colour factor's alpha is not a finite number";
+                    return false;
+                }
+                m.baseAlpha = std::clamp(float(c.a), 0.0f, 1.0f);
+            }
+            m.alphaCutoff = 0.5f;
+            if (name == "BLEND") {
+                s.warnings.push_back("mesh '" + m.name + "': alphaMode BLEND is drawn as MASK with a cut-off of 0.5 (no blending)");
+                return true;
+            }
+            ai_real cutoff = 0;
+            unsigned one = 1;
+            if (api.materialFloats(mat, AI_MATKEY_GLTF_ALPHACUTOFF, &cutoff, &one) == aiReturn_SUCCESS) {
+                if (!std::isfinite(cutoff)) {
+                    if (error) *error = "mesh '" + m.name + "': alphaCutoff is not a finite number";
+                    return false;
+                }
+                if (cutoff < 0.0f || cutoff > 1.0f)
+                    s.warnings.push_back("mesh '" + m.name + "': alphaCutoff " + std::to_string(cutoff) + " is outside [0, 1]; clamped");
+                m.alphaCutoff = std::clamp(float(cutoff), 0.0f, 1.0f);
+            }
+        }
+        return true;
+    }
+    aiString opacity;
+    if (api.materialTexture(mat, aiTextureType_OPACITY, 0, &opacity, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) != aiReturn_SUCCESS ||
+        !opacity.length)
+        return true;
+    const std::string name = opacity.C_Str();
+    if (m.uvs.empty()) {
+        s.warnings.push_back("mesh '" + m.name + "': opacity map '" + name + "' but no texture coordinates; drawn opaque");
+        return true;
+    }
+    if (name[0] == '*') {
+        s.warnings.push_back("mesh '" + m.name + "': embedded opacity map " + name + " is not supported; drawn opaque");
+        return true;
+    }
+    if (!textureFile(name, path, limits, "opacity map", m, &m.alphaTexture, error)) return false;
+    m.alphaCutoff = 0.5f;
+    return true;
+}
+
+// The material's base colour factor and texture, roughness, metalness, emission and alpha test. False with
+// `error` for a texture the scene may not use (outside the model's folder) or a bad alpha cut-off.
 bool importMaterial(const aiScene* scene, const aiMaterial* mat, const std::string& path, const LoadLimits& limits, TriangleMesh& m,
                     SceneGeometry& s, std::vector<std::shared_ptr<std::vector<uint8_t>>>& embedded, std::string* error) {
     const AssimpApi& api = assimp();
@@ -152,6 +227,7 @@ bool importMaterial(const aiScene* scene, const aiMaterial* mat, const std::stri
     if (api.materialFloats(mat, AI_MATKEY_ROUGHNESS_FACTOR, &value, &one) == aiReturn_SUCCESS) m.roughness = std::clamp(float(value), 0.0f, 1.0f);
     one = 1;
     if (api.materialFloats(mat, AI_MATKEY_METALLIC_FACTOR, &value, &one) == aiReturn_SUCCESS) m.metalness = std::clamp(float(value), 0.0f, 1.0f);
+    if (!importAlpha(mat, path, limits, m, s, error)) return false;
     aiString texture;
     if (!((api.materialTexture(mat, aiTextureType_BASE_COLOR, 0, &texture, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr) ==
                aiReturn_SUCCESS ||
@@ -187,17 +263,7 @@ bool importMaterial(const aiScene* scene, const aiMaterial* mat, const std::stri
         }
         return true;
     }
-    const size_t slash = path.find_last_of('/');
-    m.baseColorTexture = name[0] == '/' || slash == std::string::npos ? name : path.substr(0, slash + 1) + name;
-    if (name.find('\\') != std::string::npos && ::access(m.baseColorTexture.c_str(), F_OK) != 0) {
-        // Windows separators (spider.obj's MTL says ".\\SpiderTex.jpg") where no file has the name as written.
-        std::replace(m.baseColorTexture.begin() + long(m.baseColorTexture.size() - name.size()), m.baseColorTexture.end(), '\\', '/');
-    }
-    if (limits.allowOutsidePaths) return true;
-    const std::string folder = canonicalFolderOf(path);
-    if (isInsideFolder(m.baseColorTexture, folder)) return true;
-    if (error) *error = "mesh '" + m.name + "': its base colour texture " + outsideFolderMessage(m.baseColorTexture, path, folder);
-    return false;
+    return textureFile(name, path, limits, "base colour texture", m, &m.baseColorTexture, error);
 }
 
 SceneGeometry convert(const aiScene* scene, const std::string& path, const LoadLimits& limits, std::string* error) {

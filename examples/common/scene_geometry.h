@@ -39,6 +39,16 @@ struct TriangleMesh {
     // finite in (1, 3].
     float transmission = 0.0f;
     float ior = 1.5f;
+    // Alpha testing (foliage, fences: glTF alphaMode MASK, OBJ map_d): a surface point is there only where its
+    // coverage, baseAlpha times the alpha of `alphaTexture` (or, without one, of the base colour texture;
+    // 1 without either), is at least `alphaCutoff`. 0: opaque, nothing is tested. The model importer's
+    // reply must hold both in [0, 1].
+    float alphaCutoff = 0.0f;
+    float baseAlpha = 1.0f;
+    // Optional: an image file whose alpha is the coverage (OBJ's map_d). An image without an alpha channel
+    // (a grey opacity map) gives its first channel instead. Empty: the base colour texture's alpha.
+    std::string alphaTexture;
+    bool alphaTested() const { return alphaCutoff > 0.0f; }
     uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
 };
 

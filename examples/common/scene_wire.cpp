@@ -8,10 +8,10 @@ namespace bricklight::scenes {
 namespace {
 
 constexpr uint32_t kMagic = 0x47534C42;  // "BLSG"
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: the alpha test
 constexpr uint64_t kMaxStringBytes = 64ull << 20;  // names, paths, warnings and the error, together
 constexpr uint64_t kMeshOverheadBytes = 128;       // a mesh's fixed fields and counts, with room to spare
-constexpr uint64_t kMinMeshBytes = 81;             // the least a mesh takes (empty name and arrays)
+constexpr uint64_t kMinMeshBytes = 93;             // the least a mesh takes (empty name and arrays)
 constexpr uint64_t kPointLightBytes = 11 * 4;
 
 class Writer {
@@ -121,6 +121,9 @@ void encodeMesh(Writer& w, const TriangleMesh& m, int64_t embedded) {
     w.f32(m.roughness);
     w.f32(m.metalness);
     w.u8(m.specular ? 1 : 0);
+    w.f32(m.alphaCutoff);
+    w.f32(m.baseAlpha);
+    w.string(m.alphaTexture);
 }
 
 bool decodeMesh(Reader& r, const std::vector<std::shared_ptr<std::vector<uint8_t>>>& textures, TriangleMesh* m) {
@@ -136,7 +139,14 @@ bool decodeMesh(Reader& r, const std::vector<std::shared_ptr<std::vector<uint8_t
     m->roughness = r.f32("a mesh");
     m->metalness = r.f32("a mesh");
     m->specular = r.u8("a mesh") != 0;
+    m->alphaCutoff = r.f32("a mesh");
+    m->baseAlpha = r.f32("a mesh");
+    m->alphaTexture = r.string("a texture name");
     if (!r.ok()) return false;
+    if (!(m->alphaCutoff >= 0.0f && m->alphaCutoff <= 1.0f) || !(m->baseAlpha >= 0.0f && m->baseAlpha <= 1.0f)) {  // NaN fails too
+        r.fail("mesh '" + m->name + "' has an alpha cut-off or base alpha outside [0, 1]");
+        return false;
+    }
     const size_t vertices = m->positions.size() / 3;
     if (m->positions.size() % 3 || m->indices.size() % 3 || (!m->normals.empty() && m->normals.size() != m->positions.size()) ||
         (!m->uvs.empty() && m->uvs.size() != 2 * vertices)) {

@@ -19,7 +19,7 @@ bool writeDisplayImage(const std::string& path, uint32_t, uint32_t, const std::v
     return unavailable(path, error);
 }
 bool loadTextureLayer(const std::string& path, uint32_t, std::vector<uint8_t>*, std::string* error, const std::vector<uint8_t>*,
-                      const scenes::LoadLimits&) {
+                      const scenes::LoadLimits&, bool) {
     return unavailable(path, error);
 }
 

@@ -106,7 +106,7 @@ bool decodeIsolated(const std::string& path, const std::vector<uint8_t>* encoded
 }  // namespace
 
 bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_t>* texels, std::string* error,
-                      const std::vector<uint8_t>* encoded, const scenes::LoadLimits& limits) {
+                      const std::vector<uint8_t>* encoded, const scenes::LoadLimits& limits, bool coverage) {
     auto fail = [&](const std::string& why) {
         if (error) *error = "'" + path + "' cannot be loaded: " + why;
         return false;
@@ -127,8 +127,9 @@ bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_
     const int channels = int(decoded.channels);
     OIIO::ImageSpec decodedSpec(int(decoded.width), int(decoded.height), channels, OIIO::TypeDesc::UINT8);
     OIIO::ImageBuf source(decodedSpec, decoded.bytes.data());
-    // Grey and grey-alpha to RGBA, RGB to RGBA (alpha 1).
-    const int map[4] = {0, channels >= 3 ? 1 : 0, channels >= 3 ? 2 : 0, channels == 4 ? 3 : (channels == 2 ? 1 : -1)};
+    // Grey and grey-alpha to RGBA, RGB to RGBA (alpha 1; a coverage map's alpha: its first channel).
+    const int alpha = channels == 4 ? 3 : channels == 2 ? 1 : coverage ? 0 : -1;
+    const int map[4] = {0, channels >= 3 ? 1 : 0, channels >= 3 ? 2 : 0, alpha};
     const float fill[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     OIIO::ImageBuf rgba = OIIO::ImageBufAlgo::channels(source, 4, map, fill);
     OIIO::ImageBuf resized = OIIO::ImageBufAlgo::resize(rgba, "", 0.0f, OIIO::ROI(0, int(size), 0, int(size), 0, 1, 0, 4));

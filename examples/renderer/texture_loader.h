@@ -14,8 +14,9 @@ namespace bricklight::render {
 
 // Appends size * size * 4 bytes to `texels`; false with `error` ("'path' cannot be loaded: why") if the
 // file cannot be read or is over `limits`. With `encoded` (a texture embedded in a model file), decodes
-// those bytes instead; `path` names it.
+// those bytes instead; `path` names it. With `coverage` (an opacity map, TriangleMesh::alphaTexture), an image
+// without an alpha channel gives its first channel as the alpha.
 bool loadTextureLayer(const std::string& path, uint32_t size, std::vector<uint8_t>* texels, std::string* error,
-                      const std::vector<uint8_t>* encoded = nullptr, const scenes::LoadLimits& limits = {});
+                      const std::vector<uint8_t>* encoded = nullptr, const scenes::LoadLimits& limits = {}, bool coverage = false);
 
 }  // namespace bricklight::render

@@ -3,6 +3,7 @@
 // more than the reply holds.
 #include "test_support.h"
 
+#include <cmath>
 #include <cstring>
 
 #include "scene_geometry.h"
@@ -31,6 +32,9 @@ scenes::SceneGeometry sampleScene() {
         m.roughness = 0.3f;
         m.metalness = 0.7f;
         m.specular = i == 1;
+        m.alphaCutoff = 0.25f * float(i);
+        m.baseAlpha = 0.5f;
+        m.alphaTexture = i == 1 ? "leaf.png" : "";
         s.meshes.push_back(m);
         s.instances.push_back({uint32_t(i), glm::mat4(float(i + 1))});
     }
@@ -68,6 +72,9 @@ TEST_CASE("loading: a scene survives the importer's reply format", "[loading]") 
         CHECK(a.roughness == b.roughness);
         CHECK(a.metalness == b.metalness);
         CHECK(a.specular == b.specular);
+        CHECK(a.alphaCutoff == b.alphaCutoff);
+        CHECK(a.baseAlpha == b.baseAlpha);
+        CHECK(a.alphaTexture == b.alphaTexture);
         CHECK(in.instances[i].mesh == out.instances[i].mesh);
         CHECK(in.instances[i].transform == out.instances[i].transform);
     }
@@ -111,6 +118,16 @@ TEST_CASE("loading: malformed importer replies are errors, never crashes", "[loa
     const std::vector<uint8_t> pastEnd = scenes::encodeImportResult(s, "");
     CHECK(!scenes::decodeImportResult(pastEnd.data(), pastEnd.size(), {}, &out, &importError, &error));
     CHECK(matches(error, "index past its vertices"));
+    // An alpha cut-off or base alpha that is not a number or outside [0, 1] (GpuScene would test against it).
+    for (float bad : {std::nanf(""), -0.5f, 1.5f})
+        for (int field = 0; field < 2; ++field) {
+            INFO(bad << " as field " << field);
+            s = sampleScene();
+            (field ? s.meshes[1].baseAlpha : s.meshes[1].alphaCutoff) = bad;
+            const std::vector<uint8_t> badAlpha = scenes::encodeImportResult(s, "");
+            CHECK(!scenes::decodeImportResult(badAlpha.data(), badAlpha.size(), {}, &out, &importError, &error));
+            CHECK(matches(error, "mesh 'mesh 1' has an alpha cut-off or base alpha outside \\[0, 1\\]"));
+        }
     // More vertices than the limits allow.
     scenes::LoadLimits limits;
     limits.maxVertices = 5;

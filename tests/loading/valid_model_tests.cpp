@@ -110,3 +110,105 @@ TEST_CASE("loading: the valid triangles the hostile cases are made from load wit
         texturesLoad(s);
     }
 }
+
+namespace {
+
+// gltfTriangle with `material` as its one material.
+std::string gltfWithMaterial(const std::string& material) {
+    std::string json = gltfTriangle("texture.png", "triangle.bin");
+    const std::string plain = R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}])";
+    const size_t at = json.find(plain);
+    REQUIRE(at != std::string::npos);
+    return json.replace(at, plain.size(), R"("materials":[)" + material + "]");
+}
+
+}  // namespace
+
+TEST_CASE("loading: alpha-tested materials (glTF alphaMode and alphaCutoff, OBJ map_d) come through", "[loading]") {
+    const std::string dir = freshFolder("alpha");
+    writeFile(dir + "/texture.png", pngBytes(4, 4, 4));
+    writeFile(dir + "/triangle.bin", triangleBuffer());
+    const std::string texture = R"("baseColorTexture":{"index":0})";
+    const struct {
+        const char* name;
+        std::string material;
+        float cutoff, baseAlpha;
+        const char* warning;  // "" none
+    } gltf[] = {
+        {"mask", R"({"alphaMode":"MASK","alphaCutoff":0.3,"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.75],)" + texture + "}}", 0.3f, 0.75f, ""},
+        {"mask-default", R"({"alphaMode":"MASK","pbrMetallicRoughness":{)" + texture + "}}", 0.5f, 1.0f, ""},
+        {"opaque", R"({"alphaMode":"OPAQUE","alphaCutoff":0.3,"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.25],)" + texture + "}}", 0.0f, 1.0f, ""},
+        {"blend", R"({"alphaMode":"BLEND","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.5],)" + texture + "}}", 0.5f, 0.5f,
+         "alphaMode BLEND is drawn as MASK with a cut-off of 0.5"},
+        {"negative", R"({"alphaMode":"MASK","alphaCutoff":-0.5,"pbrMetallicRoughness":{)" + texture + "}}", 0.0f, 1.0f,
+         "alphaCutoff -0.500000 is outside \\[0, 1\\]; clamped"},
+        {"over-one", R"({"alphaMode":"MASK","alphaCutoff":7,"pbrMetallicRoughness":{)" + texture + "}}", 1.0f, 1.0f,
+         "alphaCutoff 7.000000 is outside \\[0, 1\\]; clamped"},
+    };
+    for (const auto& c : gltf) {
+        INFO(c.name);
+        const std::string path = dir + "/" + c.name + ".gltf";
+        writeFile(path, gltfWithMaterial(c.material));
+        for (bool isolate : {true, false}) {
+            scenes::LoadLimits limits;
+            limits.isolateImport = isolate;
+            std::string error;
+            const scenes::SceneGeometry s = scenes::loadModel(path, &error, limits);
+            INFO(error);
+            REQUIRE(s.meshes.size() == 1);
+            CHECK(s.meshes[0].alphaCutoff == c.cutoff);
+            CHECK(s.meshes[0].baseAlpha == c.baseAlpha);
+            CHECK(s.meshes[0].alphaTexture.empty());  // the base colour texture's alpha
+            CHECK(!s.meshes[0].baseColorTexture.empty());
+            bool warned = false;
+            for (const std::string& w : s.warnings) warned |= *c.warning && matches(w, c.warning);
+            CHECK(warned == (*c.warning != 0));
+        }
+    }
+    // A cut-off that is not a finite number (NaN, 1e999) is refused: the JSON checks before assimp catch both; the
+    // importer checks again for what assimp might hand over.
+    writeFile(dir + "/nan.gltf", gltfWithMaterial(R"({"alphaMode":"MASK","alphaCutoff":NaN,"pbrMetallicRoughness":{)" + texture + "}}"));
+    writeFile(dir + "/inf.gltf", gltfWithMaterial(R"({"alphaMode":"MASK","alphaCutoff":1e999,"pbrMetallicRoughness":{)" + texture + "}}"));
+    std::string error;
+    CHECK(scenes::loadModel(dir + "/nan.gltf", &error).meshes.empty());
+    CHECK(matches(error, "^cannot load '.*nan.gltf'"));
+    CHECK(scenes::loadModel(dir + "/inf.gltf", &error).meshes.empty());
+    CHECK(matches(error, "^cannot load '.*inf.gltf'"));
+
+    // OBJ: map_d is the coverage, tested at 0.5; without it the mesh is opaque.
+    writeFile(dir + "/model.obj", objTriangle("model.mtl"));
+    writeFile(dir + "/leaf.png", pngBytes(4, 4, 4));
+    writeFile(dir + "/model.mtl", "newmtl m\nKd 1 1 1\nmap_Kd texture.png\nmap_d leaf.png\n");
+    scenes::SceneGeometry s = scenes::loadModel(dir + "/model.obj", &error);
+    INFO(error);
+    REQUIRE(s.meshes.size() == 1);
+    CHECK(s.meshes[0].alphaCutoff == 0.5f);
+    CHECK(s.meshes[0].baseAlpha == 1.0f);
+    CHECK(s.meshes[0].alphaTexture == dir + "/leaf.png");
+    CHECK(s.meshes[0].baseColorTexture == dir + "/texture.png");
+    writeFile(dir + "/model.mtl", "newmtl m\nKd 1 1 1\nmap_Kd texture.png\n");
+    s = scenes::loadModel(dir + "/model.obj", &error);
+    REQUIRE(s.meshes.size() == 1);
+    CHECK(s.meshes[0].alphaCutoff == 0.0f);
+    CHECK(s.meshes[0].alphaTexture.empty());
+    // An opacity map outside the model's folder is refused like a base colour texture there.
+    writeFile(dir + "/model.mtl", "newmtl m\nKd 1 1 1\nmap_d ../../outside.png\n");
+    CHECK(scenes::loadModel(dir + "/model.obj", &error).meshes.empty());
+    CHECK(matches(error, "its opacity map '.*outside.png' \\(named by .*\\) lies outside the model's folder"));
+}
+
+#if defined(BRICKLIGHT_TEST_TEXTURES)
+TEST_CASE("loading: an opacity map without alpha gives its first channel as the coverage", "[loading]") {
+    const std::string dir = freshFolder("coverage");
+    writeFile(dir + "/grey.png", pngBytes(4, 4, 4));  // RGB, every channel 0x80
+    std::vector<uint8_t> colour, coverage;
+    std::string error;
+    REQUIRE(render::loadTextureLayer(dir + "/grey.png", 4, &colour, &error));
+    REQUIRE(render::loadTextureLayer(dir + "/grey.png", 4, &coverage, &error, nullptr, {}, true));
+    REQUIRE(colour.size() == 64);
+    REQUIRE(coverage.size() == 64);
+    CHECK(colour[3] == 255);     // a base colour texture without alpha is opaque
+    CHECK(coverage[3] == 0x80);  // as a coverage map, its grey is the alpha
+    CHECK(coverage[0] == 0x80);
+}
+#endif

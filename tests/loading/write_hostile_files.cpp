@@ -67,6 +67,9 @@ void writeFuzzSeeds(const std::string& root) {
     mesh.baseColorTexture = "model.glb*0.png";
     mesh.embeddedTexture = std::make_shared<std::vector<uint8_t>>(4, uint8_t(7));
     scene.meshes = {mesh, mesh};
+    scene.meshes[1].alphaCutoff = 0.5f;  // the alpha test's fields, for the fuzzer to corrupt
+    scene.meshes[1].baseAlpha = 0.75f;
+    scene.meshes[1].alphaTexture = "leaf.png";
     scene.instances = {{0, glm::mat4(1.0f)}, {1, glm::mat4(2.0f)}};
     scene.pointLights.resize(1);
     scene.warnings = {"a warning"};
