@@ -97,6 +97,9 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
             return fail("mesh '" + m.name + "': transmission must be in [0, 1] (0 opaque, 1 clear glass), got " + std::to_string(m.transmission));
         if (!(m.ior > 1.0f && m.ior <= 3.0f))
             return fail("mesh '" + m.name + "': the index of refraction (ior) must be finite and in (1, 3], got " + std::to_string(m.ior));
+        if (!(m.alphaCutoff >= 0.0f && m.alphaCutoff <= 1.0f) || !(m.baseAlpha >= 0.0f && m.baseAlpha <= 1.0f))
+            return fail("mesh '" + m.name + "': alphaCutoff (0 opaque) and baseAlpha must be in [0, 1], got " + std::to_string(m.alphaCutoff) +
+                        " and " + std::to_string(m.baseAlpha));
     }
     for (const auto& m : scene.meshes)
         if (!finite(m.albedo) || !finite(m.emission) || glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) ||
@@ -155,39 +158,52 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
             lights.push_back(glm::vec4(bitsOf(slot), area, total, weight));
         }
     }
-    // Base-colour textures: one layer each (a file used by several meshes is loaded once).
-    std::vector<std::string> texturePaths;
-    std::vector<const std::vector<uint8_t>*> textureBytes;  // embedded textures' encoded bytes
+    // Base-colour textures: one layer for each pair of base colour texture and opacity map (a pair used by
+    // several meshes is loaded once); an opacity map replaces its layer's alpha.
+    struct Layer {
+        std::string colour, coverage;
+        const std::vector<uint8_t>* encoded;  // the colour texture's, when embedded in the model file
+    };
+    std::vector<Layer> layers;
     std::vector<float> layerOf;
     for (const auto& m : scene.meshes) {
         float layer = -1.0f;
-        if (!m.baseColorTexture.empty()) {
-            auto it = std::find(texturePaths.begin(), texturePaths.end(), m.baseColorTexture);
-            layer = float(it - texturePaths.begin());
-            if (it == texturePaths.end()) {
-                texturePaths.push_back(m.baseColorTexture);
-                textureBytes.push_back(m.embeddedTexture.get());
-            }
+        const std::string coverage = m.alphaTested() ? m.alphaTexture : std::string();
+        if (!m.baseColorTexture.empty() || !coverage.empty()) {
+            auto it = std::find_if(layers.begin(), layers.end(),
+                                   [&](const Layer& l) { return l.colour == m.baseColorTexture && l.coverage == coverage; });
+            layer = float(it - layers.begin());
+            if (it == layers.end()) layers.push_back({m.baseColorTexture, coverage, m.embeddedTexture.get()});
         }
         layerOf.push_back(layer);
     }
+    const size_t layerBytes = size_t(kTextureSize) * kTextureSize * 4;
+    auto meshOf = [&](const std::string& path, bool coverage) {
+        for (const auto& m : scene.meshes)
+            if ((coverage ? m.alphaTexture : m.baseColorTexture) == path) return m.name;
+        return std::string();
+    };
     std::vector<uint8_t> texels;
-    for (size_t k = 0; k < texturePaths.size(); ++k) {
-        const std::string& path = texturePaths[k];
+    for (const Layer& l : layers) {
         std::string textureError;
-        if (!loadTextureLayer(path, kTextureSize, &texels, &textureError, textureBytes[k], scene.loadLimits)) {
-            for (size_t i = 0; i < scene.meshes.size(); ++i)
-                if (scene.meshes[i].baseColorTexture == path)
-                    return fail("mesh '" + scene.meshes[i].name + "': base colour texture " + textureError);
-        }
+        if (l.colour.empty()) texels.resize(texels.size() + layerBytes, 255);  // white, opaque
+        else if (!loadTextureLayer(l.colour, kTextureSize, &texels, &textureError, l.encoded, scene.loadLimits))
+            return fail("mesh '" + meshOf(l.colour, false) + "': base colour texture " + textureError);
+        if (l.coverage.empty()) continue;
+        std::vector<uint8_t> coverage;
+        if (!loadTextureLayer(l.coverage, kTextureSize, &coverage, &textureError, nullptr, scene.loadLimits, true))
+            return fail("mesh '" + meshOf(l.coverage, true) + "': opacity map " + textureError);
+        uint8_t* layer = texels.data() + texels.size() - layerBytes;
+        for (size_t i = 3; i < layerBytes; i += 4) layer[i] = coverage[i];
     }
-    if (texturePaths.empty()) texels.assign(size_t(kTextureSize) * kTextureSize * 4, 255);  // one white layer
+    if (layers.empty()) texels.assign(layerBytes, 255);  // one white layer
     std::vector<glm::vec4> materials;
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         const auto& m = scene.meshes[i];
         materials.push_back(glm::vec4(m.albedo, m.roughness));
         materials.push_back(glm::vec4(m.emission, m.metalness));
         materials.push_back(glm::vec4(layerOf[i], m.specular ? 0.04f : 0.0f, m.transmission, m.ior));
+        materials.push_back(glm::vec4(m.alphaCutoff, m.baseAlpha, 0.0f, 0.0f));
     }
     std::vector<glm::vec4> triangleUvs(2 * size_t(n)), triangleNormals(3 * size_t(n));
     for (uint32_t slot = 0; slot < n; ++slot) {
@@ -237,7 +253,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     td.dimension = rhi::TextureDimension::Texture2DArray;
     td.format = rhi::Format::RGBA8_SRGB;
     td.width = td.height = kTextureSize;
-    td.depthOrLayers = uint32_t(std::max<size_t>(1, texturePaths.size()));
+    td.depthOrLayers = uint32_t(std::max<size_t>(1, layers.size()));
     td.debugName = "base colour textures";
     s->textures_ = device.createTexture(td, texels.data());
     rhi::SamplerDesc sd;

@@ -34,7 +34,11 @@ struct Decoded {
 bool decode(const std::string& path, const std::vector<uint8_t>* encoded, const scenes::LoadLimits& limits, Decoded* out,
             std::string* why) {
     OIIO::Filesystem::IOMemReader memory(encoded ? encoded->data() : nullptr, encoded ? encoded->size() : 0);
-    auto input = OIIO::ImageInput::open(path, nullptr, encoded ? &memory : nullptr);
+    // Colour as stored, not premultiplied by alpha: the alpha is a coverage for the alpha test, and a texel
+    // that passes it shows its own colour (premultiplied, texels near the cut-off would darken).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path, &config, encoded ? &memory : nullptr);
     if (!input) return *why = OIIO::geterror(), false;
     // The header alone says what decoding would cost: refuse before allocating for it.
     const OIIO::ImageSpec& spec = input->spec();

@@ -9,7 +9,8 @@ BL_CONSTANTS(0) uniform Camera {
     mat4 previousViewProjection;
     vec4 eye;
 } camera;
-BL_READ_BUFFER(2) Materials { vec4 materials[]; };  // 3 per material: albedo, roughness; emission, metalness; layer
+// 4 per material: albedo, roughness; emission, metalness; layer, F0, transmission, ior; alpha cut-off, base alpha
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };
 BL_TEXTURE(0) uniform sampler2DArray baseColorTextures;
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) flat in uint vMaterial;
@@ -30,12 +31,16 @@ void main() {
     vec3 facing = front ? vGeometricNormal : -vGeometricNormal;
     vec3 shading = normalize(vNormal);  // interpolated vertex normals (the triangle's own where none)
     if (dot(shading, facing) < 0.0) shading = -shading;
-    vec4 a = materials[3u * vMaterial], e = materials[3u * vMaterial + 1u];
-    float layer = materials[3u * vMaterial + 2u].x;
+    vec4 a = materials[4u * vMaterial], e = materials[4u * vMaterial + 1u];
+    float layer = materials[4u * vMaterial + 2u].x;
     // Level 0, as the path tracer samples it (no derivatives there).
-    if (layer >= 0.0) a.rgb *= textureLod(baseColorTextures, vec3(vUv, layer), 0.0).rgb;
+    vec4 texel = layer >= 0.0 ? textureLod(baseColorTextures, vec3(vUv, layer), 0.0) : vec4(1.0);
+    // Alpha-tested (cut-off > 0): a texel whose coverage is below the cut-off is a hole, not a surface.
+    vec2 alphaTest = materials[4u * vMaterial + 3u].xy;
+    if (alphaTest.x > 0.0 && texel.a * alphaTest.y < alphaTest.x) discard;
+    a.rgb *= texel.rgb;
     outAlbedo = a;
-    outNormal = vec4(shading, materials[3u * vMaterial + 2u].y);  // w: dielectric specular reflectance
+    outNormal = vec4(shading, materials[4u * vMaterial + 2u].y);  // w: dielectric specular reflectance
     outEmission = vec4(front ? e.rgb : vec3(0.0), e.a);
     vec2 uv = vClip.xy / vClip.w * 0.5 + 0.5;
     vec2 previousUv = vPreviousClip.xy / vPreviousClip.w * 0.5 + 0.5;

@@ -63,7 +63,7 @@ vec3 lightAlong(vec3 origin, vec3 d, float spread2) {
         vec3 ng = triangleNormal(h.triangle);
         bool front = dot(ng, d) < 0.0;
         if (glassTransmission(material) <= 0.0 || i == kMaxInterfaces) {  // an opaque surface: the cone sees it
-            emitted = front ? materials[3u * material + 1u].rgb : vec3(0.0);
+            emitted = front ? materials[4u * material + 1u].rgb : vec3(0.0);
             surface = max(h.t, 1e-6);
             break;
         }
@@ -71,7 +71,7 @@ vec3 lightAlong(vec3 origin, vec3 d, float spread2) {
         float ior = glassIor(material);
         float eta = front ? ior : 1.0 / ior;
         vec3 t = refract(d, n, 1.0 / eta);
-        float roughness = materials[3u * material].w;
+        float roughness = materials[4u * material].w;
         bool internal = dot(t, t) == 0.0;  // total internal reflection
         float widen = internal ? reflectionCone(roughness) : refractionCone(roughness, eta);
         spread2 += widen * widen;
@@ -89,12 +89,12 @@ vec3 lightAlong(vec3 origin, vec3 d, float spread2) {
 // The opaque share of a partly transmissive surface: direct light and diffuse light from four cones.
 vec3 opaqueShare(uint material, vec3 p, vec3 n, vec3 v) {
     Surface s;
-    s.baseColor = materials[3u * material].rgb;
-    float layer = materials[3u * material + 2u].x;
+    s.baseColor = materials[4u * material].rgb;
+    float layer = materials[4u * material + 2u].x;
     if (layer >= 0.0) s.baseColor *= textureLod(baseColorTextures, vec3(vUv, layer), 0.0).rgb;
-    s.roughness = materials[3u * material].w;
-    s.metalness = materials[3u * material + 1u].w;
-    s.dielectricF0 = materials[3u * material + 2u].y;
+    s.roughness = materials[4u * material].w;
+    s.metalness = materials[4u * material + 1u].w;
+    s.dielectricF0 = materials[4u * material + 2u].y;
     const uint samples = 4u;
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < samples; ++i) sum += directLight(p, n, v, s, sceneLight.lightWeight.y);
@@ -123,7 +123,7 @@ void main() {
     n = dot(n, ng) < 0.0 ? -n : n;
     n = dot(n, v) > 1e-4 ? n : ng;  // an interpolated normal turned away at a silhouette: the facet's own
     uint material = vMaterial;
-    float roughness = materials[3u * material].w;
+    float roughness = materials[4u * material].w;
     float ior = glassIor(material);
     float eta = front ? ior : 1.0 / ior;
     float fresnel = fresnelDielectric(dot(n, v), eta);
@@ -141,6 +141,6 @@ void main() {
         rngState = pcg(uint(gl_FragCoord.x) ^ pcg(uint(gl_FragCoord.y) ^ pcg(glass.params.x ^ sceneLight.counts.y)));
         radiance = mix(opaqueShare(material, vWorld + ng * sceneLight.lightWeight.y, n, v), radiance, transmission);
     }
-    vec3 emission = front ? materials[3u * material + 1u].rgb : vec3(0.0);
+    vec3 emission = front ? materials[4u * material + 1u].rgb : vec3(0.0);
     outRadiance = vec4(radiance + emission, 1.0);
 }

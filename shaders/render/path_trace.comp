@@ -84,7 +84,7 @@ void main() {
                 rngState = pathRng;
             }
             if (countEmission && front) {
-                vec3 emission = materials[3u * material + 1u].rgb;
+                vec3 emission = materials[4u * material + 1u].rgb;
                 radiance += throughput * emission;
                 if (k == 0u) direct += emission; else indirect += relative * emission;
             }

@@ -13,8 +13,9 @@ BL_CONSTANTS(1) uniform SceneLight {
 } sceneLight;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits)
 BL_READ_BUFFER(1) Nodes { vec4 nodes[]; };           // 2 per node: min, rightOrFirst; max, count
-BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 3 per material: albedo, roughness; emission, metalness;
-                                                     // texture layer (-1 none), dielectric F0, transmission, ior
+BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 4 per material: albedo, roughness; emission, metalness;
+                                                     // texture layer (-1 none), dielectric F0, transmission, ior;
+                                                     // alpha cut-off (0 opaque), base alpha
 BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, cumulative weight, weight
 BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
 BL_READ_BUFFER(5) TriangleUvs { vec4 triangleUvs[]; };  // 2 per triangle: uv0, uv1; uv2
@@ -98,9 +99,9 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
 // Base colour at a hit: the material's factor, times its texture where it has one (and the including
 // shader binds the textures).
 vec3 surfaceAlbedo(uint material, uint tri, vec2 bary) {
-    vec3 albedo = materials[3u * material].rgb;
+    vec3 albedo = materials[4u * material].rgb;
 #ifdef BL_SCENE_TEXTURES
-    float layer = materials[3u * material + 2u].x;
+    float layer = materials[4u * material + 2u].x;
     if (layer >= 0.0) {
         vec4 a = triangleUvs[2u * tri], b = triangleUvs[2u * tri + 1u];
         vec2 uv = a.xy * (1.0 - bary.x - bary.y) + a.zw * bary.x + b.xy * bary.y;
@@ -147,9 +148,9 @@ struct Surface {
 Surface surfaceAt(uint material, uint tri, vec2 bary) {
     Surface s;
     s.baseColor = surfaceAlbedo(material, tri, bary);
-    s.roughness = materials[3u * material].w;
-    s.metalness = materials[3u * material + 1u].w;
-    s.dielectricF0 = materials[3u * material + 2u].y;
+    s.roughness = materials[4u * material].w;
+    s.metalness = materials[4u * material + 1u].w;
+    s.dielectricF0 = materials[4u * material + 2u].y;
     return s;
 }
 
@@ -222,8 +223,8 @@ bool sampleBrdf(Surface s, vec3 n, vec3 v, out vec3 l, out vec3 weight) {
 // Glass (TriangleMesh::transmission, ior): a clear dielectric interface with GGX microfacets, smooth below this
 // roughness (a mirror and a perfect refraction).
 const float kSmoothGlass = 0.02;
-float glassTransmission(uint material) { return materials[3u * material + 2u].z; }
-float glassIor(uint material) { return materials[3u * material + 2u].w; }
+float glassTransmission(uint material) { return materials[4u * material + 2u].z; }
+float glassIor(uint material) { return materials[4u * material + 2u].w; }
 
 // Fresnel reflectance of a dielectric interface, exact (unpolarized): `cosI` the cosine of incidence on the
 // incident side, `eta` = η_transmitted / η_incident. 1 under total internal reflection.
@@ -309,7 +310,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Surface surface, float eps) {
             Hit h;
             if (!traceRay(p, l, eps, dist * (1.0 - 1e-4), true, h)) {
                 uint material = floatBitsToUint(triangles[3u * tri].w);
-                vec3 emission = materials[3u * material + 1u].rgb;
+                vec3 emission = materials[4u * material + 1u].rgb;
                 // pdf = (weight / total) / area
                 sum += evalBrdf(surface, n, v, l) * emission * cosP * cosL / dist2 * light.y * sceneLight.lightWeight.x / light.w;
             }

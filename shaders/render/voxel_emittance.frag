@@ -28,11 +28,11 @@ float bounceConeSurface(vec3 origin, vec3 direction) {
 
 vec3 blVoxelEmittance(BlVoxelFragment f) {
     uint material = uint(f.user0.x + 0.5);
-    vec3 albedo = materials[3u * material].rgb;
-    float layer = materials[3u * material + 2u].x;
+    vec3 albedo = materials[4u * material].rgb;
+    float layer = materials[4u * material + 2u].x;
     if (layer >= 0.0) albedo *= textureLod(baseColorTextures, vec3(f.user0.yz, layer), 0.0).rgb;
     Surface s;
-    s.baseColor = albedo * (1.0 - materials[3u * material + 1u].w);  // metals send (almost) no diffuse light
+    s.baseColor = albedo * (1.0 - materials[4u * material + 1u].w);  // metals send (almost) no diffuse light
     s.roughness = 1.0;
     s.metalness = 0.0;
     s.dielectricF0 = 0.0;  // Lambertian: the light leaves the same way in every direction

@@ -1,7 +1,9 @@
 // Base-colour textures: a textured quad shows its texels in the path tracer's and the fast path's albedo
-// (the same values), and a texture that cannot be loaded is a clear error.
+// (the same values), and a texture that cannot be loaded is a clear error. Alpha-tested materials: the
+// G-buffer draw leaves out what is below the cut-off.
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "backend_test.h"
@@ -81,7 +83,98 @@ void missingTexture(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// A 64 x 64 image of `channels` channels, the left half `left`, the right half `right`: in the alpha of an RGBA
+// image (white), in every channel of an RGB one.
+std::string writeHalves(const std::string& name, int channels, uint8_t left, uint8_t right) {
+    std::vector<uint8_t> texels(64 * 64 * size_t(channels));
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < channels; ++c)
+                texels[size_t(y * 64 + x) * size_t(channels) + size_t(c)] = channels == 4 && c < 3 ? 255 : x < 32 ? left : right;
+    auto out = OIIO::ImageOutput::create(name);
+    REQUIRE(out);
+    OIIO::ImageSpec spec(64, 64, channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // the colour as given where alpha is 0 (not premultiplied to black)
+    REQUIRE(out->open(name, spec));
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, texels.data()));
+    out->close();
+    return name;
+}
+
+// texturedQuad (albedo green) in front of a larger red wall.
+scenes::SceneGeometry quadBeforeWall(const std::string& texture) {
+    scenes::SceneGeometry s = texturedQuad(texture);
+    s.meshes[0].albedo = glm::vec3(0, 1, 0);
+    scenes::TriangleMesh wall;
+    wall.name = "wall";
+    wall.positions = {-3, -3, -1, 3, -3, -1, 3, 3, -1, -3, 3, -1};
+    wall.indices = {0, 1, 2, 0, 2, 3};
+    wall.albedo = glm::vec3(1, 0, 0);
+    s.meshes.push_back(wall);
+    s.instances.push_back({1, glm::mat4(1.0f)});
+    s.computeBounds();
+    return s;
+}
+
+void alphaTestedGbuffer(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    // White RGBA, transparent on the left half (alpha 0), opaque on the right (255); and a grey coverage map
+    // (RGB, no alpha) black on the left, white on the right.
+    const std::string rgba = writeHalves("alpha_tests_rgba_" + backend + ".png", 4, 0, 255);
+    const std::string white = writeHalves("alpha_tests_white_" + backend + ".png", 3, 255, 255);
+    const std::string coverageMap = writeHalves("alpha_tests_coverage_" + backend + ".png", 3, 0, 255);
+    const glm::vec3 quad(0, 1, 0), wall(1, 0, 0);
+    const struct {
+        const char* name;
+        std::string texture, alphaTexture;
+        float cutoff, baseAlpha;
+        glm::vec3 left, right;  // what the quad's halves show
+    } cases[] = {
+        {"the base colour texture's alpha", rgba, "", 0.5f, 1.0f, wall, quad},
+        {"cut-off 0: opaque, alpha ignored", rgba, "", 0.0f, 1.0f, quad, quad},
+        {"an opacity map without alpha (its first channel)", white, coverageMap, 0.5f, 1.0f, wall, quad},
+        {"base alpha 0.25 below the cut-off 0.5 everywhere", rgba, "", 0.5f, 0.25f, wall, wall},
+        {"base alpha 0.75 with a cut-off of 0.7", rgba, "", 0.7f, 0.75f, wall, quad},
+    };
+    for (const auto& c : cases) {
+        INFO(c.name);
+        scenes::SceneGeometry s = quadBeforeWall(c.texture);
+        s.meshes[0].alphaCutoff = c.cutoff;
+        s.meshes[0].baseAlpha = c.baseAlpha;
+        s.meshes[0].alphaTexture = c.alphaTexture;
+        render::RasterOptions ro;
+        ro.width = ro.height = 32;
+        std::string error;
+        auto raster = render::RasterRenderer::create(*td.device, s, ro, &error);
+        INFO(error);
+        REQUIRE(raster);
+        raster->render();
+        const render::Image albedo = raster->read(render::Aov::Albedo);
+        // The quad fills the view (30 degrees at distance 3); its texture's halves meet at column 16.
+        for (uint32_t y : {4u, 16u, 27u})
+            for (uint32_t x : {4u, 12u, 19u, 27u}) {
+                const glm::vec3 seen = albedo.at(x, y), expected = x < 16 ? c.left : c.right;
+                INFO("pixel " << x << "," << y << ": " << seen.x << "," << seen.y << "," << seen.z);
+                CHECK(glm::length(seen - expected) < 0.02f);
+            }
+    }
+    // Values outside [0, 1] are refused by the scene.
+    for (float bad : {std::nanf(""), -0.25f, 1.5f}) {
+        scenes::SceneGeometry s = quadBeforeWall(rgba);
+        s.meshes[0].alphaCutoff = bad;
+        std::string error;
+        render::RasterOptions ro;
+        ro.width = ro.height = 8;
+        CHECK(!render::RasterRenderer::create(*td.device, s, ro, &error));
+        INFO(error);
+        CHECK(error.find("mesh 'textured quad': alphaCutoff (0 opaque) and baseAlpha must be in [0, 1]") != std::string::npos);
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
+BACKEND_TEST("textures: alpha-tested materials leave holes in the G-buffer", "[render]", alphaTestedGbuffer)
 BACKEND_TEST("textures: base colour in both paths", "[render]", texturedAlbedo)
 BACKEND_TEST("textures: a texture that cannot be loaded is a clear error", "[render]", missingTexture)
