@@ -38,6 +38,10 @@ bool decode(const std::string& path, const std::vector<uint8_t>* encoded, const 
     // that passes it shows its own colour (premultiplied, texels near the cut-off would darken).
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    // With a configuration, the readers look for the in-memory file in it (the argument alone went unused:
+    // embedded textures failed to open).
+    OIIO::Filesystem::IOProxy* proxy = &memory;
+    if (encoded) config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     auto input = OIIO::ImageInput::open(path, &config, encoded ? &memory : nullptr);
     if (!input) return *why = OIIO::geterror(), false;
     // The header alone says what decoding would cost: refuse before allocating for it.
