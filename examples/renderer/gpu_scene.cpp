@@ -220,6 +220,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->environment_.sunDirection = glm::length(env.sunDirection) > 0.0f ? glm::normalize(env.sunDirection) : glm::vec3(0, 1, 0);
     s->triangles_ = n;
     s->opaqueTriangles_ = opaqueTriangles;
+    for (const auto& m : scene.meshes) s->alphaTested_ |= m.alphaTested();
     s->positions_ = std::move(positions);
     s->lightCount_ = lightCount;
     s->lightWeight_ = total;

@@ -46,6 +46,7 @@ public:
     uint32_t triangleCount() const { return triangles_; }
     // The vertex buffer holds the opaque triangles first, then the glass ones (transmission > 0).
     uint32_t opaqueTriangleCount() const { return opaqueTriangles_; }
+    bool hasAlphaTested() const { return alphaTested_; }  // a mesh with an alpha cut-off > 0
     uint32_t glassTriangleCount() const { return triangles_ - opaqueTriangles_; }
     // 3 vertices per triangle, in the scene's order, glass last (layout: kVertexStride).
     rhi::BufferHandle vertexBuffer() const { return vertices_; }
@@ -67,6 +68,7 @@ private:
     scenes::Environment environment_;
     std::vector<glm::vec3> positions_;
     uint32_t lightCount_ = 0, triangles_ = 0, opaqueTriangles_ = 0;
+    bool alphaTested_ = false;
     float lightWeight_ = 0.0f, epsilon_ = 1e-4f;
 };
 

@@ -228,6 +228,7 @@ private:
     rhi::ShaderHandle sunLight_;
     rhi::BufferHandle shadowData_;
     rhi::ShaderHandle shadowVertex_;
+    rhi::ShaderHandle shadowAlphaFragment_;  // with shadowVertex_ = shadow_depth_alpha.vert: scenes with alpha-tested materials
     rhi::TextureHandle shadowMap_;
     std::array<ShadowCascade, kShadowCascades> cascades_{};
     glm::vec3 sunDirection_{0.0f, 1.0f, 0.0f}, sunIrradiance_{0.0f};

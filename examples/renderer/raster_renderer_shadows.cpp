@@ -58,10 +58,19 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
         const uint32_t r = options_.sunShadows.resolution;
         if (2 * r > device_.capabilities().limits.maxTextureSize2D)
             return fail("the shadow atlas (2 x 2 cascades of " + std::to_string(r) + "²) exceeds the device's 2D texture size");
-        for (auto [name, handle] : {std::pair{"render/shadow_depth.vert", &shadowVertex_}, std::pair{options_.shadows == ShadowMode::Hybrid ? "render/shadow_sun_light_hybrid.comp" : "render/shadow_sun_light.comp", &sunLight_}}) {
+        // Alpha-tested materials need a fragment shader that discards their cut-out texels; other scenes keep
+        // the depth-only draw.
+        const bool alpha = scene_->hasAlphaTested();
+        for (auto [name, handle] : {std::pair{alpha ? "render/shadow_depth_alpha.vert" : "render/shadow_depth.vert", &shadowVertex_}, std::pair{options_.shadows == ShadowMode::Hybrid ? "render/shadow_sun_light_hybrid.comp" : "render/shadow_sun_light.comp", &sunLight_}}) {
             rhi::ShaderDesc sd;
             sd.blob = rhi::findShader(name);
             *handle = sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
+        }
+        if (alpha) {
+            rhi::ShaderDesc sd;
+            sd.blob = rhi::findShader("render/shadow_alpha.frag");
+            shadowAlphaFragment_ = sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
+            if (!shadowAlphaFragment_) return fail("the device could not create the alpha-tested shadow pass (see its messages)");
         }
         rhi::BufferDesc bd;
         bd.size = sizeof(ShadowData);
@@ -109,11 +118,11 @@ void RasterRenderer::destroyShadows() {
     if (sunMask_) device_.destroy(sunMask_);
     sunMask_ = {};
     if (shadowMap_) device_.destroy(shadowMap_);
-    for (rhi::ShaderHandle sh : {shadowVertex_, sunLight_})
+    for (rhi::ShaderHandle sh : {shadowVertex_, sunLight_, shadowAlphaFragment_})
         if (sh) device_.destroy(sh);
     if (shadowData_) device_.destroy(shadowData_);
     shadowMap_ = {};
-    shadowVertex_ = sunLight_ = {};
+    shadowVertex_ = sunLight_ = shadowAlphaFragment_ = {};
     shadowData_ = {};
 }
 
@@ -145,7 +154,17 @@ void RasterRenderer::renderShadowMaps() {
         d.label = "sun shadow cascade";
         d.vertexShader = shadowVertex_;
         scene_->bindVertices(d);
-        d.vertexInputs.count = 1;  // location 0, the position: the only input the depth-only shader reads
+        if (shadowAlphaFragment_) {
+            // Position, material and texture coordinates (locations 0, 2, 4): what the alpha test reads.
+            const auto all = d.vertexInputs;
+            d.vertexInputs.count = 0;
+            for (uint8_t k : {0, 2, 4}) d.vertexInputs.push(all.items[k]);
+            d.fragmentShader = shadowAlphaFragment_;
+            d.bindings.readBuffers.push({2, scene_->materialBuffer(), {}});
+            d.bindings.textures.push({0, rhi::wholeTexture(scene_->textureArray()), scene_->textureSampler()});
+        } else {
+            d.vertexInputs.count = 1;  // location 0, the position: the only input the depth-only shader reads
+        }
         d.depthTarget.view = rhi::textureMip(shadowMap_, 0);
         // The first draw clears the whole atlas; each draws into its tile through the viewport.
         d.depthTarget.load = i == 0 ? rhi::LoadOp::Clear : rhi::LoadOp::Load;

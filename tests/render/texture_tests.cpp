@@ -173,8 +173,56 @@ void alphaTestedGbuffer(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The sun's shadow maps leave the cut-out texels out: a sheet at y = 2, transparent over x < 0, above a floor that
+// a camera between them sees (the sheet behind it). The floor is lit under the holes, shadowed elsewhere.
+void alphaTestedShadowMaps(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const std::string rgba = writeHalves("alpha_shadow_rgba_" + backend + ".png", 4, 0, 255);
+    for (float cutoff : {0.5f, 0.0f}) {
+        INFO("cut-off " << cutoff);
+        scenes::SceneGeometry s;
+        scenes::TriangleMesh floor;
+        floor.name = "floor";
+        floor.positions = {-3, 0, 3, 3, 0, 3, 3, 0, -3, -3, 0, -3};
+        floor.indices = {0, 1, 2, 0, 2, 3};
+        scenes::TriangleMesh sheet;
+        sheet.name = "sheet";
+        sheet.positions = {-1, 2, 1, 1, 2, 1, 1, 2, -1, -1, 2, -1};
+        sheet.uvs = {0, 1, 1, 1, 1, 0, 0, 0};  // u = (x + 1) / 2
+        sheet.indices = {0, 1, 2, 0, 2, 3};
+        sheet.baseColorTexture = rgba;
+        sheet.alphaCutoff = cutoff;
+        s.meshes = {floor, sheet};
+        s.instances = {{0, glm::mat4(1.0f)}, {1, glm::mat4(1.0f)}};
+        s.environment.sunDirection = glm::normalize(glm::vec3(0.0f, 1.0f, 0.1f));
+        s.environment.sunIrradiance = glm::vec3(1.0f);
+        // Looking straight down from y = 0.5 (image x = world x): the floor within 0.3 of the origin.
+        s.camera = {glm::vec3(0, 0.5f, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1), 60.0f};
+        s.computeBounds();
+        render::RasterOptions ro;
+        ro.width = ro.height = 32;
+        ro.shadows = render::ShadowMode::ShadowMap;
+        std::string error;
+        auto raster = render::RasterRenderer::create(*td.device, s, ro, &error);
+        INFO(error);
+        REQUIRE(raster);
+        raster->render();
+        const render::Image visibility = raster->readSunVisibility();
+        REQUIRE(visibility.width == 32);
+        for (uint32_t y : {4u, 16u, 27u})
+            for (uint32_t x : {4u, 10u, 22u, 27u}) {
+                const float seen = visibility.at(x, y).x, expected = x < 16 && cutoff > 0.0f ? 1.0f : 0.0f;
+                INFO("pixel " << x << "," << y << ": visibility " << seen);
+                CHECK(std::fabs(seen - expected) < 0.05f);
+            }
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
+BACKEND_TEST("textures: alpha-tested materials leave holes in the sun's shadow maps", "[render][shadows]", alphaTestedShadowMaps)
 BACKEND_TEST("textures: alpha-tested materials leave holes in the G-buffer", "[render]", alphaTestedGbuffer)
 BACKEND_TEST("textures: base colour in both paths", "[render]", texturedAlbedo)
 BACKEND_TEST("textures: a texture that cannot be loaded is a clear error", "[render]", missingTexture)
