@@ -119,9 +119,12 @@ struct VoxelMaterial {
     float thickness = 1.0f;
     // Emits from both sides (the hook runs twice, the second time with the normal flipped).
     bool twoSided = false;
-    float opacity = 1.0f;  // 0..1: how much of a voxel's cross-section the surface blocks
-    // The application's voxelization fragment shader (bricklight/voxelize.glsl with its blVoxelEmittance);
-    // null: ours, opacity only.
+    // 0..1: how much of a voxel's cross-section the surface blocks. Alpha-tested materials (foliage) keep 1 and
+    // give their coverage per point in the shaders instead (BL_VOXEL_COVERAGE, docs/vct.md "Foliage"); this
+    // constant multiplies it.
+    float opacity = 1.0f;
+    // The application's voxelization fragment shader (bricklight/voxelize.glsl with its blVoxelEmittance, and
+    // blVoxelCoverage for an alpha-tested material); null: ours, opacity only.
     rhi::ShaderHandle fragmentShader;
     // The same blVoxelEmittance as a compute shader (bricklight/voxelize_compute.glsl), for vct::VoxelScene's
     // compute voxelizer, which draws the triangles too big for one invocation with fragmentShader: it needs

@@ -46,7 +46,8 @@ VoxelizeHarness::~VoxelizeHarness() {
     td_.device->destroy(emissive_);
 }
 
-void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& base, const glm::vec3* radiance) {
+void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& base, const glm::vec3* radiance,
+                           const std::vector<rhi::ConstantsBinding>& constants) {
     std::vector<float> vertices;
     for (const Triangle& t : triangles)
         for (const glm::vec3& p : t.p)
@@ -70,6 +71,7 @@ void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::Vo
     state->vertexBuffers.push(rhi::VertexBufferBinding{buffer, 0, 24, false});
     const glm::vec4 emission(radiance ? *radiance : glm::vec3(0.0f), 0.0f);
     if (radiance && material.fragmentShader == emissive_) state->bindings.constants.push(rhi::constants(0, emission));
+    for (const rhi::ConstantsBinding& c : constants) state->bindings.constants.push(c);
     rhi::DrawArgs args;
     args.vertexCount = uint32_t(triangles.size() * 3);
     REQUIRE(td_.device->draw(*state, args));

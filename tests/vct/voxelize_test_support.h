@@ -30,8 +30,9 @@ public:
     ~VoxelizeHarness();
     vct::Clipmap& clipmap() { return *clipmap_; }
     // Draws the triangles with material.fragmentShader, or else the opacity-only shader (radiance null) or the
-    // emissive test shader.
-    void draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& material, const glm::vec3* radiance);
+    // emissive test shader; `constants` are added to the draw (they must outlive the call).
+    void draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& material, const glm::vec3* radiance,
+              const std::vector<rhi::ConstantsBinding>& constants = {});
     std::vector<uint32_t> opacity();    // the whole volume, texel order
     std::vector<uint32_t> emittance();  // the whole buffer
     uint32_t opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const;

@@ -12,6 +12,15 @@
 // materials, the second time with the normal flipped). Define BL_VOXEL_OPACITY_ONLY before the include for a
 // shader without emittance (our vct/voxelize_opacity.frag is that).
 //
+// Alpha-tested materials (foliage cards): define BL_VOXEL_COVERAGE before the include and give
+//
+//     float blVoxelCoverage(BlVoxelFragment f) { return /* 1 where the surface is, 0 where it is cut out */; }
+//
+// (e.g. the material's alpha test at f.user0's texture coordinates). It is evaluated at 16 points of each
+// pixel's square (see blVoxelPixelCoverage) and the voxels the pixel writes take the material's opacity times
+// their mean; the pixel's light is weighted by it too. Results outside [0, 1] are clamped, NaN counts as 1 (as
+// without the hook). Without the define nothing changes: opaque materials write the same words as before.
+//
 // Per pixel: the pixel's square is tested against the triangle's edges (conservatively: any overlap counts),
 // every voxel along the projection axis that the triangle's plane crosses within the square (and the triangle's
 // own depth range, widened behind the surface by the material's thickness) becomes opaque; emittance goes to the voxel of each of
@@ -141,6 +150,16 @@ struct BlVoxelFragment {
 #ifndef BL_VOXEL_OPACITY_ONLY
 vec3 blVoxelEmittance(BlVoxelFragment f);
 #endif
+#ifdef BL_VOXEL_COVERAGE
+float blVoxelCoverage(BlVoxelFragment f);
+#endif
+
+// How the application's user vectors change per pixel of the projection (d/du, d/dv), so that the coverage hook
+// sees them at its sample points rather than at the pixel's centre: derivatives of the rasterized values in the
+// fragment stage; zero in the compute voxelizer, whose user vectors are the instance's, the same at every vertex.
+struct BlVoxelUserGradient {
+    vec4 user0Du, user0Dv, user1Du, user1Dv;
+};
 
 BL_STORAGE_BUFFER(6) BlVctEmittance { uint words[]; } blVctEmittance;
 BL_STORAGE_BUFFER(7) BlVctCounters { uint counts[]; } blVctCounters;
@@ -248,9 +267,64 @@ void blVoxelMaxOpacity(ivec3 texel, uint opacity) {
     }
 }
 
+#ifdef BL_VOXEL_COVERAGE
+// A 32-bit integer hash (a PCG step's output permutation): decorrelates the sample jitter of neighbouring pixels.
+uint blVoxelHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// The share of the pixel's square the material covers: the mean of blVoxelCoverage at 4 × 4 stratified points,
+// each jittered inside its cell of the square.
+//
+// Why this method: a voxel's opacity is the largest any fragment writes (blVoxelMaxOpacity), so the coverage has
+// to be settled per pixel, not summed over fragments; the mean over the pixel's square is the fraction of the
+// voxel's cross-section the card blocks, which is what a directional opacity means. Sampling the whole square
+// (not only the part inside this triangle) gives the two triangles of a card the same value on their shared
+// diagonal, so the maximum does not bias it upwards. The jitter makes the estimate unbiased for alpha patterns
+// finer than the 4 × 4 grid (a fixed grid aliases with a regular pattern: every pixel would read the same
+// phase of it). It comes from a hash of the pixel's world coordinates (level, axis and the projected world
+// voxel), never of the frame: a re-voxelization, a scrolled clip-map and the compute voxelizer take the same
+// points, so the words are stable over frames and the two paths agree.
+float blVoxelPixelCoverage(BlVoxelTriangle t, ivec2 pixelInLevel, vec2 pixel, vec3 normal, vec4 user0, vec4 user1,
+                           BlVoxelUserGradient gradient) {
+    uint level = uint(t.levelAxis.x);
+    int axis = t.levelAxis.y;
+    ivec3 origin = blVctFrame.origin[level].xyz;
+    ivec3 originProjected = axis == 0 ? origin.yzx : (axis == 1 ? origin.zxy : origin);
+    ivec2 world = originProjected.xy + pixelInLevel;
+    uint seed = blVoxelHash(uint(world.x) ^ blVoxelHash(uint(world.y) ^ blVoxelHash(level * 3u + uint(axis))));
+    float voxelSize = blVctFrame.scales.x * float(1u << level);
+    vec2 centre = pixel + 0.5;
+    BlVoxelFragment f;
+    f.normal = normal;
+    f.level = level;
+    f.voxelSize = voxelSize;
+    float sum = 0.0;
+    for (uint i = 0u; i < 16u; ++i) {
+        uint bits = blVoxelHash(seed + i);
+        vec2 jitter = vec2(float(bits & 0xffffu), float(bits >> 16u)) / 65536.0;
+        vec2 s = pixel + (vec2(float(i & 3u), float(i >> 2u)) + jitter) * 0.25;
+        // On the triangle's plane, extended past its edges.
+        precise float w = t.plane.x + t.plane.y * s.x + t.plane.z * s.y;
+        precise vec3 position = (vec3(origin) + blVoxelUnproject(vec3(s, w) + vec3(t.offset), axis)) * voxelSize;
+        f.position = position;
+        vec2 d = s - centre;
+        f.user0 = user0 + gradient.user0Du * d.x + gradient.user0Dv * d.y;
+        f.user1 = user1 + gradient.user1Du * d.x + gradient.user1Dv * d.y;
+        float c = blVoxelCoverage(f);
+        sum += isnan(c) ? 1.0 : clamp(c, 0.0, 1.0);
+    }
+    return sum / 16.0;
+}
+#endif
+
 // The per-pixel body: pixel `pixelInLevel` (of the level's resolution² projection) of the triangle `t`, with the
-// application's attributes interpolated at the pixel's centre. The caller counts the fragment.
-void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal, vec4 user0, vec4 user1) {
+// application's attributes interpolated at the pixel's centre (and their change per pixel, for the coverage
+// hook). The caller counts the fragment.
+void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal, vec4 user0, vec4 user1,
+                  BlVoxelUserGradient userGradient) {
     // The triangle's frame (see blVoxelSetupTriangle): integer offsets, so these are exact.
     vec2 pixel = vec2(pixelInLevel - t.offset.xy);
     vec2 centre = pixel + 0.5;
@@ -285,7 +359,15 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
     int k0 = max(int(floor(wLo)) + t.offset.z, 0);
     int k1 = min(min(int(floor(wHi)) + t.offset.z, int(resolution) - 1), k0 + BL_VOXEL_MAX_SPAN - 1);
 
+#ifdef BL_VOXEL_COVERAGE
+    vec3 shadingNormal = dot(interpolatedNormal, interpolatedNormal) > 0.0 ? normalize(interpolatedNormal) : t.faceNormal;
+    float coverage = blVoxelPixelCoverage(t, pixelInLevel, pixel, shadingNormal, user0, user1, userGradient);
+    uint opacity = vctPackOpacity(t.depth.w * coverage * abs(t.faceNormal));
+    // Nothing of the surface here: no opacity, and no light (an empty voxel carries none).
+    if (opacity == 0u) return;
+#else
     uint opacity = vctPackOpacity(t.depth.w * abs(t.faceNormal));
+#endif
     uint writable = 0u;  // bit k - k0
     uint written = 0u, killedByFiner = 0u, killedNotDirty = 0u;
     for (int k = k0; k <= k1; ++k) {
@@ -340,6 +422,9 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
     // precise (no fused multiply-adds) here and in the geometry stage: Vulkan and GL then round alike and write
     // the same words.
     precise float unitsPerSample = blVctFrame.scales.y * t.plane.w / 16.0;
+#ifdef BL_VOXEL_COVERAGE
+    unitsPerSample *= coverage;  // the light of the covered share of the pixel's surface only
+#endif
     uint emittanceWrites = 0u;
     for (int side = 0; side < sides; ++side) {
         BlVoxelFragment g = f;
@@ -392,7 +477,14 @@ void main() {
     t.faceNormal = blVoxelFaceNormal;
     t.offset = blVoxelOffset;
     t.opposite = vec3(1.0);  // unused per pixel
-    blVoxelPixel(t, ivec2(floor(gl_FragCoord.xy)), blVoxelNormalGs, blVoxelUser0Gs, blVoxelUser1Gs);
+    BlVoxelUserGradient gradient = BlVoxelUserGradient(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+#ifdef BL_VOXEL_COVERAGE
+    // Here, in uniform control flow. The attributes are linear over the quad (the geometry stage extrapolates them
+    // over the triangle's plane, w = 1), so the differences between neighbouring pixels are their exact gradient.
+    // Window x, y are the projection's u, v (the pixel is floor(gl_FragCoord.xy)).
+    gradient = BlVoxelUserGradient(dFdx(blVoxelUser0Gs), dFdy(blVoxelUser0Gs), dFdx(blVoxelUser1Gs), dFdy(blVoxelUser1Gs));
+#endif
+    blVoxelPixel(t, ivec2(floor(gl_FragCoord.xy)), blVoxelNormalGs, blVoxelUser0Gs, blVoxelUser1Gs, gradient);
 }
 #endif
 

@@ -12,7 +12,8 @@
 //     #include "bricklight/voxelize_compute.glsl"
 //     vec3 blVoxelEmittance(BlVoxelFragment f) { return /* the same as the fragment shader's */; }
 //
-// The contract is voxelize.glsl's (BL_VOXEL_OPACITY_ONLY and BL_VOXEL_MULTI_BOUNCE too), with fewer slots left
+// The contract is voxelize.glsl's (BL_VOXEL_OPACITY_ONLY, BL_VOXEL_MULTI_BOUNCE and BL_VOXEL_COVERAGE too: the
+// coverage hook is evaluated at the same points as in the draws), with fewer slots left
 // to the function: constants 0–1, textures, read buffers 0–3, storage buffers 0–4, images 0–6. Ours take
 // constants 2 (the instance and its mesh) and 3 (the material), read buffers 4–6 (the mesh's positions,
 // normals and indices) and 7 (the frame), storage buffers 5 (the list of drawn triangles), 6 and 7, image 7.
@@ -101,8 +102,10 @@ void main() {
             ivec2 pixel = ivec2(x, y);
             vec3 weight = blVoxelWeights(t, vec2(pixel - t.offset.xy) + 0.5);
             blVoxelCount(BL_VCT_COUNT_FRAGMENTS, 1u);
+            // The instance's user vectors are the same at every vertex: no gradient for the coverage hook's points.
             blVoxelPixel(t, pixel, weight.x * normal[0] + weight.y * normal[1] + weight.z * normal[2],
-                         (weight.x + weight.y + weight.z) * blVoxelMesh.user0, (weight.x + weight.y + weight.z) * blVoxelMesh.user1);
+                         (weight.x + weight.y + weight.z) * blVoxelMesh.user0, (weight.x + weight.y + weight.z) * blVoxelMesh.user1,
+                         BlVoxelUserGradient(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0)));
         }
 }
 
