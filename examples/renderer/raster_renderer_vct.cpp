@@ -47,7 +47,9 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
         return sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
     };
     vctVertex_ = shader("render/voxelize.vert");
-    vctEmittance_ = shader("render/voxel_emittance.frag");
+    // Without emittance (voxel AO) the fragment shader only weighs alpha-tested materials' opacity by their
+    // coverage; it is drawn only while the scene has such materials (voxelizeVct).
+    vctEmittance_ = shader(desc.emittance == vct::EmittanceMode::None ? "render/voxel_coverage.frag" : "render/voxel_emittance.frag");
     if (!vctVertex_ || !vctEmittance_) return fail("the device could not create the voxelization shaders");
     return true;
 }
@@ -64,7 +66,9 @@ void RasterRenderer::voxelizeVct() {
         vct::VoxelMaterial material;
         material.twoSided = true;  // the renderer lights both sides of every surface, as the path tracer does
         material.thickness = options_.vctThickness;
-        material.fragmentShader = options_.vctEmittance == vct::EmittanceMode::None ? rhi::ShaderHandle{} : vctEmittance_;
+        // Voxel AO of a scene without alpha-tested materials: the clip-map's own opacity shader (no hook to run).
+        const bool lit = options_.vctEmittance != vct::EmittanceMode::None;
+        material.fragmentShader = lit || scene_->hasAlphaTested() ? vctEmittance_ : rhi::ShaderHandle{};
         std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &why);
         if (state) {
             state->label = "vct voxelize scene";
@@ -76,10 +80,12 @@ void RasterRenderer::voxelizeVct() {
             state->vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
             const glm::uvec4 lighting(options_.vctLightSamples, options_.giFeedback ? 1u : 0u, options_.vctSdfOcclusion ? 1u : 0u, 0u);
             const SceneLightConstants light = scene_->lightConstants(options_.seed, 1);
-            if (material.fragmentShader) {  // the emittance function's resources (voxel AO draws opacity only)
-                state->bindings.constants.push(rhi::constants(0, lighting));
+            if (material.fragmentShader) {  // the hooks' resources: materials and textures (coverage), lights, BVH
                 state->bindings.constants.push(rhi::constants(1, light));
                 scene_->bind(state->bindings, true);
+            }
+            if (lit) {  // the emittance function's own (voxel AO has none)
+                state->bindings.constants.push(rhi::constants(0, lighting));
                 clipmap_->traceBindings(state->bindings);  // blVoxelIndirect (bounces)
             }
             rhi::DrawArgs args;

@@ -12,12 +12,16 @@
 // exact distance the cone tracer takes from the distance field).
 float bounceConeSurface(vec3 origin, vec3 direction);
 #define BL_VOXEL_CONE_SURFACE bounceConeSurface
+// Alpha-tested materials block and send light by their coverage (voxel_alpha.glsl); opaque ones return 1 at once
+// and write the same words as without the hook.
+#define BL_VOXEL_COVERAGE
 #include "bricklight/voxelize.glsl"
 BL_CONSTANTS(0) uniform VoxelLighting {
     uvec4 params;  // x light samples per fragment, y 1: add last frame's indirect light, z 1: cones stop at surfaces
 } voxelLighting;
 #define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
+#include "voxel_alpha.glsl"
 
 float bounceConeSurface(vec3 origin, vec3 direction) {
     Hit h;

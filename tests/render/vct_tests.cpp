@@ -1,7 +1,10 @@
 // Voxel cone tracing through the renderer's fast path (--gi vxgi) against the path tracer, per light-leaking
 // setting through a wall, across backends, and on bad input. Bounds are stated where they are asserted; the
 // figures are in docs/vct.md.
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
+#include <cstdio>
 
 #include "backend_test.h"
 #include "image_metrics.h"
@@ -345,6 +348,82 @@ void refusesBadParameters(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+
+// A white 64² RGBA texture whose alpha repeats `pattern` along x (one entry per texel column; straight alpha).
+std::string writeAlphaColumns(const std::string& name, const std::vector<uint8_t>& pattern) {
+    std::vector<uint8_t> texels(64 * 64 * 4, 255);
+    for (size_t y = 0; y < 64; ++y)
+        for (size_t x = 0; x < 64; ++x) texels[(y * 64 + x) * 4 + 3] = pattern[x % pattern.size()];
+    auto out = OIIO::ImageOutput::create(name);
+    REQUIRE(out);
+    OIIO::ImageSpec spec(64, 64, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    REQUIRE(out->open(name, spec));
+    REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, texels.data()));
+    out->close();
+    return name;
+}
+
+void aoThroughAlphaTestedCard(const std::string& backend) {
+    // Voxel AO on a floor beside an upright alpha-tested card (x = 0, 1 high, 2 wide; the floor seen from above
+    // at x in [0.05, 0.3], within the AO range of 8 finest voxels, 0.88): the renderer's voxelization weighs the
+    // card's opacity by its coverage (render/voxel_coverage.frag, the G-buffer's alpha test), so the floor is
+    // as open as with no card where the texture is cut out, as occluded as by an opaque card where it is not,
+    // and between the two for stripes of half coverage two texels wide (0.06 units, finer than a voxel).
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const std::string clear = writeAlphaColumns("vct_alpha_clear_" + backend + ".png", {0});
+    const std::string solid = writeAlphaColumns("vct_alpha_solid_" + backend + ".png", {255});
+    const std::string stripes = writeAlphaColumns("vct_alpha_stripes_" + backend + ".png", {0, 0, 255, 255});
+    auto floorAo = [&](const std::string* texture, float cutoff) {
+        scenes::SceneGeometry s;
+        scenes::TriangleMesh floor = groundPlane(3.0f, glm::vec3(0.8f));
+        floor.name = "floor";
+        s.meshes.push_back(floor);
+        if (texture) {
+            scenes::TriangleMesh card;
+            card.name = "card";
+            card.positions = {0, 0, -1, 0, 0, 1, 0, 1, 1, 0, 1, -1};
+            card.uvs = {0, 1, 1, 1, 1, 0, 0, 0};
+            card.indices = {0, 1, 2, 0, 2, 3};
+            card.baseColorTexture = *texture;
+            card.alphaCutoff = cutoff;
+            s.meshes.push_back(card);
+        }
+        for (uint32_t m = 0; m < s.meshes.size(); ++m) s.instances.push_back({m, glm::mat4(1.0f)});
+        s.environment.sunIrradiance = glm::vec3(0.0f);
+        s.environment.skyRadiance = glm::vec3(0.5f);
+        // Straight down at x = 0.2 (image x = world x): columns 11..19 are the floor at x in [0.05, 0.3].
+        s.camera = {glm::vec3(0.2f, 1.5f, 0.0f), glm::vec3(0.2f, 0.0f, 0.0f), glm::vec3(0, 0, -1), 30.0f};
+        s.computeBounds();
+        render::RasterOptions o;
+        o.width = o.height = 32;
+        o.gi = false;
+        o.vxao = true;
+        auto r = vctRenderer(td, s, o);
+        frames(td, *r, 4);
+        const render::Image ao = r->read(render::Aov::Ao);
+        REQUIRE(allFinite(ao.rgb));
+        double sum = 0.0;
+        for (uint32_t y = 8; y < 24; ++y)
+            for (uint32_t x = 11; x < 20; ++x) sum += ao.at(x, y).x;
+        return float(sum / (16.0 * 9.0));
+    };
+    const float open = floorAo(nullptr, 0.0f), opaque = floorAo(&solid, 0.5f);
+    const float cutOut = floorAo(&clear, 0.5f), cutoffZero = floorAo(&clear, 0.0f), half = floorAo(&stripes, 0.5f);
+    std::printf("vct foliage [%s] floor AO beside a card: none %.3f, opaque %.3f, cut out %.3f, cut-off 0 %.3f, half-covered stripes %.3f "
+                "(share of the opaque card's occlusion %.2f)\n",
+                backend.c_str(), open, opaque, cutOut, cutoffZero, half, (open - half) / std::max(open - opaque, 1e-6f));
+    REQUIRE(open - opaque > 0.05f);  // the card occludes the floor at all
+    CHECK(std::fabs(cutOut - open) < 0.01f);
+    CHECK(std::fabs(cutoffZero - opaque) < 0.01f);  // cut-off 0: opaque, the texture's alpha ignored
+    // Half the card's occlusion, within a third (cones weigh opacity non-linearly: Beer and transmittance).
+    const float share = (open - half) / (open - opaque);
+    CHECK(share > 0.2f);
+    CHECK(share < 0.8f);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
 BACKEND_TEST("voxel cone tracing on the Cornell box against the path tracer", "[vct]", cornellAgainstReference)
@@ -356,6 +435,7 @@ BACKEND_TEST("voxel cone tracing with cones stopped by the distance field", "[vc
 BACKEND_TEST("voxel cone tracing's debug view of one pixel's cone samples", "[vct]", coneSamplesOfOnePixel)
 BACKEND_TEST("SDF GI lighting unseen surfaces from the clip-map", "[vct]", sdfGiWithUnseenLight)
 BACKEND_TEST("voxel AO against the path tracer's AO of the same range", "[vct]", aoAgainstReference)
+BACKEND_TEST("voxel AO through an alpha-tested card follows its coverage", "[vct]", aoThroughAlphaTestedCard)
 
 #if defined(BRICKLIGHT_HAS_VULKAN) && defined(BRICKLIGHT_HAS_GL)
 TEST_CASE("voxel cone tracing on Vulkan and GL agree", "[vct][cross]") {
