@@ -55,7 +55,8 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
                    " is not in 1..16384");
     if (uint32_t(desc_.internalResolution) > uint32_t(InternalResolution::Percent25))
         return bad(ErrorCode::InvalidArgument, "internalResolution " + std::to_string(uint32_t(desc_.internalResolution)) + " is not one of the four scales");
-    if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth | ContextFlags::NoCameraCheck))
+    if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth | ContextFlags::NoCameraCheck |
+                                    ContextFlags::AlphaCache))
         return bad(ErrorCode::InvalidArgument, "unknown flag bits in flags");
     if (desc_.injectTile != 0 && desc_.injectTile != 1 && desc_.injectTile != 2 && desc_.injectTile != 4 && desc_.injectTile != 8)
         return bad(ErrorCode::InvalidArgument, "injectTile " + std::to_string(desc_.injectTile) + " is not 0 (automatic), 1, 2, 4 or 8");
@@ -109,6 +110,10 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     shaders_.upsample = shader("gi/upsample.comp");
     shaders_.debug = shader("gi/debug_view.comp");
     shaders_.cameraCheck = shader("gi/camera_check.comp");
+    const bool alphaCache = (desc_.flags & ContextFlags::AlphaCache) != 0;
+    if (alphaCache && !caps.geometryShader)
+        return bad(ErrorCode::Unsupported, "ContextFlags::AlphaCache: the alpha pass needs geometry shaders, which the device does not offer");
+    if (alphaCache) shaders_.alphaPass = shader("gi/alpha_pass.geom");
 
     using namespace rhi::TextureUsage;
     auto texture = [&](const std::string& name, F format, uint32_t w, uint32_t h, uint32_t usage = Sampled | Storage) {
@@ -188,6 +193,22 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     slotOfBrick_ = buffer("cacheSlotOfBrick", uint64_t(capacity) * 4);
     freeSlots_ = buffer("cacheFreeSlots", 4 + uint64_t(cacheSlots_) * 4);
     cameraCheck_.counts = buffer("cameraCheck", 16);
+    {
+        // Kept: the header says so, and the cells start cleared (total 0: no pass reached them yet). Not kept:
+        // the traces still bind a buffer, whose header says there is none.
+        const uint64_t words = alphaCache ? kAlphaCacheHeaderWords + uint64_t(capacity) * kAlphaCellsPerBrick : kAlphaCacheHeaderWords;
+        std::vector<uint32_t> cells(words, 0);
+        cells[0] = alphaCache ? 1u : 0u;
+        alphaCache_ = buffer(alphaCache ? "alphaCache" : "alphaCacheNone", words * 4, cells.data());
+        if (alphaCache) {
+            rhi::TextureDesc d;
+            d.format = F::D32_FLOAT;
+            d.width = d.height = kAlphaPassResolution;
+            d.usage = rhi::TextureUsage::DepthTarget;
+            d.debugName = desc_.debugName + " alphaPassRaster";
+            alphaRaster_ = device_.createTexture(d);
+        }
+    }
 
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
@@ -204,10 +225,10 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill, s.fillVct,
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck,
-                                s.reflectionTrace})
+                                s.reflectionTrace, alphaCache ? s.alphaPass : s.fill})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the GI shaders (see its messages)");
     bool ok = radianceCache_ && blackCube_ && black2D_ && dummyStorage_ && motion_ && disocclusion_ && pretrace_ && specularTraced_ &&
-              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_[0] && relightList_[1] && lights_ && slotOfBrick_ && freeSlots_ && cameraCheck_.counts && point_ && linear_ && environment_;
+              probeInfo_[0] && probeInfo_[1] && probeSH_ && probeIrradianceSH_ && probeWorldSH_ && brickSH_ && cacheOwners_ && brickMaterial_ && relightList_[0] && relightList_[1] && lights_ && slotOfBrick_ && freeSlots_ && cameraCheck_.counts && alphaCache_ && (!alphaCache || alphaRaster_) && point_ && linear_ && environment_;
     for (int i = 0; i < 2; ++i)
         ok = ok && depth_[i] && surface_[i] && probes_[i] && diffuseHistory_[i] && specularHistory_[i];
     if (!(desc_.flags & ContextFlags::NoDenoiser)) ok = ok && resolvedDiffuse_ && resolvedSpecular_;
@@ -220,14 +241,14 @@ GiContextImpl::~GiContextImpl() {
     const Shaders& s = shaders_;
     for (rhi::ShaderHandle h : {s.downsample, s.clearFreed, s.inject, s.propagate, s.spawn, s.reprojectProbes, s.fill, s.fillVct,
                                 s.pretrace, s.relight, s.reprojectGi, s.specularTrace, s.project, s.emit, s.probeWorld, s.interpolate, s.blur, s.upsample, s.debug, s.cameraCheck,
-                                s.reflectionTrace})
+                                s.reflectionTrace, s.alphaPass})
         if (h) device_.destroy(h);
     for (rhi::TextureHandle t : {depth_[0], depth_[1], surface_[0], surface_[1], motion_, disocclusion_, probes_[0], probes_[1], pretrace_,
                                  specularTraced_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1],
                                  resolvedDiffuse_, resolvedSpecular_, radianceCache_, blackCube_, black2D_,
-                                 dummyStorage_})
+                                 dummyStorage_, alphaRaster_})
         if (t) device_.destroy(t);
-    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[0], relightList_[1], lights_, slotOfBrick_, freeSlots_, cameraCheck_.counts})
+    for (rhi::BufferHandle b : {probeInfo_[0], probeInfo_[1], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[0], relightList_[1], lights_, slotOfBrick_, freeSlots_, cameraCheck_.counts, alphaCache_})
         if (b) device_.destroy(b);
     for (rhi::SamplerHandle h : {point_, linear_, environment_})
         if (h) device_.destroy(h);
@@ -254,6 +275,9 @@ void GiContextImpl::reset() {
     device_.clearBuffer(probeIrradianceSH_, {}, 0);
     device_.clearBuffer(probeWorldSH_, {}, 0);
     for (rhi::BufferHandle b : relightList_) device_.writeBuffer(b, 0, kEmptyRelightList, sizeof(kEmptyRelightList));
+    if (desc_.flags & ContextFlags::AlphaCache) {  // cells cleared, the header kept
+        device_.clearBuffer(alphaCache_, {kAlphaCacheHeaderWords * 4, 0}, 0);
+    }
     historyValid_ = false;
 }
 
@@ -277,6 +301,7 @@ MemoryUse GiContextImpl::memoryUse() const {
     add("cacheOwners", buf(cacheOwners_));
     add("cacheSlots", buf(slotOfBrick_) + buf(freeSlots_));
     add("brickMaterial", buf(brickMaterial_));
+    if (desc_.flags & ContextFlags::AlphaCache) add("alphaCache", buf(alphaCache_) + tex(alphaRaster_));
     add("relightList (2), lights", buf(relightList_[0]) + buf(relightList_[1]) + buf(lights_));
     add("depth (2)", tex(depth_[0]) + tex(depth_[1]));
     add("surface (2)", tex(surface_[0]) + tex(surface_[1]));

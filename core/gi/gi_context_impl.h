@@ -53,6 +53,9 @@ public:
     void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
     uint32_t radianceCacheBricksInUse() override;
     bool traceReflectionRays(const ReflectionRaysDesc& desc) override;  // gi_reflections.cpp
+    // gi_alpha_pass.cpp
+    std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) override;
+    std::vector<float> readAlphaCoverage(std::vector<uint32_t>* fragments) override;
 
 private:
     bool fail(ErrorCode code, const std::string& message);  // reports an error, returns false
@@ -66,6 +69,8 @@ private:
     void fillConstants(const DispatchDesc& d);
     void uploadLights(const DispatchDesc& d);
     void addTrace(rhi::Bindings& b) const;
+    // The alpha cache at storage buffer 7 (gi_alpha.glsl), for the passes that trace rays through foliage.
+    void addAlphaCache(rhi::Bindings& b, rhi::Access access = rhi::Access::Read) const;
     void addEnvironment(rhi::Bindings& b, const DispatchDesc& d) const;
     // Sets the shader, the label and the camera/frame constants, then records the dispatch in a marker.
     void prepare(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s);
@@ -95,7 +100,7 @@ private:
     struct Shaders {
         rhi::ShaderHandle downsample, clearFreed, inject, propagate, spawn, reprojectProbes, fill, fillVct, pretrace,
             relight, reprojectGi, specularTrace, project, emit, probeWorld, interpolate, blur, upsample, debug, cameraCheck,
-            reflectionTrace;
+            reflectionTrace, alphaPass;
     } shaders_;
 
     rhi::TextureHandle depth_[2], surface_[2], motion_, disocclusion_, probes_[2], pretrace_, specularTraced_;
@@ -103,6 +108,13 @@ private:
     rhi::TextureHandle radianceCache_, blackCube_, black2D_, dummyStorage_;
     rhi::BufferHandle probeInfo_[2], probeSH_, probeIrradianceSH_, probeWorldSH_, brickSH_, cacheOwners_, brickMaterial_, relightList_[2], lights_, slotOfBrick_, freeSlots_;
     rhi::SamplerHandle point_, linear_, environment_;
+    // The alpha cache (gi_alpha.glsl): a 4-word header ([0] = 1 when kept), then 64 words per brick; 16 bytes
+    // (header 0) without ContextFlags::AlphaCache. alphaRaster_ sizes the alpha pass's rasterization.
+    rhi::BufferHandle alphaCache_;
+    rhi::TextureHandle alphaRaster_;
+    struct {
+        uint32_t pass[4];
+    } alphaPassConstants_{};  // alpha_pass.glsl's block (recorded by pointer)
 
     GpuCamera camera_{};
     GpuFrame frame_{};

@@ -30,6 +30,8 @@ constexpr uint32_t kMaxGroups = 65535;
 
 void GiContextImpl::addTrace(rhi::Bindings& b) const { scene_.traceBindings(b); }
 
+void GiContextImpl::addAlphaCache(rhi::Bindings& b, rhi::Access access) const { storageBuffer(b, 7, alphaCache_, access); }
+
 void GiContextImpl::addEnvironment(rhi::Bindings& b, const DispatchDesc& d) const {
     // Both samplers are always bound (gi_environment.glsl); the unused one gets a black 1×1.
     texture(b, 13, d.environmentKind == EnvironmentKind::Cube ? d.environmentMap : blackCube_, environment_);
@@ -180,6 +182,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, radianceCache_, Access::Write);
         addInputs(s.bindings);
         addTrace(s.bindings);
+        addAlphaCache(s.bindings, Access::ReadWrite);  // forgets the alpha cells of reallocated bricks
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
     }
     {  // 6. spawn screen probes
@@ -237,6 +240,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         addTrace(s.bindings);
+        addAlphaCache(s.bindings);
         addEnvironment(s.bindings, d);
         runIndirect("relight cache", shaders_.relight, s, relightList_[cur]);
     }
@@ -259,6 +263,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 1, surface_[cur], point_);
         image(s.bindings, 0, pretrace_, Access::Write);
         addTrace(s.bindings);
+        addAlphaCache(s.bindings);
         run("specular pretrace", shaders_.pretrace, s, groups(groups(width_, kPretraceTile), 8), groups(groups(height_, kPretraceTile), 8));
     }
     {  // 8. fill screen probes by tracing the field
@@ -268,6 +273,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 1, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
+        addAlphaCache(s.bindings);
         addEnvironment(s.bindings, d);
         if (d.unseenLight) d.unseenLight->traceBindings(s.bindings, 0, 1);  // fill_probes_body.glsl's slots
         const uint32_t fillGroups = groups(tilesX_ * tilesY_, 4);  // 4 probes per group
@@ -285,6 +291,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 1, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
         addTrace(s.bindings);
+        addAlphaCache(s.bindings);
         addEnvironment(s.bindings, d);
         run("specular trace", shaders_.specularTrace, s, groups(width_, 8), groups(height_, 8));
     }

@@ -51,6 +51,7 @@ bool GiContextImpl::traceReflectionRays(const ReflectionRaysDesc& r) {
     image(s.bindings, 0, r.output, rhi::Access::ReadWrite);
     image(s.bindings, 1, radianceCache_, rhi::Access::Read);
     addTrace(s.bindings);
+    addAlphaCache(s.bindings);
     addEnvironment(s.bindings, lastInputs_.environment);
     prepare("reflection rays", shaders_.reflectionTrace, s);
     device_.beginMarker("reflection rays");

@@ -152,6 +152,7 @@ InstanceHandle SdfSceneImpl::addInstance(const InstanceDesc& in) {
     inst.transform = in.transform;
     inst.dynamic = in.dynamic;
     inst.maxCascade = std::min(in.maxCascade, desc_.cascadeCount - 1);
+    inst.alphaTested = in.alphaTested;
     inst.bounds = worldBounds(mesh->second, in.transform);
     if (!finite(inst.bounds.min) || !finite(inst.bounds.max)) return fail(ErrorCode::InvalidArgument, what + ": world bounds overflow"), InstanceHandle{};
     if (!inst.dynamic) markDirty(inst.bounds, inst.maxCascade);

@@ -15,6 +15,11 @@ constexpr uint32_t kEmpty = 0xFFFFFFFEu;
 constexpr uint32_t kUnbuilt = 0xFFFFFFFFu;
 constexpr uint32_t kFirstState = 0xFFFFFFF0u;
 constexpr uint32_t kAabbNone = 0xFFFFFFFFu;
+// Brick AABB flag: the brick holds surfaces of alpha-tested instances (InstanceDesc::alphaTested). The brick
+// AABB buffer holds capacity words of boxes, then two words per brick: the 4³ cells opaque surfaces reach.
+constexpr uint32_t kAabbAlphaTested = 1u << 30;
+static_assert(kAabbAlphaTested == FieldSnapshot::kAabbAlphaTested);
+constexpr uint32_t kOpaqueCellWords = 2;
 // Brick owner entries: cascade << 24 | allocation generation << 18 | physical voxel index.
 constexpr uint32_t kNoOwner = 0xFFFFFFFFu;
 constexpr uint32_t kOwnerGenerationShift = 18;

@@ -176,8 +176,8 @@ bool SdfSceneImpl::init(std::string* error, ErrorCode* errorCode) {
     brickMaps_ = makeBuffer("brickMaps", mapEntries * 4, rw, unbuilt.data());
     std::vector<uint32_t> emptyTrees(size_t(d.cascadeCount) * layout::kTreeStride, 0);
     trees_ = makeBuffer("trees", emptyTrees.size() * 4, rw, emptyTrees.data());
-    std::vector<uint32_t> none(capacity, layout::kAabbNone);
-    brickAabbs_ = makeBuffer("brickAabbs", uint64_t(capacity) * 4, rw, none.data());
+    std::vector<uint32_t> none(size_t(capacity) * (1 + layout::kOpaqueCellWords), layout::kAabbNone);
+    brickAabbs_ = makeBuffer("brickAabbs", none.size() * 4, rw, none.data());
     static_assert(layout::kNoOwner == layout::kAabbNone, "one fill serves both");
     brickOwners_ = makeBuffer("brickOwners", uint64_t(capacity) * 4, rw, none.data());
     std::vector<uint32_t> stack(capacity);
@@ -248,6 +248,8 @@ FieldSnapshot SdfSceneImpl::readField() {
     device_.readTexture(atlas_, {}, s.atlas.data());
     s.brickAabbs.resize(brickCapacity());
     device_.readBuffer(brickAabbs_, 0, s.brickAabbs.size() * 4, s.brickAabbs.data());
+    s.brickOpaqueCells.resize(size_t(brickCapacity()) * layout::kOpaqueCellWords);
+    device_.readBuffer(brickAabbs_, uint64_t(brickCapacity()) * 4, s.brickOpaqueCells.size() * 4, s.brickOpaqueCells.data());
     std::vector<uint32_t> maps(size_t(desc_.cascadeCount) * layout::kCascadeVoxels);
     device_.readBuffer(brickMaps_, 0, maps.size() * 4, maps.data());
     for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {

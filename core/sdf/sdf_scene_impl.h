@@ -41,6 +41,7 @@ struct Instance {
     glm::mat4 transform{1.0f};
     bool dynamic = false;
     uint32_t maxCascade = 0;
+    bool alphaTested = false;
     WorldBox bounds;       // of the current transform
     WorldBox builtBounds;  // what the field holds of it (dynamic: last update)
     bool built = false;

@@ -155,6 +155,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
             p.index[2] = mesh.triangleCount;
             p.index[3] = first;
             p.misc[0] = inst.maxCascade;
+            p.misc[1] = inst.alphaTested ? 1u : 0u;
             rhi::DispatchState s;
             s.shader = shaders_.gather;
             s.label = "sdf gather triangles";

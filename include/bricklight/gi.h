@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ enum : uint32_t {
     // scene does not, or an orthographic projection (the check would warn that positions rebuilt from depth
     // lie off the field's surfaces or that the camera is not at cameraPosition).
     NoCameraCheck = 1u << 3,
+    // Keep an alpha (coverage) cache beside the radiance cache (docs/gi.md, "Foliage"): 4³ cells per brick
+    // (256 B per brick of the scene's capacity), filled by the application's alpha pass (alphaPassState), with
+    // which the GI's rays go on past the cut-out parts of instances registered as alpha-tested
+    // (sdf::InstanceDesc::alphaTested). Without it those instances' cards are solid to the GI. Needs geometry
+    // shaders.
+    AlphaCache = 1u << 4,
 };
 }
 
@@ -252,6 +259,18 @@ public:
     virtual void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) = 0;
     // Radiance cache slots in use (a blocking read-back; for tools and tuning radianceCacheBricks).
     virtual uint32_t radianceCacheBricksInUse() = 0;
+
+    // The alpha pass (ContextFlags::AlphaCache; docs/gi.md, "Foliage"): each frame before dispatch() (or when
+    // alpha-tested geometry moved or the field's bricks changed), the application draws its alpha-tested
+    // instances with this state, its own vertex shader (bricklight/alpha_pass_vertex.glsl: the world position
+    // and one vector of its own) and fragment shader (bricklight/alpha_pass.glsl: its alpha test), and the
+    // resources those read. Every draw with states taken between two dispatch() calls belongs to one pass.
+    // Nullopt (and `error`) without ContextFlags::AlphaCache or geometry shaders, or once the scene is gone.
+    virtual std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) = 0;
+    // For tests and tools (blocking read-back): per brick of the scene's capacity, 64 cells in the field's cell
+    // order ((z·4 + y)·4 + x) of the coverage the alpha passes found there, -1 where none reached; with
+    // `fragments`, how many fragments the latest pass counted in each cell. Empty without ContextFlags::AlphaCache.
+    virtual std::vector<float> readAlphaCoverage(std::vector<uint32_t>* fragments = nullptr) = 0;
 };
 
 }  // namespace bricklight::gi

@@ -98,6 +98,12 @@ struct InstanceDesc {
     // Static instances persist until moved or removed; dynamic ones are rebuilt at every update.
     bool dynamic = false;
     uint32_t maxCascade = kMaxCascades - 1;  // keeps small props out of coarse cascades
+    // Alpha-tested geometry (grass and leaf cards, fences): the field is built on the whole triangles, as for
+    // any instance, and the bricks that hold these surfaces are flagged so that a trace reports hits there as
+    // BlSdfHit::alphaTested (per 4³ cell of the brick, leaving out cells that opaque surfaces also reach).
+    // A tracer that knows the surfaces' coverage (gi::GiContext's alpha cache, docs/gi.md "Foliage") goes on
+    // past the cut-out parts; others see the cards as solid. Fixed at registration.
+    bool alphaTested = false;
 };
 
 // GPU counters of one update, read back without stalling (a few updates late).
@@ -171,7 +177,11 @@ struct FieldSnapshot {
     std::vector<Cascade> cascades;
     uint32_t atlasBricksPerAxis = 0;
     std::vector<uint8_t> atlas;           // (8n)³ bytes
-    std::vector<uint32_t> brickAabbs;
+    std::vector<uint32_t> brickAabbs;     // per brick: tight box (18 bits), kAabbAlphaTested; kAabbNone
+    // Per brick, two words: bit (z·4 + y)·4 + x set where an opaque (not alpha-tested) surface reaches that
+    // 4³ cell of the voxel. Meaningful for bricks flagged kAabbAlphaTested.
+    std::vector<uint32_t> brickOpaqueCells;
+    static constexpr uint32_t kAabbAlphaTested = 1u << 30;
 
     // Brick id, kEmpty or kUnbuilt of a logical voxel (0..63 per axis).
     uint32_t voxelState(uint32_t cascade, glm::ivec3 logical) const;

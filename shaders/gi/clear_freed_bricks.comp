@@ -3,6 +3,7 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
+#include "gi_alpha.glsl"
 // Pass 3: forget the cache entries of bricks the SDF freed, and pick this frame's bricks to re-light.
 // Every brick remembers the owner entry (voxel and allocation generation) its cache was written for;
 // where the SDF's entry differs, the brick was freed and reallocated — elsewhere, or to the same voxel
@@ -82,6 +83,8 @@ void main() {
         cacheOwners[brick] = owner;
         for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
         for (uint i = 0u; i < GI_MATERIAL_WORDS; ++i) brickMaterial[m + i] = 0u;
+        if (giAlphaCacheKept())
+            for (uint i = 0u; i < 64u; ++i) giAlphaCache[GI_ALPHA_HEADER + brick * 64u + i] = 0u;
         uint slot = giCacheSlots[brick];
         giCacheSlots[brick] = GI_SLOT_NONE;
         if (slot < GI_SLOT_PENDING) {

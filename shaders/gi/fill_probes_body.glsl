@@ -2,6 +2,7 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
+#include "gi_alpha.glsl"
 // Pass 8: trace the screen probes. 16 threads per probe (4 probes per group), one ray per traced texel
 // (jittered within the texel, equal-area hemisphere mapping around the probe normal): a hit reads the
 // radiance cache at the hit (the finest cascade with data there), a miss the environment. Every probe
@@ -37,7 +38,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     uvec2 pixel = giProbePixel(info);
     vec3 p = giWorldPosition(giPixelUv(pixel), uintBitsToFloat(info.y), giCamera.inverseViewProjection);
     BlSdfRay ray = giMakeRay(p + n * giPushOff(p, giFrame.trace.x), d, giFrame.trace.w, GI_RAY_DIFFUSE);
-    BlSdfHit hit = blSdfTrace(ray);
+    BlSdfHit hit = giTraceThroughAlpha(ray, rng);
     vec3 radiance;
     float kind = GI_TEXEL_HIT;
     if (hit.gaveUp) {

@@ -4,6 +4,7 @@
 #include "bricklight/trace.glsl"
 #include "bricklight/reflection_ray.glsl"
 #include "gi_common.glsl"
+#include "gi_alpha.glsl"
 // Hybrid reflections' distance-field rays (gi::GiContext::traceReflectionRays): dispatched indirectly over a list of
 // display pixels, 64 per group. Each traces its pixel's reflection ray (bricklight/reflection_ray.glsl, the same ray
 // the screen-space trace followed) through the whole field and reads the radiance cache at the hit, as the probes'
@@ -44,7 +45,8 @@ void main() {
         roughness = clamp(roughness, 0.0, 1.0);
         vec3 d = blReflectionDirection(pixel, pass.list.y, n, toEye, roughness);
         BlSdfRay ray = giMakeSpecularRay(p + n * giPushOff(p, giFrame.trace.y), d, giFrame.trace.w, max(roughness * roughness, 1e-3));
-        BlSdfHit hit = blSdfTrace(ray);
+        uint rng = giPcg(giPcg(pixel.y * size.x + pixel.x) ^ (pass.list.y * 0x9e3779b9u));
+        BlSdfHit hit = giTraceThroughAlpha(ray, rng);
         vec3 radiance;
         if (hit.gaveUp) {
             result = vec4(0.0);  // no answer: the composite keeps the GI's specular here

@@ -3,6 +3,7 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
+#include "gi_alpha.glsl"
 // Pass 4b: re-light the radiance cache where the camera does not see. The screen injects only what it
 // sees, so light that changes out of view (a lamp switched off behind the camera) would stay in the cache
 // for ever. For each brick of this frame's relight list (clear_freed_bricks.comp picks bricks unseen for a
@@ -61,7 +62,8 @@ bool giSurfaceNear(uint brick, vec3 uvw, float band, out vec3 n, out float dista
 }
 
 bool giShadowed(vec3 p, vec3 l, float distance) {
-    BlSdfHit hit = blSdfTrace(giMakeRay(p, l, min(distance, giFrame.trace.w), GI_RAY_SHADOW));
+    uint rng = giPcg(floatBitsToUint(p.x) ^ giPcg(floatBitsToUint(p.y) ^ giPcg(floatBitsToUint(p.z) ^ giFrameIndex())));
+    BlSdfHit hit = giTraceThroughAlpha(giMakeRay(p, l, min(distance, giFrame.trace.w), GI_RAY_SHADOW), rng);
     return hit.hit || hit.gaveUp;  // no answer: in shadow, the safer guess (no light from nowhere)
 }
 
@@ -130,7 +132,7 @@ void main() {
         float u1 = giRandom(rng), phi = 2.0 * GI_PI * giRandom(rng);
         float sr = sqrt(u1);
         vec3 d = normalize(tangent * (sr * cos(phi)) + bitangent * (sr * sin(phi)) + n * sqrt(max(1.0 - u1, 0.0)));
-        BlSdfHit hit = blSdfTrace(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE));
+        BlSdfHit hit = giTraceThroughAlpha(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE), rng);
         vec3 radiance;
         // No answer, or a surface of unknown radiance: no vote.
         if (!hit.gaveUp) {

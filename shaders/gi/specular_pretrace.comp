@@ -3,6 +3,7 @@
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
+#include "gi_alpha.glsl"
 #include "gi_specular.glsl"
 // Pass 9: one specular ray per 4×4 tile (a pixel that rotates per frame) through the whole field; stores
 // the brick it hit (GI_PRETRACE_MISS when it left the field: the environment; GI_PRETRACE_NONE when the
@@ -32,7 +33,7 @@ void main() {
         uint rng = giPcg(giPcg(pixel.y * giFrame.size.x + pixel.x) ^ giFrameIndex());
         vec3 d = giSpecularDirection(n, toEye, giSurfaceRoughness(surface), vec2(giRandom(rng), giRandom(rng)));
         float alpha = giSurfaceRoughness(surface) * giSurfaceRoughness(surface);
-        BlSdfHit hit = blSdfTrace(giMakeSpecularRay(p + n * giPushOff(p, giFrame.trace.y), d, giFrame.trace.w, alpha));
+        BlSdfHit hit = giTraceThroughAlpha(giMakeSpecularRay(p + n * giPushOff(p, giFrame.trace.y), d, giFrame.trace.w, alpha), rng);
         // A ray that gave up leaves the tile to the SH caches (GI_PRETRACE_NONE), not to the sky.
         if (!hit.gaveUp) result = hit.hit ? hit.brickId : GI_PRETRACE_MISS;
     }

@@ -4,6 +4,7 @@
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
 #include "gi_specular.glsl"
+#include "gi_alpha.glsl"
 // Pass 11: every pixel's own specular ray, marched only through the brick its 4×4 tile's pre-trace hit
 // (sphere tracing inside that voxel): a hit reads the radiance cache; the tile's miss means the
 // environment. Otherwise alpha 0, and the interpolation pass falls back to the SH irradiance caches.
@@ -48,9 +49,19 @@ void main() {
                 float band = blSdfTable.cascades[cascade].voxelSize.w;
                 float eps = blSdfTable.cascades[cascade].voxelSize.z * giFrame.epsilon.y;
                 float s = max(span.x, giFrame.trace.z);
+                bool alphaTested = (blSdfBrickAabbs[brick] & BL_SDF_AABB_ALPHA_TESTED) != 0u && giAlphaCacheKept();
                 for (int i = 0; i < 16 && s <= span.y; ++i) {
                     vec3 uvw = clamp((o + d * s - lo) / size, 0.0, 1.0);
                     float dist = blSdfSampleBrick(brick, uvw) * band;
+                    if (dist < eps && alphaTested && blSdfCellAlphaTested(brick, uvw)) {
+                        // A card's cut-out part, this time: march on past it (as blSdfContinueRay); leaving the
+                        // brick without another hit leaves the pixel to the SH caches.
+                        float coverage = giAlphaCoverage(brick, uvw);
+                        if (coverage >= 0.0 && giRandom(rng) >= coverage) {
+                            s += min(2.5 * eps / max(abs(dot(blSdfBrickNormal(brick, uvw, d), d)), 1e-3), 3.0 * size / 7.0);
+                            continue;
+                        }
+                    }
                     if (dist < eps) {
                         vec3 radiance;
                         if (giRadianceAt(o + d * s, brick, uvw, cascade, radiance)) result = vec4(radiance, 1.0);

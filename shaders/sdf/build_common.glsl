@@ -35,7 +35,8 @@
 // Touched voxel entries (uvec4): x = cascade << 24 | physical voxel, y = reference count, z = first
 // sorted reference, w = brick (or BL_SDF_UNBUILT when none was allocated).
 
-// Triangle scratch: 3 vec4 per triangle, world space; v0.w = max cascade, or -1 for a rejected triangle.
+// Triangle scratch: 3 vec4 per triangle, world space; v0.w = max cascade, or -1 for a rejected triangle;
+// v1.w = 1 for an alpha-tested instance's triangle.
 
 float blDot2(vec3 v) { return dot(v, v); }
 

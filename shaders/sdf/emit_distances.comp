@@ -17,6 +17,11 @@
 // Then one thread per brixel stores min(distance, band) / band in the R8 atlas, and the group derives the
 // brick's tight AABB (brixels within one interval of a surface, grown by one); a brick with no brixel
 // inside the band is freed (voxel EMPTY).
+// Alpha-tested instances' triangles (scratch v1.w = 1) keep their own minimum: where one of them is within
+// an interval of a brixel the brick is flagged BL_SDF_AABB_ALPHA_TESTED, and the 4³ cells whose brixels are
+// within an interval of an opaque triangle are listed, so that a trace knows where a hit may be a cut-out
+// texel of a card and where an opaque surface (the ground the grass stands on) is there for sure. The two
+// minima cost no more atomics than one: each triangle updates only its own kind's.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };
 BL_READ_BUFFER(1) SortedReferences { uint sortedReferences[]; };
@@ -28,8 +33,9 @@ BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
 BL_IMAGE(0, r8) uniform writeonly image3D atlas;
 
-shared uint best[512];
-shared uint boxMin[3], boxMax[3], keep;
+shared uint best[512];       // squared distance to the nearest opaque triangle (float bits)
+shared uint bestAlpha[512];  // ... to the nearest alpha-tested triangle
+shared uint boxMin[3], boxMax[3], keep, alphaTested, opaqueCells[2];
 
 void main() {
     uint t = gl_WorkGroupID.y * BL_SDF_WIDE_GROUPS + gl_WorkGroupID.x;
@@ -48,28 +54,38 @@ void main() {
     vec3 voxelMin = vec3(voxel) * vs;
 
     best[lane] = floatBitsToUint(band * band);
+    bestAlpha[lane] = floatBitsToUint(band * band);
     if (lane < 3u) {
         boxMin[lane] = 7u;
         boxMax[lane] = 0u;
     }
-    if (lane == 0u) keep = 0u;
+    if (lane < 2u) opaqueCells[lane] = 0u;
+    if (lane == 0u) {
+        keep = 0u;
+        alphaTested = 0u;
+    }
     barrier();
 
     ivec3 own = ivec3(gl_LocalInvocationID);
     if (entry.y <= 32u) {
         // Few references (large triangles): every brixel evaluates all of them, so all threads work.
         vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
-        float d2 = band * band;
+        float d2 = band * band, d2Alpha = band * band;
         for (uint r = 0u; r < entry.y; ++r) {
             uint tri = sortedReferences[entry.z + r];
-            d2 = min(d2, blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, triangles[3u * tri + 1u].xyz,
-                                                   triangles[3u * tri + 2u].xyz));
+            vec4 b = triangles[3u * tri + 1u];
+            float e2 = blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, b.xyz, triangles[3u * tri + 2u].xyz);
+            if (b.w > 0.5) d2Alpha = min(d2Alpha, e2);
+            else d2 = min(d2, e2);
         }
         best[lane] = floatBitsToUint(d2);
+        bestAlpha[lane] = floatBitsToUint(d2Alpha);
     } else {
         for (uint r = lane; r < entry.y; r += 512u) {
             uint tri = sortedReferences[entry.z + r];
-            vec3 a = triangles[3u * tri].xyz, b = triangles[3u * tri + 1u].xyz, c = triangles[3u * tri + 2u].xyz;
+            vec4 bw = triangles[3u * tri + 1u];
+            vec3 a = triangles[3u * tri].xyz, b = bw.xyz, c = triangles[3u * tri + 2u].xyz;
+            bool alphaTri = bw.w > 0.5;
             // Brixels whose lattice point lies within the band of the triangle's box.
             vec3 lo = (min(a, min(b, c)) - band - voxelMin) / brixel;
             vec3 hi = (max(a, max(b, c)) + band - voxelMin) / brixel;
@@ -86,13 +102,18 @@ void main() {
                         if (blDot2(p - centre) > reach * reach) continue;
                         uint index = uint((z * 8 + y) * 8 + x);
                         float d2 = blPointTriangleDistanceSq(p, a, b, c);
-                        if (floatBitsToUint(d2) < best[index]) SHARED_ATOMIC_MIN(best[index], floatBitsToUint(d2));
+                        if (alphaTri) {
+                            if (floatBitsToUint(d2) < bestAlpha[index]) SHARED_ATOMIC_MIN(bestAlpha[index], floatBitsToUint(d2));
+                        } else if (floatBitsToUint(d2) < best[index]) {
+                            SHARED_ATOMIC_MIN(best[index], floatBitsToUint(d2));
+                        }
                     }
         }
     }
     barrier();
 
-    float d = sqrt(uintBitsToFloat(best[lane]));
+    float dOpaque = sqrt(uintBitsToFloat(best[lane])), dAlpha = sqrt(uintBitsToFloat(bestAlpha[lane]));
+    float d = min(dOpaque, dAlpha);
     uint q = uint(floor(min(d, band) / band * 255.0 + 0.5));
     uint brick = entry.w;
     imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + own, vec4(float(q) / 255.0));
@@ -102,6 +123,13 @@ void main() {
             atomicMin(boxMin[axis], uint(own[axis]));
             atomicMax(boxMax[axis], uint(own[axis]));
         }
+    }
+    if (dAlpha <= brixel) atomicOr(alphaTested, 1u);
+    if (dOpaque <= brixel) {
+        // Lattice points 0..7 over the voxel; cell k of 4 holds points 2k and 2k + 1 (k/4 <= i/7 < (k+1)/4).
+        uvec3 cell = min(uvec3(own) * 4u / 7u, uvec3(3u));
+        uint bit = (cell.z * 4u + cell.y) * 4u + cell.x;
+        atomicOr(opaqueCells[bit >> 5], 1u << (bit & 31u));
     }
     barrier();
     if (lane != 0u) return;
@@ -117,7 +145,11 @@ void main() {
     } else {
         uvec3 lo = uvec3(max(ivec3(boxMin[0], boxMin[1], boxMin[2]) - 1, ivec3(0)));
         uvec3 hi = uvec3(min(ivec3(boxMax[0], boxMax[1], boxMax[2]) + 1, ivec3(7)));
-        brickAabbs[brick] = lo.x | (lo.y << 3) | (lo.z << 6) | (hi.x << 9) | (hi.y << 12) | (hi.z << 15);
+        uint flags = alphaTested != 0u ? BL_SDF_AABB_ALPHA_TESTED : 0u;
+        brickAabbs[brick] = lo.x | (lo.y << 3) | (lo.z << 6) | (hi.x << 9) | (hi.y << 12) | (hi.z << 15) | flags;
+        uint cells = table.header.z + 2u * brick;
+        brickAabbs[cells] = opaqueCells[0];
+        brickAabbs[cells + 1u] = opaqueCells[1];
     }
     atomicAdd(counters[C_VOXELS_BUILT], 1u);
 }

@@ -157,6 +157,7 @@ LoadedScene loadIntoSdf(rhi::IDevice& device, const scenes::SceneGeometry& geome
         sdf::InstanceDesc d;
         d.mesh = out.meshes[i.mesh];
         d.transform = i.transform;
+        d.alphaTested = geometry.meshes[i.mesh].alphaTested();
         out.instances.push_back(out.scene->addInstance(d));
     }
     return out;

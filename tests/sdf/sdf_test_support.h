@@ -42,7 +42,7 @@ struct LoadedScene {
     std::vector<sdf::MeshHandle> meshes;
     std::vector<sdf::InstanceHandle> instances;
 };
-// Meshes from CPU arrays, one instance per scene instance.
+// Meshes from CPU arrays, one instance per scene instance (alpha-tested where the mesh is).
 LoadedScene loadIntoSdf(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const sdf::SceneDesc& desc);
 // Every mesh of `geometry` in `scene` (from CPU arrays), in order.
 std::vector<sdf::MeshHandle> createMeshes(sdf::SdfScene& scene, const scenes::SceneGeometry& geometry);

@@ -28,6 +28,10 @@
 
 // Per-brick tight AABB: 3 bits per axis min, then max, in brixel sample indices (0..7).
 #define BL_SDF_AABB_NONE 0xFFFFFFFFu  // brick holds distances but no surface
+// Flag beside the box: the brick holds surfaces of alpha-tested instances (sdf::InstanceDesc::alphaTested).
+// The AABB buffer then continues, after header.z (the capacity) words, with two words per brick: bit
+// (z·4 + y)·4 + x set where an opaque surface reaches that 4³ cell of the voxel (hits there are opaque).
+#define BL_SDF_AABB_ALPHA_TESTED 0x40000000u
 
 // AABB tree of one cascade, in a uint array with this stride per cascade:
 //   [0, 4096)      bottom nodes 16³ (4³ voxels each): 5-bit min/max per axis in brixel intervals (0..28)

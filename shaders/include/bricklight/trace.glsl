@@ -67,6 +67,10 @@ struct BlSdfHit {
     // No hit and no miss: the last cascade ran out of iterations (or met a voxel not built yet) before
     // tMax. Callers that treat a miss as "the sky" should not do so for these rays.
     bool gaveUp;
+    // The surface hit may be a cut-out part of an alpha-tested instance (sdf::InstanceDesc::alphaTested): the
+    // brick holds such surfaces and no opaque surface reaches this 4³ cell of it. A tracer that knows the
+    // coverage there may go on past it (blSdfContinueRay); else the card is solid.
+    bool alphaTested;
 };
 
 BlSdfRay blSdfMakeRay(vec3 origin, vec3 direction, float tMin, float tMax) {
@@ -107,6 +111,33 @@ vec3 blSdfBrickNormal(uint brick, vec3 uvw, vec3 direction) {
     return dot(n, direction) > 0.0 ? -n : n;
 }
 
+// The 4³ cell of a brick that holds brick-local position uvw: (z·4 + y)·4 + x.
+uint blSdfBrickCell(vec3 uvw) {
+    uvec3 c = uvec3(clamp(ivec3(floor(uvw * 4.0)), ivec3(0), ivec3(3)));
+    return (c.z * 4u + c.y) * 4u + c.x;
+}
+
+// Whether a hit at brick-local uvw in a brick flagged BL_SDF_AABB_ALPHA_TESTED may be a cut-out texel: no
+// opaque surface reaches its cell.
+bool blSdfCellAlphaTested(uint brick, vec3 uvw) {
+    uint bit = blSdfBrickCell(uvw);
+    uint opaque = blSdfBrickAabbs[blSdfTable.header.z + 2u * brick + (bit >> 5)];
+    return (opaque & (1u << (bit & 31u))) == 0u;
+}
+
+// A ray that goes on past a hit judged transparent (a cut-out texel of an alpha-tested card): it restarts
+// beyond the hit, far enough along that the card's own thin shell of distances below the hit epsilon is
+// behind it (2.5 epsilons off the surface, at most 3 brixel intervals along a grazing ray). Its tMin moves
+// on; everything else is kept.
+BlSdfRay blSdfContinueRay(BlSdfRay ray, BlSdfHit hit) {
+    BlSdfCascade info = blSdfTable.cascades[hit.cascade];
+    float eps = info.voxelSize.z * ray.epsilonScale;
+    float cosine = max(abs(dot(hit.normal, ray.direction)), 1e-3);
+    float along = min(2.5 * eps / cosine, 3.0 * info.voxelSize.x / 7.0);
+    ray.tMin = hit.t + max(along, eps);
+    return ray;
+}
+
 // Distance at a world position in one cascade: band (world) in empty voxels, -1 where nothing is built.
 float blSdfDistance(vec3 position, uint cascade) {
     BlSdfCascade info = blSdfTable.cascades[cascade];
@@ -129,6 +160,7 @@ BlSdfHit blSdfTrace(BlSdfRay ray) {
     hit.cascade = 0u;
     hit.iterations = 0u;
     hit.gaveUp = false;
+    hit.alphaTested = false;
     float t = ray.tMin;
     uint lastCascade = min(ray.endCascade, blSdfTable.header.x - 1u);
     for (uint c = ray.startCascade; c <= lastCascade && t < ray.tMax; ++c) {
@@ -216,6 +248,7 @@ BlSdfHit blSdfTrace(BlSdfRay ray) {
                         hit.cascade = c;
                         hit.normal = blSdfBrickNormal(state, hit.brickUvw, ray.direction);
                         hit.iterations += steps;
+                        hit.alphaTested = (aabb & BL_SDF_AABB_ALPHA_TESTED) != 0u && blSdfCellAlphaTested(state, hit.brickUvw);
                         return hit;
                     }
                     s += dist;
