@@ -148,7 +148,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
         const uint32_t material = materialOf[t];
         const glm::vec3 a = positions[3 * t], b = positions[3 * t + 1], c = positions[3 * t + 2];
         tris[3 * slot] = glm::vec4(a, bitsOf(material));
-        tris[3 * slot + 1] = glm::vec4(b, 0.0f);
+        tris[3 * slot + 1] = glm::vec4(b, scene.meshes[material].alphaTested() ? 1.0f : 0.0f);  // traceRay's any-hit flag
         tris[3 * slot + 2] = glm::vec4(c, 0.0f);
         const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
         const glm::vec3 e = scene.meshes[material].emission;
@@ -275,10 +275,10 @@ GpuScene::~GpuScene() {
     if (sampler_) device_.destroy(sampler_);
 }
 
-void GpuScene::bind(rhi::Bindings& b, bool textures) const {
+void GpuScene::bind(rhi::Bindings& b) const {
     b.readBuffers.push({5, uvs_, {}});
     b.readBuffers.push({6, normals_, {}});
-    if (textures) b.textures.push({4, rhi::wholeTexture(textures_), sampler_});
+    b.textures.push({4, rhi::wholeTexture(textures_), sampler_});
     b.readBuffers.push({0, triangleBuffer_, {}});
     b.readBuffers.push({1, nodes_, {}});
     b.readBuffers.push({2, materials_, {}});

@@ -35,10 +35,13 @@ public:
     static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
                                             const std::vector<glm::vec3>* previous = nullptr);
     ~GpuScene();
-    // Read buffers 0..6 (triangles, BVH, materials, emitters, point lights, texture coordinates, normals) as
-    // scene_trace.glsl declares them; with `textures`, also the base-colour texture array (texture slot 4,
-    // for shaders that define BL_SCENE_TEXTURES).
-    void bind(rhi::Bindings& bindings, bool textures = false) const;
+    // Read buffers 0..6 (triangles, BVH, materials, emitters, point lights, texture coordinates, normals) and
+    // the base-colour texture array (texture slot 4) as scene_trace.glsl declares them: every pass that
+    // traces rays reads the textures, for the alpha test of alpha-tested materials.
+    void bind(rhi::Bindings& bindings) const;
+    // The former form (`textures` chose whether slot 4 was bound); the textures are always bound now. Kept
+    // for callers outside the renderer's own files until they drop the argument.
+    void bind(rhi::Bindings& bindings, bool /*textures*/) const { bind(bindings); }
     rhi::TextureHandle textureArray() const { return textures_; }
     rhi::SamplerHandle textureSampler() const { return sampler_; }
     static constexpr uint32_t kTextureSize = 256;  // every base-colour texture is resampled to this square

@@ -101,7 +101,7 @@ void PathTracer::addSamples(uint32_t samples) {
         s.label = "path trace";
         s.bindings.constants.push(rhi::constants(0, p));
         s.bindings.constants.push(rhi::constants(1, light));
-        scene_->bind(s.bindings, true);
+        scene_->bind(s.bindings);
         s.bindings.storageBuffers.push({0, accumulation_, {}, rhi::Access::ReadWrite});
         device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
         samples_ += batch;

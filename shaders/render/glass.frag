@@ -28,7 +28,6 @@ BL_CONSTANTS(2) uniform GlassParams {
     uvec4 params;  // x frame (random numbers)
 } glass;
 BL_TEXTURE(0) uniform sampler2D gPosition;  // the G-buffer's world position, w = 1 where an opaque surface was drawn
-#define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
 #include "bricklight/cone_trace.glsl"
 

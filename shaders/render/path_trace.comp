@@ -29,7 +29,6 @@ BL_CONSTANTS(0) uniform Params {
     uvec4 size;          // xy image size, z first sample index, w samples in this dispatch
 } params;
 BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 7 AOVs x pixels: sums, w = samples
-#define BL_SCENE_TEXTURES
 #include "scene_trace.glsl"
 
 void main() {

@@ -11,7 +11,8 @@ BL_CONSTANTS(1) uniform SceneLight {
     uvec4 counts;        // x emitter count, y seed, z max bounces, w point/spot light count
     vec4 lightWeight;    // x total emitter weight, y ray offset
 } sceneLight;
-BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits)
+BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };   // 3 per triangle; v0.w = material (bits), v1.w = 1 where
+                                                     // the material is alpha-tested (traceRay's any-hit test)
 BL_READ_BUFFER(1) Nodes { vec4 nodes[]; };           // 2 per node: min, rightOrFirst; max, count
 BL_READ_BUFFER(2) Materials { vec4 materials[]; };   // 4 per material: albedo, roughness; emission, metalness;
                                                      // texture layer (-1 none), dielectric F0, transmission, ior;
@@ -20,9 +21,9 @@ BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, c
 BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
 BL_READ_BUFFER(5) TriangleUvs { vec4 triangleUvs[]; };  // 2 per triangle: uv0, uv1; uv2
 BL_READ_BUFFER(6) TriangleNormals { vec4 triangleNormals[]; };  // 3 per triangle: shading normals (zero: none)
-#ifdef BL_SCENE_TEXTURES
+// Always declared (GpuScene::bind binds it): traceRay reads the alpha of alpha-tested materials, so every
+// pass that traces rays needs it, not only those that shade with the base colour.
 BL_TEXTURE(4) uniform sampler2DArray baseColorTextures;  // one layer per texture (GpuScene::kTextureSize square)
-#endif
 
 const float PI = 3.14159265358979;
 
@@ -43,7 +44,24 @@ struct Hit {
     vec2 bary;  // weights of vertices 1 and 2
 };
 
-// Nearest hit in (tMin, tMax), or any hit when `anyHit` (shadow rays).
+// Texture coordinates at a hit (barycentric weights of vertices 1 and 2).
+vec2 hitUv(uint tri, vec2 bary) {
+    vec4 a = triangleUvs[2u * tri], b = triangleUvs[2u * tri + 1u];
+    return a.xy * (1.0 - bary.x - bary.y) + a.zw * bary.x + b.xy * bary.y;
+}
+
+// The any-hit test of alpha-tested materials, the G-buffer's rule (gbuffer.frag): a point whose coverage,
+// base alpha x the texture's alpha (level 0), is below the material's cut-off is a hole the ray passes.
+bool alphaCutOut(uint tri, vec2 bary) {
+    uint material = floatBitsToUint(triangles[3u * tri].w);
+    vec2 alphaTest = materials[4u * material + 3u].xy;  // cut-off, base alpha
+    float layer = materials[4u * material + 2u].x;
+    float alpha = layer >= 0.0 ? textureLod(baseColorTextures, vec3(hitUv(tri, bary), layer), 0.0).a : 1.0;
+    return alpha * alphaTest.y < alphaTest.x;
+}
+
+// Nearest hit in (tMin, tMax), or any hit when `anyHit` (shadow rays). Cut-out points of alpha-tested
+// triangles are not hits, for every kind of ray.
 bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
     vec3 inv = 1.0 / mix(d, vec3(1e-30), lessThan(abs(d), vec3(1e-30)));
     uint stack[48];
@@ -66,7 +84,8 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
                 continue;
             }
             for (uint i = link; i < link + count; ++i) {
-                vec3 v0 = triangles[3u * i].xyz, e1 = triangles[3u * i + 1u].xyz - v0, e2 = triangles[3u * i + 2u].xyz - v0;
+                vec4 v1 = triangles[3u * i + 1u];  // w: alpha-tested
+                vec3 v0 = triangles[3u * i].xyz, e1 = v1.xyz - v0, e2 = triangles[3u * i + 2u].xyz - v0;
                 vec3 p = cross(d, e2);
                 float det = dot(e1, p);
                 if (abs(det) < 1e-20) continue;
@@ -83,6 +102,9 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
                 if (v < -kEdge || u + v > 1.0 + kEdge) continue;
                 float t = dot(e2, q) * invDet;
                 if (t > tMin && t < hit.t) {
+                    // Opaque triangles (w = 0) pay one comparison; only alpha-tested ones read the material
+                    // and the texture.
+                    if (v1.w != 0.0 && alphaCutOut(i, vec2(u, v))) continue;
                     hit.t = t;
                     hit.triangle = i;
                     hit.bary = vec2(u, v);
@@ -96,18 +118,11 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
     return hit.triangle != 0xFFFFFFFFu;
 }
 
-// Base colour at a hit: the material's factor, times its texture where it has one (and the including
-// shader binds the textures).
+// Base colour at a hit: the material's factor, times its texture where it has one.
 vec3 surfaceAlbedo(uint material, uint tri, vec2 bary) {
     vec3 albedo = materials[4u * material].rgb;
-#ifdef BL_SCENE_TEXTURES
     float layer = materials[4u * material + 2u].x;
-    if (layer >= 0.0) {
-        vec4 a = triangleUvs[2u * tri], b = triangleUvs[2u * tri + 1u];
-        vec2 uv = a.xy * (1.0 - bary.x - bary.y) + a.zw * bary.x + b.xy * bary.y;
-        albedo *= textureLod(baseColorTextures, vec3(uv, layer), 0.0).rgb;
-    }
-#endif
+    if (layer >= 0.0) albedo *= textureLod(baseColorTextures, vec3(hitUv(tri, bary), layer), 0.0).rgb;
     return albedo;
 }
 

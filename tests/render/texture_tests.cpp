@@ -1,6 +1,7 @@
 // Base-colour textures: a textured quad shows its texels in the path tracer's and the fast path's albedo
 // (the same values), and a texture that cannot be loaded is a clear error. Alpha-tested materials: the
-// G-buffer draw leaves out what is below the cut-off.
+// G-buffer draw, the shadow maps and the rays of the path tracer and of the direct lighting leave out what is
+// below the cut-off.
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -220,8 +221,78 @@ void alphaTestedShadowMaps(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The path tracer's camera rays pass the cut-out texels (traceRay's any-hit test): the half-transparent green
+// sheet of quadBeforeWall shows the red wall behind its transparent left half, itself on the right; with
+// cut-off 0 the sheet is whole.
+void alphaTestedCameraRays(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const std::string rgba = writeHalves("alpha_camera_rgba_" + backend + ".png", 4, 0, 255);
+    const glm::vec3 wall(1, 0, 0), sheet(0, 1, 0);
+    for (float cutoff : {0.5f, 0.0f}) {
+        INFO("cut-off " << cutoff);
+        scenes::SceneGeometry s = quadBeforeWall(rgba);
+        s.meshes[0].alphaCutoff = cutoff;
+        auto pt = traced(td, s, 32, 1, false);
+        const render::Image albedo = pt->read(render::Aov::Albedo);
+        // The sheet covers pixels 8..23 each way (texturedAlbedo's probes); x < 16 is its transparent half.
+        for (uint32_t y : {10u, 16u, 21u})
+            for (uint32_t x : {10u, 13u, 18u, 21u}) {
+                const glm::vec3 seen = albedo.at(x, y), expected = x < 16 && cutoff > 0.0f ? wall : sheet;
+                INFO("pixel " << x << "," << y << ": albedo " << seen.x << "," << seen.y << "," << seen.z);
+                CHECK(glm::length(seen - expected) < 0.02f);
+            }
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
+// Shadow rays pass the cut-out texels too, in the path tracer and in the fast path's ray-traced direct
+// lighting (direct_light.comp): a white floor under the sheet of alphaTestedShadowMaps, lit by a sun
+// straight above (no sky), gets cos / pi under the transparent half (x < 0), nothing under the opaque one;
+// with cut-off 0 nothing anywhere.
+void alphaTestedShadowRays(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const std::string rgba = writeHalves("alpha_rays_rgba_" + backend + ".png", 4, 0, 255);
+    for (float cutoff : {0.5f, 0.0f}) {
+        INFO("cut-off " << cutoff);
+        scenes::SceneGeometry s;
+        scenes::TriangleMesh floor = groundPlane(3.0f, glm::vec3(1.0f));
+        floor.name = "floor";
+        scenes::TriangleMesh sheet;
+        sheet.name = "sheet";
+        sheet.positions = {-1, 2, 1, 1, 2, 1, 1, 2, -1, -1, 2, -1};
+        sheet.uvs = {0, 1, 1, 1, 1, 0, 0, 0};  // u = (x + 1) / 2
+        sheet.indices = {0, 1, 2, 0, 2, 3};
+        sheet.baseColorTexture = rgba;
+        sheet.alphaCutoff = cutoff;
+        s.meshes = {floor, sheet};
+        s.instances = {{0, glm::mat4(1.0f)}, {1, glm::mat4(1.0f)}};
+        s.environment.sunDirection = glm::normalize(glm::vec3(0.0f, 1.0f, 0.1f));
+        s.environment.sunIrradiance = glm::vec3(1.0f);
+        s.environment.skyRadiance = glm::vec3(0.0f);
+        // Looking straight down from y = 0.5 (image x = world x): the floor within 0.3 of the origin.
+        s.camera = {glm::vec3(0, 0.5f, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1), 60.0f};
+        s.computeBounds();
+        const float lit = glm::normalize(s.environment.sunDirection).y / float(M_PI);
+        Pair both = makePair(td, s, 32, 1, 1, false);
+        const render::Image traced = both.tracer->read(render::Aov::Direct), rastered = both.raster->read(render::Aov::Direct);
+        for (uint32_t y : {4u, 16u, 27u})
+            for (uint32_t x : {4u, 10u, 22u, 27u}) {
+                const float expected = x < 16 && cutoff > 0.0f ? lit : 0.0f;
+                INFO("pixel " << x << "," << y << ": path tracer " << traced.at(x, y).x << ", fast path " << rastered.at(x, y).x
+                              << ", expected " << expected);
+                CHECK(std::fabs(traced.at(x, y).x - expected) < 0.01f);
+                CHECK(std::fabs(rastered.at(x, y).x - expected) < 0.01f);
+            }
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
+BACKEND_TEST("textures: alpha-tested materials leave holes for the path tracer's camera rays", "[render]", alphaTestedCameraRays)
+BACKEND_TEST("textures: alpha-tested materials leave holes for shadow rays", "[render]", alphaTestedShadowRays)
 BACKEND_TEST("textures: alpha-tested materials leave holes in the sun's shadow maps", "[render][shadows]", alphaTestedShadowMaps)
 BACKEND_TEST("textures: alpha-tested materials leave holes in the G-buffer", "[render]", alphaTestedGbuffer)
 BACKEND_TEST("textures: base colour in both paths", "[render]", texturedAlbedo)
