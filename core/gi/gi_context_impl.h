@@ -56,6 +56,7 @@ public:
     // gi_alpha_pass.cpp
     std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) override;
     std::vector<float> readAlphaCoverage(std::vector<uint32_t>* fragments) override;
+    rhi::BufferHandle alphaCacheBuffer() const override { return alphaCache_; }
 
 private:
     bool fail(ErrorCode code, const std::string& message);  // reports an error, returns false

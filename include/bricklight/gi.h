@@ -271,6 +271,10 @@ public:
     // order ((z·4 + y)·4 + x) of the coverage the alpha passes found there, -1 where none reached; with
     // `fragments`, how many fragments the latest pass counted in each cell. Empty without ContextFlags::AlphaCache.
     virtual std::vector<float> readAlphaCoverage(std::vector<uint32_t>* fragments = nullptr) = 0;
+    // The alpha cache, for the application's own shaders that trace the field through foliage (bind it as a
+    // storage buffer and include bricklight/alpha_cache.glsl): always a live buffer, whose header says whether the
+    // context keeps a cache (a 16-byte stand-in without ContextFlags::AlphaCache). Owned by the context.
+    virtual rhi::BufferHandle alphaCacheBuffer() const = 0;
 };
 
 }  // namespace bricklight::gi

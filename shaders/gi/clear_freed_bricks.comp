@@ -83,8 +83,8 @@ void main() {
         cacheOwners[brick] = owner;
         for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
         for (uint i = 0u; i < GI_MATERIAL_WORDS; ++i) brickMaterial[m + i] = 0u;
-        if (giAlphaCacheKept())
-            for (uint i = 0u; i < 64u; ++i) giAlphaCache[GI_ALPHA_HEADER + brick * 64u + i] = 0u;
+        if (blAlphaCacheKept())
+            for (uint i = 0u; i < 64u; ++i) blAlphaCacheWords[BL_ALPHA_CACHE_HEADER + brick * 64u + i] = 0u;
         uint slot = giCacheSlots[brick];
         giCacheSlots[brick] = GI_SLOT_NONE;
         if (slot < GI_SLOT_PENDING) {

@@ -49,14 +49,14 @@ void main() {
                 float band = blSdfTable.cascades[cascade].voxelSize.w;
                 float eps = blSdfTable.cascades[cascade].voxelSize.z * giFrame.epsilon.y;
                 float s = max(span.x, giFrame.trace.z);
-                bool alphaTested = (blSdfBrickAabbs[brick] & BL_SDF_AABB_ALPHA_TESTED) != 0u && giAlphaCacheKept();
+                bool alphaTested = (blSdfBrickAabbs[brick] & BL_SDF_AABB_ALPHA_TESTED) != 0u && blAlphaCacheKept();
                 for (int i = 0; i < 16 && s <= span.y; ++i) {
                     vec3 uvw = clamp((o + d * s - lo) / size, 0.0, 1.0);
                     float dist = blSdfSampleBrick(brick, uvw) * band;
                     if (dist < eps && alphaTested && blSdfCellAlphaTested(brick, uvw)) {
                         // A card's cut-out part, this time: march on past it (as blSdfContinueRay); leaving the
                         // brick without another hit leaves the pixel to the SH caches.
-                        float coverage = giAlphaCoverage(brick, uvw);
+                        float coverage = blAlphaCacheCoverage(brick, uvw);
                         if (coverage >= 0.0 && giRandom(rng) >= coverage) {
                             s += min(2.5 * eps / max(abs(dot(blSdfBrickNormal(brick, uvw, d), d)), 1e-3), 3.0 * size / 7.0);
                             continue;
