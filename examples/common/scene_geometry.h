@@ -15,6 +15,15 @@
 
 namespace bricklight::scenes {
 
+// A texture a program makes (the built-in scenes' procedural textures) in place of an image file: RGBA8, rows
+// top to bottom, the colour sRGB-encoded and the alpha linear (a coverage), as a PNG holds them. Needs no
+// image library: builds without OpenImageIO use it too.
+struct GeneratedTexture {
+    std::string name;  // for messages
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  // width * height * 4 bytes
+};
+
 struct TriangleMesh {
     std::string name;
     std::vector<float> positions;   // xyz per vertex
@@ -25,6 +34,9 @@ struct TriangleMesh {
     // ...or the encoded bytes of a texture embedded in the model file (PNG, JPEG...), named for messages
     // by baseColorTexture ("file.glb*0.png": the index and the format).
     std::shared_ptr<std::vector<uint8_t>> embeddedTexture;
+    // ...or generated texels (not with baseColorTexture): the base colour texture, its alpha the coverage of
+    // alpha testing unless `alphaTexture` names an opacity map. Shared by the meshes that use it (one layer).
+    std::shared_ptr<const GeneratedTexture> generatedTexture;
     glm::vec3 albedo{0.8f};    // base colour (linear)
     glm::vec3 emission{0.0f};  // emitted radiance (linear, W / (sr m^2) in the scene's units)
     float roughness = 1.0f;
@@ -123,9 +135,13 @@ SceneGeometry cornellGlass();
 // The Cornell box with a metal floor (albedo 0.9, metalness 1) of the given perceptual roughness: mirror-like at
 // 0.05 (the default of "cornell-mirror"), glossy at 0.3.
 SceneGeometry cornellMirror(float roughness);
+// A meadow of grass tufts (crossed alpha-tested cards), a tree and a hedge of leaf cards before an opaque wall,
+// under sun and sky; its grass and leaf textures are generated (GeneratedTexture), alpha cut-off 0.5.
+SceneGeometry foliage();
 // The built-in scenes' names, for messages.
 const char* builtinSceneNames();
-// A built-in scene by name ("cornell", "cornell-glass", "cornell-mirror[:ROUGHNESS]", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field"), or a model
+// A built-in scene by name ("cornell", "cornell-glass", "cornell-mirror[:ROUGHNESS]", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field",
+// "foliage"), or a model
 // file (loadModel, under `limits`).
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits = {});
 

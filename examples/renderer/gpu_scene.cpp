@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "bvh.h"
+#include "generated_texture.h"
 #include "texture_loader.h"
 
 namespace bricklight::render {
@@ -158,41 +159,47 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
             lights.push_back(glm::vec4(bitsOf(slot), area, total, weight));
         }
     }
-    // Base-colour textures: one layer for each pair of base colour texture and opacity map (a pair used by
-    // several meshes is loaded once); an opacity map replaces its layer's alpha.
+    // Base-colour textures: one layer for each pair of base colour texture (a file or generated texels) and
+    // opacity map (a pair used by several meshes is loaded once); an opacity map replaces its layer's alpha.
     struct Layer {
         std::string colour, coverage;
         const std::vector<uint8_t>* encoded;  // the colour texture's, when embedded in the model file
+        const scenes::GeneratedTexture* generated;  // in place of the colour file
+        std::string mesh;  // the first mesh that uses it, for messages
     };
     std::vector<Layer> layers;
     std::vector<float> layerOf;
     for (const auto& m : scene.meshes) {
+        if (m.generatedTexture && !m.baseColorTexture.empty())
+            return fail("mesh '" + m.name + "': has both a base colour texture file ('" + m.baseColorTexture + "') and a generated texture ('" +
+                        m.generatedTexture->name + "')");
         float layer = -1.0f;
         const std::string coverage = m.alphaTested() ? m.alphaTexture : std::string();
-        if (!m.baseColorTexture.empty() || !coverage.empty()) {
-            auto it = std::find_if(layers.begin(), layers.end(),
-                                   [&](const Layer& l) { return l.colour == m.baseColorTexture && l.coverage == coverage; });
+        const scenes::GeneratedTexture* generated = m.generatedTexture.get();
+        if (!m.baseColorTexture.empty() || generated || !coverage.empty()) {
+            auto it = std::find_if(layers.begin(), layers.end(), [&](const Layer& l) {
+                return l.colour == m.baseColorTexture && l.generated == generated && l.coverage == coverage;
+            });
             layer = float(it - layers.begin());
-            if (it == layers.end()) layers.push_back({m.baseColorTexture, coverage, m.embeddedTexture.get()});
+            if (it == layers.end()) layers.push_back({m.baseColorTexture, coverage, m.embeddedTexture.get(), generated, m.name});
         }
         layerOf.push_back(layer);
     }
     const size_t layerBytes = size_t(kTextureSize) * kTextureSize * 4;
-    auto meshOf = [&](const std::string& path, bool coverage) {
-        for (const auto& m : scene.meshes)
-            if ((coverage ? m.alphaTexture : m.baseColorTexture) == path) return m.name;
-        return std::string();
-    };
     std::vector<uint8_t> texels;
     for (const Layer& l : layers) {
         std::string textureError;
-        if (l.colour.empty()) texels.resize(texels.size() + layerBytes, 255);  // white, opaque
-        else if (!loadTextureLayer(l.colour, kTextureSize, &texels, &textureError, l.encoded, scene.loadLimits))
-            return fail("mesh '" + meshOf(l.colour, false) + "': base colour texture " + textureError);
+        if (l.generated) {
+            if (!generatedTextureLayer(*l.generated, kTextureSize, &texels, &textureError)) return fail("mesh '" + l.mesh + "': " + textureError);
+        } else if (l.colour.empty()) {
+            texels.resize(texels.size() + layerBytes, 255);  // white, opaque
+        } else if (!loadTextureLayer(l.colour, kTextureSize, &texels, &textureError, l.encoded, scene.loadLimits)) {
+            return fail("mesh '" + l.mesh + "': base colour texture " + textureError);
+        }
         if (l.coverage.empty()) continue;
         std::vector<uint8_t> coverage;
         if (!loadTextureLayer(l.coverage, kTextureSize, &coverage, &textureError, nullptr, scene.loadLimits, true))
-            return fail("mesh '" + meshOf(l.coverage, true) + "': opacity map " + textureError);
+            return fail("mesh '" + l.mesh + "': opacity map " + textureError);
         uint8_t* layer = texels.data() + texels.size() - layerBytes;
         for (size_t i = 3; i < layerBytes; i += 4) layer[i] = coverage[i];
     }

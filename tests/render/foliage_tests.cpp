@@ -1,0 +1,147 @@
+// The "foliage" built-in scene and generated textures: the scene holds its alpha-tested grass and leaf cards
+// with generated textures; rendered, the path tracer and the G-buffer agree on which pixels are foliage (both
+// leave the cut-out texels out) and the ground shows between the grass blades. Generated textures need no
+// image library and a malformed one is refused naming its mesh.
+#include <cmath>
+
+#include "backend_test.h"
+#include "path_tracer.h"
+#include "raster_renderer.h"
+#include "render_test_support.h"
+
+using namespace bricklight;
+using namespace bricklight::testing;
+
+namespace {
+
+const scenes::TriangleMesh* meshNamed(const scenes::SceneGeometry& s, const std::string& name) {
+    for (const scenes::TriangleMesh& m : s.meshes)
+        if (m.name == name) return &m;
+    return nullptr;
+}
+
+// The share of a generated texture's texels whose alpha passes a cut-off of 0.5.
+double coverage(const scenes::GeneratedTexture& t) {
+    size_t covered = 0;
+    for (size_t i = 3; i < t.rgba.size(); i += 4) covered += t.rgba[i] >= 128;
+    return double(covered) / double(t.width * t.height);
+}
+
+// Foliage in an albedo image: the cards' texture colour is green-dominant; the ground (brown), the wall (grey),
+// the trunk and the sky (0) are not.
+bool isFoliage(const glm::vec3& albedo) { return albedo.g > 1.3f * albedo.r && albedo.g > 1.3f * albedo.b && albedo.g > 0.01f; }
+
+// The foliage scene at 64 x 64, pixel centres: the G-buffer's and the path tracer's primary-hit albedo.
+void foliageRenders(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const scenes::SceneGeometry s = scenes::foliage();
+    constexpr uint32_t kSize = 64;
+    Pair both = makePair(td, s, kSize, 1, 2, false);
+    const render::Image traced = both.tracer->read(render::Aov::Albedo), rastered = both.raster->read(render::Aov::Albedo);
+    const render::Image combined = both.tracer->read(render::Aov::Combined);
+    REQUIRE(traced.width == kSize);
+    CHECK(allFinite(combined.rgb));
+    const double mean = imageMean(combined);
+    INFO("path-traced mean radiance " << mean);
+    CHECK(mean > 0.05);
+    CHECK(mean < 5.0);
+    size_t disagree = 0, foliage = 0, lowFoliage = 0, lowOther = 0;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const bool t = isFoliage(traced.at(x, y)), r = isFoliage(rastered.at(x, y));
+            disagree += t != r;
+            foliage += t;
+            // The bottom quarter of the view is the meadow in front of the camera.
+            if (y >= kSize * 3 / 4) (t ? lowFoliage : lowOther)++;
+        }
+    const double pixels = double(kSize * kSize), low = double(kSize * kSize / 4);
+    INFO("foliage pixels: path tracer " << foliage / pixels << ", disagreeing with the G-buffer " << disagree / pixels
+                                        << "; in the meadow: foliage " << lowFoliage / low << ", ground between " << lowOther / low);
+    // The same cut-out texels in both; the texture coordinates are interpolated differently (the rasterizer's
+    // perspective interpolation vs barycentrics), which moves a few blade edges by a texel: 2 % of the pixels.
+    CHECK(disagree <= size_t(0.02 * pixels));
+    CHECK(foliage > size_t(0.2 * pixels));
+    CHECK(foliage < size_t(0.9 * pixels));
+    // The grass is dense but has gaps: the ground shows between the blades, and the blades are seen.
+    CHECK(lowFoliage > size_t(0.3 * low));
+    CHECK(lowOther > size_t(0.05 * low));
+    REQUIRE_NO_MESSAGES(td);
+}
+
+// A mesh with a generated texture of the wrong byte count, or with both a file and generated texels, is refused.
+void badGeneratedTextures(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry s = furnace(groundPlane(1.0f, glm::vec3(0.5f)));
+    s.camera = {glm::vec3(0, 3, 0), glm::vec3(0), glm::vec3(0, 0, -1), 30.0f};  // looking down at the plane
+    s.meshes[0].name = "sheet";
+    s.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 1};
+    auto texture = std::make_shared<scenes::GeneratedTexture>();
+    texture->name = "checks";
+    texture->width = 4;
+    texture->height = 4;
+    texture->rgba.assign(4 * 4 * 4 - 1, 255);
+    s.meshes[0].generatedTexture = texture;
+    render::PathTracerOptions o;
+    o.width = o.height = 8;
+    std::string error;
+    CHECK(!render::PathTracer::create(*td.device, s, o, &error));
+    INFO(error);
+    CHECK(error.find("mesh 'sheet'") != std::string::npos);
+    CHECK(error.find("generated texture 'checks' is 4 x 4 with 63 bytes") != std::string::npos);
+    texture->rgba.push_back(255);
+    s.meshes[0].baseColorTexture = "leaf.png";
+    CHECK(!render::PathTracer::create(*td.device, s, o, &error));
+    CHECK(error.find("mesh 'sheet': has both a base colour texture file ('leaf.png') and a generated texture ('checks')") != std::string::npos);
+    // Valid: a 4 x 4 texture resampled to the layer size; the plane's albedo is 0.5 x the texel (sRGB 255: 1).
+    s.meshes[0].baseColorTexture.clear();
+    auto pt = render::PathTracer::create(*td.device, s, o, &error);
+    INFO(error);
+    REQUIRE(pt);
+    pt->addSamples(1);
+    CHECK(std::fabs(pt->read(render::Aov::Albedo).at(4, 4).x - 0.5f) < 0.01f);
+    REQUIRE_NO_MESSAGES(td);
+}
+
+}  // namespace
+
+BACKEND_TEST("foliage: the path tracer and the G-buffer see the same grass and leaves", "[render]", foliageRenders)
+BACKEND_TEST("foliage: bad generated textures are refused naming the mesh", "[render]", badGeneratedTextures)
+
+TEST_CASE("foliage: the scene holds alpha-tested grass and leaf cards with generated textures", "[metrics]") {
+    std::string error;
+    const scenes::SceneGeometry s = scenes::loadScene("foliage", &error);
+    INFO(error);
+    REQUIRE(!s.meshes.empty());
+    CHECK(std::string(scenes::builtinSceneNames()).find("foliage") != std::string::npos);
+    CHECK(s.name == "foliage");
+    for (const char* name : {"grass", "leaves"}) {
+        INFO(name);
+        const scenes::TriangleMesh* m = meshNamed(s, name);
+        REQUIRE(m);
+        CHECK(m->alphaCutoff == 0.5f);
+        REQUIRE(m->generatedTexture);
+        const scenes::GeneratedTexture& t = *m->generatedTexture;
+        CHECK(t.rgba.size() == size_t(t.width) * t.height * 4);
+        CHECK(m->uvs.size() / 2 == m->positions.size() / 3);
+        const double c = coverage(t);
+        INFO("coverage " << c);
+        CHECK(c > 0.25);
+        CHECK(c < 0.6);
+    }
+    for (const char* name : {"ground", "wall", "trunk"}) {
+        INFO(name);
+        const scenes::TriangleMesh* m = meshNamed(s, name);
+        REQUIRE(m);
+        CHECK(!m->alphaTested());
+    }
+    CHECK(meshNamed(s, "grass")->triangleCount() > 5000);
+    CHECK(s.triangleCount() <= 40000);
+    CHECK(glm::length(s.environment.sunIrradiance) > 0.0f);
+    CHECK(glm::length(s.environment.skyRadiance) > 0.0f);
+    // The same scene every time (a fixed seed).
+    const scenes::SceneGeometry again = scenes::foliage();
+    CHECK(again.meshes[3].positions == s.meshes[3].positions);
+    CHECK(again.meshes[3].generatedTexture->rgba == s.meshes[3].generatedTexture->rgba);
+}
