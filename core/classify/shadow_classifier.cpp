@@ -11,6 +11,7 @@ namespace bricklight::classify {
 namespace {
 
 constexpr uint32_t kCountWords = 8;
+constexpr uint32_t kAlphaCacheHeaderWords = 4;  // BL_ALPHA_CACHE_HEADER: the least an alpha cache buffer holds
 
 // The pass's parameters (the Params block of classify_shadows.comp, std430).
 struct Params {
@@ -64,7 +65,13 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     sampler.minFilter = sampler.magFilter = sampler.mipFilter = rhi::Filter::Nearest;
     sampler.debugName = "shadow classifier point";
     c->point_ = device.createSampler(sampler);
-    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->sureMask_ || !c->point_)
+    const uint32_t noAlphaCache[kAlphaCacheHeaderWords] = {};  // word 0 = 0: no cache kept (bricklight/alpha_cache.glsl)
+    bd.size = sizeof(noAlphaCache);
+    bd.usage = rhi::BufferUsage::ShaderRead | rhi::BufferUsage::ShaderWrite;
+    bd.debugName = "shadow classifier: no alpha cache";
+    c->alphaCacheNone_ = device.createBuffer(bd, noAlphaCache);
+    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->sureMask_ || !c->point_ ||
+        !c->alphaCacheNone_)
         return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)");
     const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
     device.writeBuffer(c->count_, 0, counts, sizeof(counts));
@@ -72,7 +79,7 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
 }
 
 ShadowClassifier::~ShadowClassifier() {
-    for (rhi::BufferHandle b : {tiles_, count_, params_})
+    for (rhi::BufferHandle b : {tiles_, count_, params_, alphaCacheNone_})
         if (b) device_.destroy(b);
     for (rhi::TextureHandle t : {hitMask_, sureMask_})
         if (t) device_.destroy(t);
@@ -120,6 +127,15 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
         return fail("sureHitEpsilon and sureMissEpsilon must satisfy 0 < sureHitEpsilon <= sureMissEpsilon <= 3");
     if (!(d.selfClearance >= 0.0f && d.selfClearance <= 16.0f)) return fail("selfClearance must lie in 0..16 brixels");
     if (d.tileCutOff > 32) return fail("tileCutOff " + std::to_string(d.tileCutOff) + " is more than a tile's 32 pixels");
+    if (d.alphaCache) {
+        // trace_shadows.comp reads it as a storage buffer (bricklight/alpha_cache.glsl): its header, then the cells.
+        const rhi::BufferDesc* ad = device_.describe(d.alphaCache);
+        if (!ad) return fail("alphaCache is not a live buffer (gi::GiContext::alphaCacheBuffer() of a living context)");
+        if (!(ad->usage & rhi::BufferUsage::ShaderWrite))
+            return fail("alphaCache '" + ad->debugName + "' was not created with BufferUsage::ShaderWrite (it is bound as a storage buffer)");
+        if (ad->size < kAlphaCacheHeaderWords * 4)
+            return fail("alphaCache '" + ad->debugName + "' holds " + std::to_string(ad->size) + " bytes, less than the cache's 16-byte header");
+    }
     Params p{};
     p.inverseViewProjection = inverse;
     p.sun = glm::vec4(d.sunDirection / sunLength, std::tan(0.5f * d.sunAngle));
@@ -184,6 +200,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)");  // 2 × 4 tiles a group
     depth_ = d.depth;
     normals_ = d.normals;
+    alphaCache_ = d.alphaCache;
     classified_ = true;
     return true;
 }
@@ -191,6 +208,10 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
 bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
     if (!classified_ || !device_.describe(depth_) || !device_.describe(normals_)) {
         if (error) *error = "shadow classifier: trace() needs a classify() whose depth and normals are still live";
+        return false;
+    }
+    if (alphaCache_ && !device_.describe(alphaCache_)) {
+        if (error) *error = "shadow classifier: trace() needs the classify()'s alphaCache still live";
         return false;
     }
     rhi::DispatchState s;
@@ -203,6 +224,7 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
     s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(normals_), point_});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::ReadWrite));
     s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::ReadWrite));
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{7, alphaCache_ ? alphaCache_ : alphaCacheNone_, {}, rhi::Access::Read});
     field.traceBindings(s.bindings);
     if (!device_.dispatchIndirect(s, count_, 0)) {
         if (error) *error = "shadow classifier: the device refused the trace (see its messages)";

@@ -81,6 +81,13 @@ struct ShadowClassifyDesc {
     // Tiles with this many ray pixels or fewer are not listed: their pixels keep the shadow maps' answer in the
     // hit mask, and readCounts() counts them (0: every tile with a ray is listed).
     uint32_t tileCutOff = 0;
+    // Foliage: the GI's alpha (coverage) cache, gi::GiContext::alphaCacheBuffer() of a context created with
+    // gi::ContextFlags::AlphaCache whose alpha pass has run (docs/gi.md, "Foliage"). trace()'s rays then go on past
+    // the hits the field flags as alpha-tested (sdf::InstanceDesc::alphaTested) with the probability that the card is
+    // cut out there, a new draw per pixel and frameIndex, so that the hit mask averaged over frames (the shadow
+    // denoiser's history) holds the partial visibility through the cards; with a fixed frameIndex each pixel's draw
+    // stays the same (a stable dither). Null: alpha-tested cards are solid to the rays. Must stay live until trace().
+    rhi::BufferHandle alphaCache;
 };
 
 struct ShadowClassifyCounts {
@@ -114,8 +121,10 @@ public:
     bool classify(const ShadowClassifyDesc& desc, std::string* error);
     // Hybrid shadows, after classify(): one ray per masked pixel of each listed tile (dispatchIndirect on tileCount(),
     // 32 threads a tile, 8 tiles a group) towards the sun's centre (softShadows: a point of its disc) through `field`
-    // (an updated distance field of the same scene), over the tile's interval; hitMask() takes the rays' answers for those pixels. The last classify()'s depth and normals
-    // must still be live. False with *error, recording nothing, before any classify().
+    // (an updated distance field of the same scene), over the tile's interval, passing cut-out parts of alpha-tested
+    // cards where the classify() gave an alpha cache; hitMask() takes the rays' answers for those pixels. The last
+    // classify()'s depth, normals and alpha cache must still be live. False with *error, recording nothing, before
+    // any classify() or when they are not.
     bool trace(const sdf::SdfScene& field, std::string* error);
     // hitMask() per pixel into `output` (R16_FLOAT with Storage usage, the classifier's size): 1 lit, 0 shadowed or
     // facing away from the sun; −1 where the answer is not sure (sureMask()) if the last classify() asked
@@ -141,6 +150,10 @@ private:
     uint32_t width_ = 0, height_ = 0;
     rhi::ShaderHandle classify_, trace_, resolve_;
     rhi::TextureHandle depth_, normals_;  // the last classify()'s (trace())
+    rhi::BufferHandle alphaCache_;        // the last classify()'s, or null (trace() binds alphaCacheNone_)
+    // trace_shadows.comp always declares the alpha cache (a binding it did not declare would be refused, and one it
+    // declares must be bound): without the application's, this 16-byte buffer whose header says "no cache".
+    rhi::BufferHandle alphaCacheNone_;
     bool classified_ = false;
     std::array<uint8_t, kShadowParamsBytes> lastParams_{};  // what params_ holds
     bool paramsWritten_ = false;

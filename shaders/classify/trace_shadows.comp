@@ -13,6 +13,8 @@
 layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 #include "shadow_params.glsl"
 #include "bricklight/trace.glsl"  // the field at its default slots: atlas texture 15, read buffers 4..7
+// Storage buffer 7 (free here): the application's GI alpha cache, or the classifier's stand-in whose header says none.
+#include "bricklight/alpha_cache.glsl"
 BL_TEXTURE(0) uniform sampler2D depthTexture;
 BL_TEXTURE(1) uniform sampler2D normalTexture;
 BL_READ_BUFFER(1) Tiles { uvec4 tiles[]; } list;
@@ -41,6 +43,71 @@ vec3 sunSample(vec3 sun, ivec2 pixel) {
     vec3 t = normalize(cross(sun, abs(sun.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
     vec3 b = cross(sun, t);
     return normalize(sun + r * (cos(phi) * t + sin(phi) * b));
+}
+
+// Foliage. A ray goes on past a hit the field flags as alpha-tested with the probability that the card is cut out
+// there (1 − the alpha cache's coverage): a draw per pixel, frame and layer, so that over frames the hit mask averages
+// to the partial visibility through the cards, which the shadow denoiser's history accumulates. Layer 0 (the first
+// card met) draws a golden-ratio sequence over frames shifted per pixel by a hash (each pixel's frames stratify its
+// draws: the average converges as 1/N, not 1/√N); deeper layers draw white noise per frame, independent of layer 0
+// (two layers sharing one sequence would pass together or not: a per-pixel bias the frames never average out). The
+// hash differs from the sun sample's, so that the disc point and the draws are not tied. Deterministic, integer only:
+// the same on every backend.
+#define SHADOW_FOLIAGE_MAX_LAYERS 6u  // cards a ray may pass; its next alpha-tested hit blocks (as the GI's rays)
+#define SHADOW_FOLIAGE_MAX_TRACES 10u  // traces in all: a card's shell met again (below) costs a trace, not a draw
+
+uint mixBits(uint v) {
+    v = v * 747796405u + 2891336453u;
+    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
+    return (v >> 22u) ^ v;
+}
+
+float foliageDraw(ivec2 pixel, uint layer) {
+    uint frame = uint(params.trace.w);
+    uint h = mixBits(hashPixel(uvec2(pixel)) ^ 0x68E31DA4u);
+    uint bits = layer == 0u ? h + frame * 2654435769u : mixBits(h ^ mixBits(frame * 8u + layer));
+    return float(bits >> 8u) * (1.0 / 16777216.0);
+}
+
+// The cards the thin sure ray passed: where it crossed each (its hit + its epsilon over the cosine).
+float thinPassed[SHADOW_FOLIAGE_MAX_LAYERS];
+uint thinPassedCount;
+
+// blSdfTrace that goes on past the cut-out parts of alpha-tested cards.
+// A hit within the shell of the card the ray just passed is that card again, not a new one: blSdfContinueRay steps
+// at most 3 brixels past a hit, and a ray with a wide epsilon (the fat sure ray: 1.2 brixels) crossing a card
+// obliquely is still within its epsilon of it there; drawing again would make the card more opaque to fat rays than
+// to thin ones. The shell ends where the ray is its epsilon past the card's plane: 2.5 epsilons (the field's
+// interpolation slack included) over the cosine to the card, past the hit. An opaque hit there (BlSdfHit::alphaTested
+// false) still blocks.
+// followThin (the fat sure ray, after a thin one that missed): a card the thin ray crossed within this hit's shell is
+// passed as the thin ray passed it, without a draw of its own. Its own draw could differ: the fat ray stops up to
+// 1.2 brixels before the card, where the cache's cells differ (or, in the neighbouring brick, hold no counts:
+// unknown, opaque); with their own draws 9 % of the test card's answers were unsure, all of them lit ones, which
+// biased the sure answers towards shadow (tests/classify/shadow_foliage_tests.cpp).
+// recordPassed (the thin sure ray): note the cards passed for the fat ray.
+BlSdfHit traceThroughFoliage(BlSdfRay ray, ivec2 pixel, bool followThin, bool recordPassed) {
+    BlSdfHit hit = blSdfTrace(ray);
+    uint layer = 0u;
+    float shellEnd = -1.0;
+    for (uint k = 0u; k < SHADOW_FOLIAGE_MAX_TRACES && hit.hit && hit.alphaTested; ++k) {
+        if (hit.t > shellEnd) {
+            float eps = blSdfTable.cascades[hit.cascade].voxelSize.z * ray.epsilonScale;
+            float toCard = eps / max(abs(dot(hit.normal, ray.direction)), 0.1);
+            shellEnd = hit.t + 2.5 * toCard;
+            bool crossedByThin = false;
+            for (uint i = 0u; followThin && i < thinPassedCount; ++i)
+                crossedByThin = crossedByThin || (thinPassed[i] >= hit.t && thinPassed[i] <= shellEnd);
+            if (layer == SHADOW_FOLIAGE_MAX_LAYERS) break;
+            if (!crossedByThin && !blAlphaCacheTransparent(hit, foliageDraw(pixel, layer))) break;
+            if (recordPassed) thinPassed[layer] = hit.t + toCard;
+            ++layer;
+            thinPassedCount = recordPassed ? layer : thinPassedCount;
+        }
+        ray = blSdfContinueRay(ray, hit);
+        hit = blSdfTrace(ray);
+    }
+    return hit;
 }
 
 // The hit epsilon and brixel (world units) of the finest cascade that holds p: the field's resolution at the receiver.
@@ -87,6 +154,14 @@ void main() {
             // Sure rays: a thin ray (a fraction of the hit epsilon) hits only where it passes through a surface; a fat
             // one misses only where nothing lies within the field's interpolation error of it. Each starts where its
             // own epsilon no longer sees the receiver's plane along the ray.
+            // Through foliage the question "is this answer sure" stays geometric: a card is present or cut out by a
+            // draw, and the draw is a sample, not an uncertainty to hand back to the maps. Both rays draw the same
+            // numbers per layer (foliageDraw(pixel, layer)), so at a card they agree: thin and fat both pass it (lit,
+            // if nothing else blocks: sure) or both stop (the thin ray's hit: shadowed, sure). They part only where
+            // the cache's coverage differs at their two hit points (the fat ray's lies up to its epsilon before the
+            // card) or the fat ray meets a surface the thin one passed beside; then the fat ray hits, the answer is
+            // unsure and the maps keep it, as for an opaque edge. A fixed frameIndex (hard sun without a denoiser)
+            // keeps each pixel's draws: a stable dither, no flicker.
             vec2 res = fieldResolutionAt(position);
             float cosine = dot(n, direction);
             float slope = 1.0 / max(cosine, 0.1);
@@ -94,20 +169,21 @@ void main() {
             float fatStart = (params.trust.y * res.x + params.trust.z * res.y) * slope;
             BlSdfRay thin = blSdfMakeRay(origin, direction, max(t0, thinStart), t1);
             thin.epsilonScale = params.trust.x;
-            BlSdfHit h = blSdfTrace(thin);
+            thinPassedCount = 0u;
+            BlSdfHit h = traceThroughFoliage(thin, pixel, false, true);
             // A disc sample below the receiver's horizon: the receiver itself blocks it.
             hit = h.hit || cosine <= 0.0;
             if (!hit) {
                 BlSdfRay fat = blSdfMakeRay(origin, direction, max(t0, fatStart), t1);
                 fat.epsilonScale = params.trust.y;
-                BlSdfHit f = blSdfTrace(fat);
+                BlSdfHit f = traceThroughFoliage(fat, pixel, true, false);
                 // A miss is sure only where the fat ray covered the whole interval the taps asked for.
                 known = !f.hit && !f.gaveUp && t0 >= fatStart;
             }
         } else {
             BlSdfRay ray = blSdfMakeRay(origin, direction, t0, t1);
             ray.epsilonScale = params.trace.y;
-            hit = blSdfTrace(ray).hit;
+            hit = traceThroughFoliage(ray, pixel, false, false).hit;
         }
         if (hit) atomicOr(hits[slot], bit);
         if (known) atomicOr(decided[slot], bit);
