@@ -292,6 +292,10 @@ void RasterRenderer::classifyShadows() {
     d.sureRaysOnly = true;
     d.markUnsurePixels = true;  // shadow_sun_light_hybrid.comp takes its PCF answer there
     d.rayNormalOffset = 0.5f * cascades_[0].texelSize;
+    // Foliage: the rays pass the cut-out parts of alpha-tested cards by the GI's alpha cache (its alpha pass has run
+    // this frame); a GI context without the cache hands out a stand-in that says so, and without GI the cards are
+    // solid to the rays. A hard sun keeps frameIndex 0: each pixel's draws stay put (a stable dither, no flicker).
+    d.alphaCache = gi_ ? gi_->alphaCacheBuffer() : rhi::BufferHandle{};
     // A sun of angular size: one ray a pixel to a point of its disc, a new point each frame, denoised over frames and
     // neighbours; the blocker search then spans the sun's real size.
     const bool soft = shadowDenoiser_ != nullptr;
