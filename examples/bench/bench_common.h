@@ -29,6 +29,9 @@ struct Options {
     uint32_t giProbeTile = 0;    // gi: ContextDesc::probeTile (0: automatic)
     bool giNoCameraCheck = false;  // gi: ContextFlags::NoCameraCheck
     bool giTotalOnly = false;    // gi: time only the whole GI (passes may overlap; no per-pass figures)
+    // gi: how alpha-tested meshes enter the field ("alpha-aware", "opaque", "left-out"); empty: in a scene that has
+    // them, opaque then alpha-aware, and the alpha-aware run's extra cost (bench_gi.cpp).
+    std::string giFoliage;
     uint32_t vctResolution = 128, vctLevels = 5;  // vct: the clip-map
     std::string vctEmittance = "aniso";           // vct: aniso, iso or none
     uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
@@ -94,7 +97,10 @@ bool openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_pt
 
 // The scene's distance field with o.cascades cascades, cascade 0 spanning 1/8 of the scene (cascade 3 all
 // of it), every mesh and instance added (not built yet). Null with a message on stderr.
-std::unique_ptr<sdf::SdfScene> makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const Options& o);
+// Alpha-tested meshes: registered as alpha-tested with `foliage` "alpha-aware", left out with "left-out", as any
+// other mesh otherwise.
+std::unique_ptr<sdf::SdfScene> makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const Options& o,
+                                              const std::string& foliage = "opaque");
 
 int runSdf(const Options& o);
 int runGi(const Options& o);

@@ -1,6 +1,8 @@
 // bricklight-bench gi: GPU milliseconds per GI pass and GI's memory, on a G-buffer traced through the
 // scene's distance field (shaders/bench/sdf_gbuffer.comp; the G-buffer is timed apart from GI). The camera
-// pans slowly so that reprojection and disocclusion do real work.
+// pans slowly so that reprojection and disocclusion do real work. In a scene with alpha-tested meshes (foliage)
+// it runs twice, cards built opaque and alpha-aware (with the GI's alpha pass, drawn from the renderer's
+// GpuScene with render/alpha_pass.vert and .frag), and prints what the alpha pass and the continued rays cost.
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
@@ -13,6 +15,7 @@
 #include "bench_common.h"
 #include "bricklight/gi.h"
 #include "bricklight/sdf.h"
+#include "gpu_scene.h"
 #include "scene_geometry.h"
 
 namespace bricklight::bench {
@@ -35,16 +38,66 @@ gi::InternalResolution resolutionOf(uint32_t percent) {
     }
 }
 
-}  // namespace
+// The figures of one run, for the foliage comparison.
+struct GiRun {
+    double total = 0.0, alphaPass = 0.0;
+    PhaseTimes times;
+};
 
-int runGi(const Options& o) {
-    scenes::SceneGeometry geometry;
-    std::unique_ptr<rhi::IDevice> device;
-    if (!openBench(o, &geometry, &device)) return 1;
+// The GI's alpha pass over the scene's alpha-tested triangles (the renderer's shaders and GpuScene).
+struct BenchAlphaPass {
+    std::unique_ptr<render::GpuScene> scene;
+    rhi::ShaderHandle vertex, fragment;
+    bool create(rhi::IDevice& device, const scenes::SceneGeometry& geometry) {
+        std::string error;
+        scene = render::GpuScene::create(device, geometry, &error);
+        if (!scene) {
+            std::fprintf(stderr, "bricklight-bench: the alpha pass's scene: %s\n", error.c_str());
+            return false;
+        }
+        rhi::ShaderDesc vd, fd;
+        vd.blob = rhi::findShader("render/alpha_pass.vert");
+        fd.blob = rhi::findShader("render/alpha_pass.frag");
+        vertex = vd.blob ? device.createShader(vd) : rhi::ShaderHandle{};
+        fragment = fd.blob ? device.createShader(fd) : rhi::ShaderHandle{};
+        return vertex && fragment;
+    }
+    void record(rhi::IDevice& device, gi::GiContext& context) {
+        std::string error;
+        std::optional<rhi::DrawCallState> s = context.alphaPassState(fragment, &error);
+        if (!s) {
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::exit(1);
+        }
+        s->vertexShader = vertex;
+        s->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
+        s->vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
+        s->vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
+        s->vertexBuffers.push({scene->vertexBuffer(), 0, render::GpuScene::kVertexStride, false});
+        s->bindings.readBuffers.push({2, scene->materialBuffer(), {}});
+        s->bindings.textures.push({4, rhi::wholeTexture(scene->textureArray()), scene->textureSampler()});
+        rhi::DrawArgs args;
+        args.vertexCount = 3 * scene->triangleCount();
+        device.beginMarker("gi alpha pass");
+        device.draw(*s, args);
+        device.endMarker();
+    }
+    void destroy(rhi::IDevice& device) {
+        for (rhi::ShaderHandle h : {vertex, fragment})
+            if (h) device.destroy(h);
+        scene.reset();
+    }
+};
 
+// One benchmark of GI with the alpha-tested meshes entered as `foliage` says (makeBenchScene).
+int benchGi(const Options& o, const scenes::SceneGeometry& geometry, std::unique_ptr<rhi::IDevice>& device, const std::string& foliage,
+            GiRun* run) {
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
     const float size = std::max(extent.x, std::max(extent.y, extent.z));
-    auto scene = makeBenchScene(*device, geometry, o);
+    bool alphaTested = false;
+    for (const auto& m : geometry.meshes) alphaTested |= m.alphaTested();
+    const bool alphaAware = alphaTested && foliage == "alpha-aware";
+    auto scene = makeBenchScene(*device, geometry, o, foliage);
     if (!scene) return 1;
     const sdf::SceneDesc& desc = scene->desc();
     const glm::vec3 centre = geometry.camera.eye;
@@ -56,6 +109,7 @@ int runGi(const Options& o) {
     cd.internalResolution = resolutionOf(o.scalePercent);
     cd.probeTile = o.giProbeTile;
     if (o.giNoCameraCheck) cd.flags |= gi::ContextFlags::NoCameraCheck;
+    if (alphaAware) cd.flags |= gi::ContextFlags::AlphaCache;
     std::string error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
     if (!context) {
@@ -97,20 +151,23 @@ int runGi(const Options& o) {
         std::fprintf(stderr, "bricklight-bench: the device could not create the benchmark's G-buffer\n");
         return 1;
     }
+    BenchAlphaPass alphaPass;
+    if (alphaAware && !alphaPass.create(*device, geometry)) return 1;
     const uint32_t iterations = o.giIterations ? o.giIterations : gi::TraceParams{}.maxIterationsPerCascade;
     const float coarsen = o.giCoarsen >= 0.0f ? o.giCoarsen : gi::TraceParams{}.coarsenAfterVoxels;
     std::printf("scene %s: %llu triangles; %s on %s; %ux%u, GI at %u %% (%ux%u, probe tiles %ux%u); %u cascades, "
-                "finest voxel %.4g; GI rays %u steps per cascade, diffuse rays coarsen after %g voxels\n",
+                "finest voxel %.4g; GI rays %u steps per cascade, diffuse rays coarsen after %g voxels; alpha-tested meshes %s\n",
                 geometry.name.c_str(), (unsigned long long)geometry.triangleCount(), o.backend.c_str(),
                 device->capabilities().deviceName.c_str(), o.width, o.height, o.scalePercent, context->internalWidth(),
                 context->internalHeight(), context->probeTile(), context->probeTile(), o.cascades, desc.finestVoxelSize,
-                iterations, coarsen);
+                iterations, coarsen, alphaTested ? foliage.c_str() : "none");
 
     const float aspect = float(o.width) / float(o.height);
     BenchCamera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
     auto frame = [&](uint32_t f) {
         const BenchCamera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);
         scene->update(centre);
+        if (alphaAware) alphaPass.record(*device, *context);
         // This frame's G-buffer, then GI on it (the lit image stands in for last frame's: same cost).
         gi::DispatchDesc d;
         d.view = now.view;
@@ -154,6 +211,10 @@ int runGi(const Options& o) {
 
     double total = t.perFrame("gi");
     std::printf("%-24s %9.3f ms/frame (G-buffer %.3f ms, not included)\n", "GI total", total, t.perFrame("bench gbuffer"));
+    if (alphaAware) std::printf("  %-22s %9.3f ms (not included: the application draws it)\n", "alpha pass", t.perFrame("gi alpha pass"));
+    run->total = total;
+    run->alphaPass = t.perFrame("gi alpha pass");
+    run->times = t;
     if (o.giTotalOnly) std::printf("  (passes not timed: --timing total)\n");
     else
         for (const char* p : kGiPasses) std::printf("  %-22s %9.3f ms\n", p, t.perFrame(std::string("gi/") + p));
@@ -188,6 +249,36 @@ int runGi(const Options& o) {
     }
     for (rhi::TextureHandle h : {albedo, diffuse, specular}) device->destroy(h);
     gbuffer.destroy(*device);
+    alphaPass.destroy(*device);
+    return 0;
+}
+
+}  // namespace
+
+int runGi(const Options& o) {
+    scenes::SceneGeometry geometry;
+    std::unique_ptr<rhi::IDevice> device;
+    if (!openBench(o, &geometry, &device)) return 1;
+    bool alphaTested = false;
+    for (const auto& m : geometry.meshes) alphaTested |= m.alphaTested();
+    GiRun opaque, aware;
+    if (!o.giFoliage.empty() || !alphaTested) return benchGi(o, geometry, device, o.giFoliage.empty() ? "opaque" : o.giFoliage, &aware);
+    if (!o.json.empty()) {
+        std::fprintf(stderr, "bricklight-bench: --json needs --foliage in a scene with alpha-tested meshes (one run per file)\n");
+        return 2;
+    }
+    std::printf("== alpha-tested meshes built opaque\n");
+    if (int status = benchGi(o, geometry, device, "opaque", &opaque)) return status;
+    std::printf("== alpha-aware (the GI's alpha cache)\n");
+    if (int status = benchGi(o, geometry, device, "alpha-aware", &aware)) return status;
+    std::printf("foliage: alpha pass %.3f ms; GI %.3f ms against %.3f ms with the cards built opaque (%+.3f ms; continued rays and the\n"
+                "  alpha cache's reads and clears), so %+.3f ms in all. Passes that trace:\n",
+                aware.alphaPass, aware.total, opaque.total, aware.total - opaque.total, aware.total - opaque.total + aware.alphaPass);
+    for (const char* p : {"clear freed bricks", "relight cache", "fill probes", "specular pretrace", "specular trace"}) {
+        const std::string label = std::string("gi/") + p;
+        std::printf("  %-22s %9.3f ms against %9.3f ms (%+.3f)\n", p, aware.times.perFrame(label), opaque.times.perFrame(label),
+                    aware.times.perFrame(label) - opaque.times.perFrame(label));
+    }
     return 0;
 }
 

@@ -4,7 +4,7 @@
 //                        [--width W] [--height H] [--json FILE]
 //   bricklight-bench gi  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--scale 100|75|50|25]
 //                        [--frames N] [--iterations N] [--coarsen N] [--probe-tile 0|8|16] [--timing passes|total]
-//                        [--json FILE]
+//                        [--foliage alpha-aware|opaque|left-out] [--json FILE]
 //
 // sdf: a full build, frames with one moving ~100k-triangle dynamic instance, frames where the centre moves
 // by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080).
@@ -49,6 +49,9 @@ namespace {
                  "                            [--no-camera-check]  (ContextFlags::NoCameraCheck: its cost measured apart)\n"
                  "                            [--timing passes|total]  (total: time only the whole GI, so that its passes\n"
                  "                             may overlap as they do untimed; default passes)\n"
+                 "                            [--foliage alpha-aware|opaque|left-out]  (alpha-tested meshes in the field;\n"
+                 "                             default in a scene that has them, e.g. foliage: opaque, then alpha-aware with\n"
+                 "                             the GI's alpha pass, and the difference)\n"
                  "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
                  "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
@@ -102,7 +105,11 @@ Options parse(int argc, char** argv) {
             if (o.giProbeTile != 0 && o.giProbeTile != 8 && o.giProbeTile != 16) usage("--probe-tile must be 0, 8 or 16");
         } else if (a == "--no-camera-check") o.giNoCameraCheck = true;
         else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
-        else if (a == "--timing") {
+        else if (a == "--foliage") {
+            o.giFoliage = value();
+            if (o.giFoliage != "alpha-aware" && o.giFoliage != "opaque" && o.giFoliage != "left-out")
+                usage("--foliage must be alpha-aware, opaque or left-out");
+        } else if (a == "--timing") {
             const std::string t = value();
             if (t != "passes" && t != "total") usage("--timing expects passes or total");
             o.giTotalOnly = t == "total";
@@ -192,7 +199,7 @@ bricklight::bench::BarrierCounts bricklight::bench::barriersSoFar(const Options&
 }
 
 std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& device, const scenes::SceneGeometry& geometry,
-                                                                 const Options& o) {
+                                                                 const Options& o, const std::string& foliage) {
     const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
     sdf::SceneDesc desc;
     desc.cascadeCount = o.cascades;
@@ -212,7 +219,13 @@ std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& d
     for (const auto& m : geometry.meshes)
         meshes.push_back(scene->createMesh({m.positions.data(), uint32_t(m.positions.size() / 3), m.indices.data(),
                                             uint32_t(m.indices.size()), m.name}));
-    for (const auto& i : geometry.instances) scene->addInstance({meshes[i.mesh], i.transform});
+    for (const auto& i : geometry.instances) {
+        const bool alphaTested = geometry.meshes[i.mesh].alphaTested();
+        if (alphaTested && foliage == "left-out") continue;
+        sdf::InstanceDesc d{meshes[i.mesh], i.transform};
+        d.alphaTested = alphaTested && foliage == "alpha-aware";
+        scene->addInstance(d);
+    }
     return scene;
 }
 

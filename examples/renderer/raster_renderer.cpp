@@ -167,11 +167,17 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
         if (!meshes.back()) return fail("the distance field rejected mesh '" + m.name + "': " + sdf_->lastError());
     }
     for (const scenes::MeshInstance& i : scene.instances) {
+        const bool alphaTested = scene.meshes[i.mesh].alphaTested();
+        sdfTransforms_.push_back(i.transform);
+        if (alphaTested && options_.foliage == FoliageMode::LeftOut) {
+            sdfInstances_.push_back({});  // not in the field (setScene skips it)
+            continue;
+        }
         sdf::InstanceDesc id;
         id.mesh = meshes[i.mesh];
         id.transform = i.transform;
+        id.alphaTested = alphaTested && options_.foliage == FoliageMode::AlphaAware;
         sdfInstances_.push_back(sdf_->addInstance(id));
-        sdfTransforms_.push_back(i.transform);
         if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError());
     }
     sdfCenter_ = sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
@@ -190,18 +196,21 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     gd.probeTile = options_.giProbeTile;
     gd.debugName = "render gi";
     gd.errorCallback = options_.errorCallback;
+    if (alphaAwareFoliage()) gd.flags |= gi::ContextFlags::AlphaCache;
+    // Cards left out of the field are in the G-buffer all the same: the camera self-check would count them.
+    if (options_.foliage == FoliageMode::LeftOut && scene_->hasAlphaTested()) gd.flags |= gi::ContextFlags::NoCameraCheck;
     gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
     if (!gi_) {
         if (error) *error = "raster renderer: " + why;
         return false;
     }
-    return true;
+    return !alphaAwareFoliage() || createAlphaPass(error);
 }
 
 void RasterRenderer::syncSdf(const scenes::SceneGeometry& scene) {
     if (!sdf_) return;
     for (size_t i = 0; i < scene.instances.size() && i < sdfInstances_.size(); ++i)
-        if (scene.instances[i].transform != sdfTransforms_[i]) {
+        if (sdfInstances_[i] && scene.instances[i].transform != sdfTransforms_[i]) {
             sdf_->setTransform(sdfInstances_[i], scene.instances[i].transform);
             sdfTransforms_[i] = scene.instances[i].transform;
         }
@@ -231,7 +240,7 @@ RasterRenderer::~RasterRenderer() {
     sdf_.reset();
     coneTracer_.reset();
     clipmap_.reset();
-    for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_, glassFragment_})
+    for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_, glassFragment_, alphaPassVertex_, alphaPassFragment_})
         if (s) device_.destroy(s);
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_,
                                  glassRadiance_, glassDepth_})
@@ -322,6 +331,7 @@ void RasterRenderer::render() {
             device_.beginMarker("sdf update");
             sdf_->update(sdfCenter_);
             device_.endMarker();
+            runAlphaPass();
         }
         gi::DispatchDesc g;
         g.view = view_;

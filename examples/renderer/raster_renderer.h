@@ -63,6 +63,12 @@ enum class ReflectionMode { Gi, Hybrid };
 // Which technique gives the indirect light when RasterOptions::gi is on.
 enum class GiTechnique { Sdf, Vct };
 
+// How the SDF GI sees alpha-tested meshes (foliage; docs/gi.md, "Foliage"): AlphaAware registers them as
+// alpha-tested and runs the GI's alpha pass, so that its rays go on past the cut-out texels; Opaque builds the
+// cards into the field as solid; LeftOut leaves them out of the field (they only receive GI). The two naive
+// variants are kept for comparison.
+enum class FoliageMode { AlphaAware, Opaque, LeftOut };
+
 struct RasterOptions {
     uint32_t width = 256, height = 256;
     uint32_t lightSamples = 16;  // emitter (and sky) samples per pixel for direct lighting
@@ -79,6 +85,7 @@ struct RasterOptions {
     gi::TraceParams giTrace;            // gi::DispatchDesc::trace (live: setGiTuning)
     float giRoughnessThreshold = 0.75f;  // gi::DispatchDesc::roughnessThreshold (live)
     GiTechnique giTechnique = GiTechnique::Sdf;
+    FoliageMode foliage = FoliageMode::AlphaAware;
     // Voxel cone tracing (giTechnique Vct, or vxao): the clip-map is centred on the scene; its finest level
     // holds the scene's bounds with a margin, each next level doubles.
     uint32_t vctResolution = 64, vctLevels = 5;
@@ -234,6 +241,11 @@ private:
     glm::vec3 sunDirection_{0.0f, 1.0f, 0.0f}, sunIrradiance_{0.0f};
     glm::vec3 sceneMin_{0.0f}, sceneMax_{0.0f};
     std::unique_ptr<classify::DepthPyramid> depthPyramid_;
+    // raster_renderer_foliage.cpp
+    bool alphaAwareFoliage() const;  // FoliageMode::AlphaAware in a scene with alpha-tested meshes
+    bool createAlphaPass(std::string* error);
+    void runAlphaPass();  // right after the frame's field update: before the hybrid shadow rays and the GI
+    rhi::ShaderHandle alphaPassVertex_, alphaPassFragment_;
     // raster_renderer_reflections.cpp
     bool createReflections(std::string* error);
     void destroyReflections();

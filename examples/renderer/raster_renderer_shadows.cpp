@@ -262,6 +262,7 @@ void RasterRenderer::classifyShadows() {
         sdf_->update(hybridShadowFinerCascades() > 0 ? camera_.eye : sdfCenter_);
         device_.endMarker();
         sdfUpdated_ = true;
+        if (gi_) runAlphaPass();  // the shadow rays read this frame's coverage (the field's bricks may have moved)
     }
     classify::ShadowClassifyDesc d;
     d.view = view_;

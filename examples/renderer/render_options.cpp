@@ -132,6 +132,16 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
         o.reflections = s == "hybrid" ? ReflectionMode::Hybrid : ReflectionMode::Gi;
         return OptionParse::Consumed;
     }
+    if (a == "--foliage") {
+        if (!value()) return OptionParse::Error;
+        const std::string s = v;
+        if (s != "alpha-aware" && s != "opaque" && s != "left-out") {
+            *error = "--foliage must be alpha-aware, opaque or left-out (got '" + s + "')";
+            return OptionParse::Error;
+        }
+        o.foliage = s == "opaque" ? FoliageMode::Opaque : s == "left-out" ? FoliageMode::LeftOut : FoliageMode::AlphaAware;
+        return OptionParse::Consumed;
+    }
     if (a == "--shadow-resolution") return whole(kMinShadowResolution, kMaxShadowResolution, &o.sunShadows.resolution);
     if (a == "--shadow-pcf") return whole(0, kMaxShadowPcfRadius, &o.sunShadows.pcfRadius);
     if (a == "--sun-angle") {
@@ -246,7 +256,7 @@ const char* sharedOptionsUsage() {
            "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--gi-unseen vxgi|none]\n"
            "  [--shadows bvh|shadowmap|hybrid] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
            "  [--sun-angle DEGREES]\n"
-           "  [--reflections gi|hybrid] [--single-bounce] [--validate]\n"
+           "  [--reflections gi|hybrid] [--foliage alpha-aware|opaque|left-out] [--single-bounce] [--validate]\n"
            "  [--max-file-bytes N] [--max-json-bytes N] [--max-json-depth N] [--max-vertices N] [--max-indices N]\n"
            "  [--max-face-indices N] [--max-nodes N] [--max-node-depth N] [--max-texture-pixels N]\n"
            "  [--allow-outside-paths] [--import-timeout SECONDS] [--import-memory BYTES]\n";
@@ -280,6 +290,7 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.shadows = o.shadows;
     ro.sunShadows = o.sunShadows;
     ro.reflections = o.reflections;
+    ro.foliage = o.foliage;
     return ro;
 }
 

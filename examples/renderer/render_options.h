@@ -30,6 +30,7 @@ struct RenderOptions {
     gi::InternalResolution giScale = gi::InternalResolution::Native;
     ShadowMode shadows = ShadowMode::Bvh;         // --shadows bvh|shadowmap|hybrid (RasterOptions::shadows)
     ReflectionMode reflections = ReflectionMode::Gi;  // --reflections gi|hybrid (RasterOptions::reflections)
+    FoliageMode foliage = FoliageMode::AlphaAware;    // --foliage alpha-aware|opaque|left-out (RasterOptions::foliage)
     SunShadowOptions sunShadows;                  // --shadow-resolution, --shadow-lambda, --shadow-pcf
     float sunAngleDegrees = -1.0f;                // --sun-angle: the scene's sun's angular diameter (< 0: the scene's own)
     bool singleBounce = false;
