@@ -31,6 +31,7 @@ std::unique_ptr<render::RasterRenderer> shadowRenderer(TestDevice& td, const sce
 }
 
 // Whether the ray from `o` towards `d` (unit) meets a triangle beyond tMin (Möller–Trumbore, double precision).
+// Every triangle is opaque here (no alpha test: the scenes these tests compare have no alpha-tested meshes).
 bool occluded(const std::vector<glm::dvec3>& tris, const glm::dvec3& o, const glm::dvec3& d, double tMin) {
     for (size_t i = 0; i < tris.size(); i += 3) {
         const glm::dvec3 e1 = tris[i + 1] - tris[i], e2 = tris[i + 2] - tris[i];
