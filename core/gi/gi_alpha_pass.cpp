@@ -17,9 +17,11 @@ std::optional<rhi::DrawCallState> GiContextImpl::alphaPassState(rhi::ShaderHandl
         return std::nullopt;
     }
     if (!fragmentShader) return refuse(ErrorCode::MissingInput, "no fragment shader (the application's, including bricklight/alpha_pass.glsl)");
-    // The pass's tag, 1..255, the same for every draw until the next dispatch(): a cell's first fragment of a
-    // new pass starts its counts over (alpha_pass.glsl).
-    alphaPassConstants_ = {{uint32_t(frameIndex_ % 255u) + 1u, 0, 0, 0}};
+    // Every draw until the next dispatch() belongs to one pass: the first clears the counts of the last.
+    if (alphaPassClearedAt_ != frameIndex_ + 1) {
+        device_.clearBuffer(alphaCache_, {kAlphaCacheHeaderWords * 4, 0}, 0);
+        alphaPassClearedAt_ = frameIndex_ + 1;
+    }
     rhi::DrawCallState s;
     s.geometryShader = shaders_.alphaPass;
     s.fragmentShader = fragmentShader;
@@ -29,7 +31,6 @@ std::optional<rhi::DrawCallState> GiContextImpl::alphaPassState(rhi::ShaderHandl
     s.viewport = rhi::Viewport{0.0f, 0.0f, float(kAlphaPassResolution), float(kAlphaPassResolution), 0.0f, 1.0f};
     s.raster.cull = rhi::CullMode::None;  // cards are seen from both sides; every triangle counts once per cascade
     s.label = "gi alpha pass";
-    s.bindings.constants.push(rhi::constants(3, alphaPassConstants_));
     scene_.traceBindings(s.bindings);
     storageBuffer(s.bindings, 7, alphaCache_, rhi::Access::Atomic);
     return s;
@@ -44,7 +45,7 @@ std::vector<float> GiContextImpl::readAlphaCoverage(std::vector<uint32_t>* fragm
     std::vector<float> coverage(words.size());
     if (fragments) fragments->resize(words.size());
     for (size_t i = 0; i < words.size(); ++i) {
-        const uint32_t total = words[i] & 0xFFFu, covered = (words[i] >> 12) & 0xFFFu;
+        const uint32_t total = words[i] & 0xFFFFu, covered = words[i] >> 16;
         coverage[i] = total ? float(covered) / float(total) : -1.0f;
         if (fragments) (*fragments)[i] = total;
     }

@@ -113,9 +113,7 @@ private:
     // (header 0) without ContextFlags::AlphaCache. alphaRaster_ sizes the alpha pass's rasterization.
     rhi::BufferHandle alphaCache_;
     rhi::TextureHandle alphaRaster_;
-    struct {
-        uint32_t pass[4];
-    } alphaPassConstants_{};  // alpha_pass.glsl's block (recorded by pointer)
+    uint64_t alphaPassClearedAt_ = 0;  // frameIndex_ + 1 of the dispatch whose alpha pass cleared the counts
 
     GpuCamera camera_{};
     GpuFrame frame_{};

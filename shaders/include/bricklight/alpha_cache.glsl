@@ -24,8 +24,8 @@ float blAlphaCacheCoverage(uint brick, vec3 uvw) {
     for (int k = 0; k < 8; ++k) {
         ivec3 c = base + ivec3(k & 1, (k >> 1) & 1, k >> 2);
         uint word = blAlphaCacheWords[BL_ALPHA_CACHE_HEADER + brick * 64u + uint((c.z * 4 + c.y) * 4 + c.x)];
-        covered += (word >> 12) & 0xFFFu;
-        total += word & 0xFFFu;
+        covered += word >> 16;
+        total += word & 0xFFFFu;
     }
     return total == 0u ? -1.0 : float(covered) / float(total);
 }
