@@ -49,7 +49,8 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     if (!hit.hit) {
         radiance = giEnvironment(d);
         kind = GI_TEXEL_MISS;
-    } else if (!giRadianceAt(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) {
+    } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0),
+                                 radiance)) {
 #ifdef GI_UNSEEN_FROM_VCT
         // The clip-map's voxels hold the light of surfaces the camera never saw (voxelized from the app's draws).
         bool known;

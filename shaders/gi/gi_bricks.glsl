@@ -64,8 +64,10 @@ float giPushOff(vec3 p, float requested) {
 BL_READ_BUFFER(3) CacheSlots { uint giCacheSlots[]; };
 #endif
 
-// Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight).
-vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) {
+// Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight). With
+// `side` (a unit normal; zero for none), only the texels whose centre lies on that side of the surface through uvw:
+// a thin card's two sides share texels, and injection writes the side the camera sees (gi_alpha.glsl).
+vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight) {
     weight = 0.0;
     uint slot = giCacheSlots[brick];
     if (slot >= GI_SLOT_PENDING) return vec3(0.0);
@@ -76,6 +78,7 @@ vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) {
     vec3 sum = vec3(0.0);
     for (int k = 0; k < 8; ++k) {
         ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
+        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) < 0.0) continue;
         uint v = imageLoad(giRadianceCache, base + i0 + o).r;
         if (v == 0u) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(o));
@@ -85,24 +88,28 @@ vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) {
     }
     return weight > 0.0 ? sum / weight : vec3(0.0);
 }
+vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) { return giSampleRadianceCacheSide(brick, uvw, vec3(0.0), weight); }
 
 // Radiance leaving the surface at p (found by a ray in `cascade`): the hit brick's cache, else the finest
 // other cascade with data there. Finer cascades come first: a ray that coarsened (giMakeRay) hits in a
 // coarse cascade, whose bricks the screen injects only every 2^k-th pixel, while the finer bricks around
 // the same surface may hold fresher light (or be the only ones with a cache slot when the pool is full).
-bool giRadianceAt(vec3 p, uint brick, vec3 uvw, uint cascade, out vec3 radiance) {
+bool giRadianceAtSide(vec3 p, uint brick, vec3 uvw, uint cascade, vec3 side, out vec3 radiance) {
     float w;
-    radiance = giSampleRadianceCache(brick, uvw, w);
+    radiance = giSampleRadianceCacheSide(brick, uvw, side, w);
     if (w > 0.0) return true;
     for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         if (c == cascade) continue;
         uint b;
         vec3 u;
         if (!giBrickAt(p, c, b, u)) continue;
-        radiance = giSampleRadianceCache(b, u, w);
+        radiance = giSampleRadianceCacheSide(b, u, side, w);
         if (w > 0.0) return true;
     }
     return false;
+}
+bool giRadianceAt(vec3 p, uint brick, vec3 uvw, uint cascade, out vec3 radiance) {
+    return giRadianceAtSide(p, brick, uvw, cascade, vec3(0.0), radiance);
 }
 #endif
 

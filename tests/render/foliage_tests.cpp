@@ -1,10 +1,13 @@
 // The "foliage" built-in scene and generated textures: the scene holds its alpha-tested grass and leaf cards
 // with generated textures; rendered, the path tracer and the G-buffer agree on which pixels are foliage (both
 // leave the cut-out texels out) and the ground shows between the grass blades. Generated textures need no
-// image library and a malformed one is refused naming its mesh.
+// image library and a malformed one is refused naming its mesh. The SDF GI with alpha-aware cards against the
+// naive variants and the path tracer.
+#include <algorithm>
 #include <cmath>
 
 #include "backend_test.h"
+#include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
 #include "render_test_support.h"
@@ -104,10 +107,107 @@ void badGeneratedTextures(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The SDF GI's three ways with the cards (RasterOptions::foliage) against the path tracer's indirect diffuse, over
+// the whole image and over the grass pixels (the meadow's foliage pixels in the bottom quarter), in the scene's
+// light (the sun behind the camera: the camera sees the cards' lit sides) and with the sun turned round (behind
+// the cards: their lit sides face away). Figures are printed (WARN) for docs/gi.md, "Foliage".
+struct Figures {
+    render::ImageMetrics whole, grass;
+};
+double meanError(const render::ImageMetrics& m) { return std::fabs(m.meanA / m.meanB - 1.0); }
+
+// The largest frame-to-frame change of the grass pixels' indirect light over `n` more frames: the mean absolute
+// difference over the mean.
+double flicker(TestDevice& td, render::RasterRenderer& r, const std::vector<uint8_t>& mask, uint32_t n) {
+    render::Image last = r.read(render::Aov::IndirectDiffuse);
+    double worst = 0.0;
+    for (uint32_t f = 0; f < n; ++f) {
+        frames(td, r, 1);
+        const render::Image now = r.read(render::Aov::IndirectDiffuse);
+        double diff = 0.0, sum = 0.0;
+        for (size_t p = 0; p < mask.size(); ++p)
+            if (mask[p])
+                for (int c = 0; c < 3; ++c) {
+                    diff += std::fabs(now.rgb[3 * p + size_t(c)] - last.rgb[3 * p + size_t(c)]);
+                    sum += now.rgb[3 * p + size_t(c)];
+                }
+        worst = std::max(worst, sum > 0.0 ? diff / sum : 0.0);
+        last = now;
+    }
+    return worst;
+}
+
+void giFoliageVariants(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    constexpr uint32_t kSize = 64, kFrames = 32, kSpp = 256;
+    for (bool backLit : {false, true}) {
+        scenes::SceneGeometry s = scenes::foliage();
+        if (backLit) {
+            s.environment.sunDirection.x = -s.environment.sunDirection.x;
+            s.environment.sunDirection.z = -s.environment.sunDirection.z;
+        }
+        auto reference = traced(td, s, kSize, kSpp);
+        const render::Image ref = reference->read(render::Aov::IndirectDiffuse), albedo = reference->read(render::Aov::Albedo);
+        std::vector<uint8_t> grass(size_t(kSize) * kSize, 0);
+        size_t grassPixels = 0;
+        for (uint32_t y = kSize * 3 / 4; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) grassPixels += grass[size_t(y) * kSize + x] = isFoliage(albedo.at(x, y));
+        REQUIRE(grassPixels > kSize * kSize / 8);
+        Figures f[3];
+        const render::FoliageMode modes[3] = {render::FoliageMode::AlphaAware, render::FoliageMode::Opaque, render::FoliageMode::LeftOut};
+        const char* names[3] = {"alpha-aware", "opaque", "left out"};
+        double flickerOf[2] = {0.0, 0.0};
+        for (int k = 0; k < 3; ++k) {
+            render::RasterOptions o;
+            o.width = o.height = kSize;
+            o.gi = true;
+            o.foliage = modes[k];
+            std::string error;
+            auto r = render::RasterRenderer::create(*td.device, s, o, &error);
+            INFO(error);
+            REQUIRE(r);
+            frames(td, *r, kFrames);
+            const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
+            REQUIRE(allFinite(indirect.rgb));
+            f[k] = {render::compareImages(indirect, ref), render::compareImages(indirect, ref, &grass)};
+            if (k < 2 && !backLit) flickerOf[k] = flicker(td, *r, grass, 8);
+            WARN(backend << (backLit ? ", sun behind the cards, " : ", sun behind the camera, ") << names[k] << ": whole relMSE "
+                         << f[k].whole.relMse << " mean " << f[k].whole.meanA << " vs " << f[k].whole.meanB << "; grass ("
+                         << grassPixels << " pixels) relMSE " << f[k].grass.relMse << " mean " << f[k].grass.meanA << " vs "
+                         << f[k].grass.meanB << (k < 2 && !backLit ? "; frame-to-frame change " + std::to_string(flickerOf[k]) : ""));
+        }
+        // What holds (measured at 64², 32 frames, 256 spp; both backends alike): with the sun behind the camera the
+        // alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.145 against 0.229, grass
+        // 0.253 against 0.415; means 2.06x and 2.33x the reference's), and lose to the cards left out (0.043, grass
+        // 0.053, mean 1.44x). With the sun behind the cards they beat the cards left out (0.018 against 0.033, grass
+        // 0.022 against 0.054; means 0.79 and 0.54 of the reference's) and tie with the solid ones (0.018, mean 0.88).
+        // The target, better than both naive variants in both lights, is not met: the radiance cache keeps
+        // one value for both sides of a card — the side the camera sees — and rays that meet the cards' other sides
+        // read it (docs/gi.md, "Foliage"). These checks keep what the alpha cache gains.
+        if (!backLit) {
+            CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
+            CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
+            CHECK(meanError(f[0].whole) < meanError(f[1].whole));
+            CHECK(meanError(f[0].grass) < meanError(f[1].grass));
+            // Converged grass does not flicker: the continued rays' draws are averaged by the GI's history.
+            CHECK(flickerOf[0] < 0.05);
+        } else {
+            CHECK(f[0].whole.relMse < 0.8 * f[2].whole.relMse);
+            CHECK(f[0].grass.relMse < 0.8 * f[2].grass.relMse);
+            CHECK(meanError(f[0].whole) < meanError(f[2].whole));
+            CHECK(meanError(f[0].grass) < meanError(f[2].grass));
+        }
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
 BACKEND_TEST("foliage: the path tracer and the G-buffer see the same grass and leaves", "[render]", foliageRenders)
 BACKEND_TEST("foliage: bad generated textures are refused naming the mesh", "[render]", badGeneratedTextures)
+BACKEND_TEST("foliage: the SDF GI's alpha-aware cards against built-opaque and left-out ones, and the path tracer", "[gi]",
+             giFoliageVariants)
 
 TEST_CASE("foliage: the scene holds alpha-tested grass and leaf cards with generated textures", "[metrics]") {
     std::string error;
