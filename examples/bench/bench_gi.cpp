@@ -70,14 +70,8 @@ struct BenchAlphaPass {
             std::exit(1);
         }
         s->vertexShader = vertex;
-        s->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
-        s->vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
-        s->vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
-        s->vertexBuffers.push({scene->vertexBuffer(), 0, render::GpuScene::kVertexStride, false});
-        s->bindings.readBuffers.push({2, scene->materialBuffer(), {}});
-        s->bindings.textures.push({4, rhi::wholeTexture(scene->textureArray()), scene->textureSampler()});
         rhi::DrawArgs args;
-        args.vertexCount = 3 * scene->triangleCount();
+        scene->bindAlphaPass(*s, &args);
         device.beginMarker("gi alpha pass");
         device.draw(*s, args);
         device.endMarker();

@@ -163,14 +163,6 @@ void addRandomLeafCard(TriangleMesh& m, glm::vec3 centre, float size, Random& r)
     addLeafCard(m, centre, a, b, size);
 }
 
-void addBox(TriangleMesh& m, glm::vec3 lo, glm::vec3 hi) {
-    const uint32_t b = uint32_t(m.positions.size() / 3);
-    for (int i = 0; i < 8; ++i)
-        m.positions.insert(m.positions.end(), {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
-    const uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    for (const auto& f : faces) m.indices.insert(m.indices.end(), {b + f[0], b + f[1], b + f[2], b + f[0], b + f[2], b + f[3]});
-}
-
 TriangleMesh opaque(const char* name, glm::vec3 albedo) {
     TriangleMesh m;
     m.name = name;

@@ -113,6 +113,8 @@ struct SceneGeometry {
 SceneGeometry cornellBox();
 // About `targetTriangles` triangles: a tessellated ground and rows of instanced spheres and tori.
 SceneGeometry proceduralField(uint32_t targetTriangles);
+// Appends a closed axis-aligned box [lo, hi] to `m`, counter-clockwise seen from outside.
+void addBox(TriangleMesh& m, glm::vec3 lo, glm::vec3 hi);
 // A unit icosphere (radius 1) with 20 * 4^subdivisions triangles, wound counter-clockwise seen from outside.
 TriangleMesh icosphere(uint32_t subdivisions);
 // A torus of about `triangles` triangles (the benchmark's moving dynamic object).

@@ -303,6 +303,17 @@ void GpuScene::bindVertices(rhi::DrawCallState& d) const {
     d.vertexBuffers.push({vertices_, 0, kVertexStride, false});
 }
 
+void GpuScene::bindAlphaPass(rhi::DrawCallState& state, rhi::DrawArgs* args) const {
+    state.vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
+    state.vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
+    state.vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
+    state.vertexBuffers.push({vertices_, 0, kVertexStride, false});
+    state.bindings.readBuffers.push({2, materials_, {}});
+    state.bindings.textures.push({4, rhi::wholeTexture(textures_), sampler_});
+    *args = rhi::DrawArgs{};
+    args->vertexCount = 3 * triangles_;  // alpha_pass.vert drops the triangles of materials without a cut-off
+}
+
 SceneLightConstants GpuScene::lightConstants(uint32_t seed, uint32_t maxBounces) const {
     SceneLightConstants c{};
     c.sky = glm::vec4(environment_.skyRadiance, 0.0f);

@@ -58,6 +58,9 @@ public:
     static constexpr uint32_t kVertexStride = 60;
     // The vertex buffer and all six attributes at locations 0..5, as render/gbuffer.vert reads them.
     void bindVertices(rhi::DrawCallState& state) const;
+    // What the GI's alpha pass with render/alpha_pass.vert and .frag reads (position, material and texture
+    // coordinates; the materials at read buffer 2, the textures at slot 4), and its draw's arguments.
+    void bindAlphaPass(rhi::DrawCallState& state, rhi::DrawArgs* args) const;
     const std::vector<glm::vec3>& worldPositions() const { return positions_; }
     float rayOffset() const { return epsilon_; }
 

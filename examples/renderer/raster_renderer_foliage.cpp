@@ -29,14 +29,8 @@ void RasterRenderer::runAlphaPass() {
     if (!state) return;  // reported through the GI's error callback
     state->label = "gi alpha pass";
     state->vertexShader = alphaPassVertex_;
-    state->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
-    state->vertexInputs.push({2, rhi::VertexFormat::UInt1, 0, 24});
-    state->vertexInputs.push({4, rhi::VertexFormat::Float2, 0, 40});
-    state->vertexBuffers.push({scene_->vertexBuffer(), 0, GpuScene::kVertexStride, false});
-    state->bindings.readBuffers.push({2, scene_->materialBuffer(), {}});
-    state->bindings.textures.push({4, rhi::wholeTexture(scene_->textureArray()), scene_->textureSampler()});
     rhi::DrawArgs args;
-    args.vertexCount = 3 * scene_->triangleCount();
+    scene_->bindAlphaPass(*state, &args);
     device_.beginMarker("gi alpha pass");
     device_.draw(*state, args);
     device_.endMarker();
