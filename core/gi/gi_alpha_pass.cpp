@@ -18,8 +18,11 @@ std::optional<rhi::DrawCallState> GiContextImpl::alphaPassState(rhi::ShaderHandl
     }
     if (!fragmentShader) return refuse(ErrorCode::MissingInput, "no fragment shader (the application's, including bricklight/alpha_pass.glsl)");
     // Every draw until the next dispatch() belongs to one pass: the first clears the counts of the last.
+    // Header word 1 tells the next dispatch that the cells are this pass's: it then keeps those of bricks reallocated
+    // by the field update before the pass (clear_freed_bricks.comp), which it would otherwise forget.
     if (alphaPassClearedAt_ != frameIndex_ + 1) {
         device_.clearBuffer(alphaCache_, {kAlphaCacheHeaderWords * 4, 0}, 0);
+        device_.clearBuffer(alphaCache_, {4, 4}, 1);
         alphaPassClearedAt_ = frameIndex_ + 1;
     }
     rhi::DrawCallState s;

@@ -184,6 +184,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         addAlphaCache(s.bindings, Access::ReadWrite);  // forgets the alpha cells of reallocated bricks
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
+        if (desc_.flags & ContextFlags::AlphaCache) device_.clearBuffer(alphaCache_, {4, 4}, 0);  // the pass's cells are old now
     }
     {  // 6. spawn screen probes
         rhi::DispatchState s;

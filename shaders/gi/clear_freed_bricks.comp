@@ -83,7 +83,8 @@ void main() {
         cacheOwners[brick] = owner;
         for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
         for (uint i = 0u; i < GI_MATERIAL_WORDS; ++i) brickMaterial[m + i] = 0u;
-        if (blAlphaCacheKept())
+        // Cells an alpha pass wrote since the last dispatch (header word 1) already belong to the new owner.
+        if (blAlphaCacheKept() && blAlphaCacheWords[1] == 0u)
             for (uint i = 0u; i < 64u; ++i) blAlphaCacheWords[BL_ALPHA_CACHE_HEADER + brick * 64u + i] = 0u;
         uint slot = giCacheSlots[brick];
         giCacheSlots[brick] = GI_SLOT_NONE;
@@ -101,15 +102,21 @@ void main() {
     // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
     uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);
     uint unseen = giFrameIndex() + 1u - seen;
-    if (unseen < (GI_RELIGHT_AFTER << level) || (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    if ((brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+    bool whole = unseen >= (GI_RELIGHT_AFTER << level);
     // The view test is conservative (in doubt, in view), so a brick it calls visible may still be one the
     // screen never reaches (its centre on sky, behind a thin occluder, ...): after GI_RELIGHT_STALE × 2^k
     // frames without injection it is re-lit all the same, or it would keep stale light for ever.
-    uint cascade;
-    ivec3 voxel = giOwnerVoxel(owner, cascade);
-    if (unseen < (GI_RELIGHT_STALE << level) && giBrickInView(voxel, giVoxelSize(cascade))) return;
+    if (whole && unseen < (GI_RELIGHT_STALE << level)) {
+        uint cascade;
+        ivec3 voxel = giOwnerVoxel(owner, cascade);
+        whole = !giBrickInView(voxel, giVoxelSize(cascade));
+    }
+    // A brick holding cards is listed even while in view, for the cards' sides the camera does not see
+    // (GI_RELIGHT_CARD_SIDES, relight_cache.comp).
+    if (!whole && !giBrickHoldsCards(brick)) return;
     uint slot = atomicAdd(relightList[3], 1u);
     if (slot >= GI_RELIGHT_BUDGET) return;
-    relightList[4u + slot] = brick;
+    relightList[4u + slot] = brick | (whole ? 0u : GI_RELIGHT_CARD_SIDES);
     atomicMax(relightList[0], slot + 1u);
 }

@@ -12,6 +12,12 @@
 // says: each is a full trace from the hit on, and a ray through a dense field of cards meets many.
 #define GI_ALPHA_MAX_CONTINUES 6u
 
+// Whether the field flagged the brick as holding alpha-tested surfaces (BL_SDF_AABB_ALPHA_TESTED).
+bool giBrickHoldsCards(uint brick) {
+    uint aabb = blSdfBrickAabbs[brick];
+    return aabb != BL_SDF_AABB_NONE && (aabb & BL_SDF_AABB_ALPHA_TESTED) != 0u;
+}
+
 // blSdfTrace that goes on past transparent hits (at most GI_ALPHA_MAX_CONTINUES times).
 BlSdfHit giTraceThroughAlpha(BlSdfRay ray, inout uint rng) {
     BlSdfHit hit = blSdfTrace(ray);

@@ -44,6 +44,9 @@ BL_CONSTANTS(1) uniform GiFrame {
 #define GI_RELIGHT_STALE 8u
 #define GI_RELIGHT_PERIOD 2u
 #define GI_RELIGHT_BUDGET 2048u
+// A relight list entry's flag: a brick holding cards (alpha-tested surfaces) listed while in view, for its cards'
+// sides the camera does not see (relight_cache.comp); whole bricks are listed without it.
+#define GI_RELIGHT_CARD_SIDES 0x80000000u
 
 // Cache slots (core/gi/gi_constants.h): per brick, the slot of the radiance cache that holds its 4³
 // texels, or GI_SLOT_NONE; GI_SLOT_PENDING while inject_radiance.comp allocates one. The slots are laid out

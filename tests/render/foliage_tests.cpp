@@ -177,14 +177,14 @@ void giFoliageVariants(const std::string& backend) {
                          << grassPixels << " pixels) relMSE " << f[k].grass.relMse << " mean " << f[k].grass.meanA << " vs "
                          << f[k].grass.meanB << (k < 2 && !backLit ? "; frame-to-frame change " + std::to_string(flickerOf[k]) : ""));
         }
-        // What holds (measured at 64², 32 frames, 256 spp; both backends alike): with the sun behind the camera the
-        // alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.145 against 0.229, grass
-        // 0.253 against 0.415; means 2.06x and 2.33x the reference's), and lose to the cards left out (0.043, grass
-        // 0.053, mean 1.44x). With the sun behind the cards they beat the cards left out (0.018 against 0.033, grass
-        // 0.022 against 0.054; means 0.79 and 0.54 of the reference's) and tie with the solid ones (0.018, mean 0.88).
-        // The target, better than both naive variants in both lights, is not met: the radiance cache keeps
-        // one value for both sides of a card — the side the camera sees — and rays that meet the cards' other sides
-        // read it (docs/gi.md, "Foliage"). These checks keep what the alpha cache gains.
+        // What holds (measured at 64², 32 frames, 256 spp; both backends alike; docs/gi.md, "Foliage"): with the sun
+        // behind the camera the alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.085
+        // against 0.229, grass 0.156 against 0.415; means 1.78x and 2.33x the reference's) and lose to the cards
+        // left out (0.047, grass 0.053, mean 1.46x). With the sun behind the cards they beat both (relMSE 0.015
+        // against 0.018 and 0.033, grass 0.016 against 0.022 and 0.054; mean 0.99 against 0.87 and 0.54), except
+        // the solid cards' grass mean (0.94 against 0.89). The target, better than both naive variants in
+        // both lights, is not met: a card is thinner than a cache texel and its sides are not resolved (the GI is
+        // 2.5x too bright with every card solid in both renderers).
         if (!backLit) {
             CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
             CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
@@ -193,18 +193,49 @@ void giFoliageVariants(const std::string& backend) {
             // Converged grass does not flicker: the continued rays' draws are averaged by the GI's history.
             CHECK(flickerOf[0] < 0.05);
         } else {
-            CHECK(f[0].whole.relMse < 0.8 * f[2].whole.relMse);
-            CHECK(f[0].grass.relMse < 0.8 * f[2].grass.relMse);
-            CHECK(meanError(f[0].whole) < meanError(f[2].whole));
+            for (int naive = 1; naive < 3; ++naive) {
+                CHECK(f[0].whole.relMse < 0.9 * f[naive].whole.relMse);
+                CHECK(f[0].grass.relMse < 0.9 * f[naive].grass.relMse);
+                CHECK(meanError(f[0].whole) < meanError(f[naive].whole));
+            }
             CHECK(meanError(f[0].grass) < meanError(f[2].grass));
         }
     }
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The alpha pass runs after the frame's field update and before the GI's dispatch, which forgets the cells of
+// bricks the update reallocated: it must keep what that frame's pass wrote for them. After the first frame (every
+// brick new) the flagged bricks hold counts, as many cells as after a second frame.
+void alphaCellsOfNewBricks(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    render::RasterOptions o;
+    o.width = o.height = 64;
+    o.gi = true;
+    std::string error;
+    auto r = render::RasterRenderer::create(*td.device, scenes::foliage(), o, &error);
+    INFO(error);
+    REQUIRE(r);
+    auto cellsWithCounts = [&] {
+        size_t n = 0;
+        for (float c : r->giContext()->readAlphaCoverage()) n += c >= 0.0f;
+        return n;
+    };
+    frames(td, *r, 1);
+    const size_t first = cellsWithCounts();
+    frames(td, *r, 1);
+    const size_t second = cellsWithCounts();
+    INFO("cells with counts after the first frame " << first << ", after the second " << second);
+    CHECK(second > 1000u);
+    CHECK(first >= second * 9 / 10);  // (before the fix: none after the first frame)
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
 BACKEND_TEST("foliage: the path tracer and the G-buffer see the same grass and leaves", "[render]", foliageRenders)
+BACKEND_TEST("foliage: the first frame's alpha pass fills the cells of the bricks that frame built", "[gi]", alphaCellsOfNewBricks)
 BACKEND_TEST("foliage: bad generated textures are refused naming the mesh", "[render]", badGeneratedTextures)
 BACKEND_TEST("foliage: the SDF GI's alpha-aware cards against built-opaque and left-out ones, and the path tracer", "[gi]",
              giFoliageVariants)

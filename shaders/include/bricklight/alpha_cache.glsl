@@ -8,7 +8,8 @@
 #ifndef BL_ALPHA_CACHE_SLOT
 #define BL_ALPHA_CACHE_SLOT 7
 #endif
-#define BL_ALPHA_CACHE_HEADER 4u  // [0]: 1 when the context keeps the cache (a 16-byte stand-in otherwise)
+#define BL_ALPHA_CACHE_HEADER 4u  // [0]: 1 when the context keeps the cache (a 16-byte stand-in otherwise); [1]: 1 from
+                                  // an alpha pass to the next dispatch
 
 // A storage buffer even where only read (readonly blocks are read buffers, whose slots the traces use up).
 BL_STORAGE_BUFFER(BL_ALPHA_CACHE_SLOT) BlAlphaCacheBlock { uint blAlphaCacheWords[]; };
