@@ -63,9 +63,11 @@ enum class ReflectionMode { Gi, Hybrid };
 // Which technique gives the indirect light when RasterOptions::gi is on.
 enum class GiTechnique { Sdf, Vct };
 
-// How the SDF GI sees alpha-tested meshes (foliage; docs/gi.md, "Foliage"): AlphaAware registers them as
-// alpha-tested and runs the GI's alpha pass, so that its rays go on past the cut-out texels; Opaque builds the
-// cards into the field as solid; LeftOut leaves them out of the field (they only receive GI). The two naive
+// How the GI sees alpha-tested meshes (foliage; docs/gi.md and docs/vct.md, "Foliage"). The SDF GI: AlphaAware
+// registers them as alpha-tested and runs the GI's alpha pass, so that its rays go on past the cut-out texels;
+// Opaque builds the cards into the field as solid; LeftOut leaves them out of the field. Voxel cone tracing:
+// AlphaAware weighs their voxels' opacity and light by their coverage; Opaque voxelizes them as solid cards;
+// LeftOut does not voxelize them. Left out, they are still drawn and lit (they only receive GI). The two naive
 // variants are kept for comparison.
 enum class FoliageMode { AlphaAware, Opaque, LeftOut };
 

@@ -46,11 +46,19 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
         sd.blob = rhi::findShader(name);
         return sd.blob ? device_.createShader(sd) : rhi::ShaderHandle{};
     };
-    vctVertex_ = shader("render/voxelize.vert");
+    // Alpha-tested meshes (RasterOptions::foliage; docs/vct.md, "Foliage"): AlphaAware weighs their voxels' opacity
+    // and light by their coverage (the hook in voxel_emittance.frag, voxel_coverage.frag); Opaque voxelizes them
+    // without the hook, as solid cards; LeftOut drops their triangles in the vertex shader.
+    const bool coverage = alphaAwareFoliage();
+    const bool leftOut = options_.foliage == FoliageMode::LeftOut && scene_->hasAlphaTested();
+    vctVertex_ = shader(leftOut ? "render/voxelize_solid_only.vert" : "render/voxelize.vert");
     // Without emittance (voxel AO) the fragment shader only weighs alpha-tested materials' opacity by their
-    // coverage; it is drawn only while the scene has such materials (voxelizeVct).
-    vctEmittance_ = shader(desc.emittance == vct::EmittanceMode::None ? "render/voxel_coverage.frag" : "render/voxel_emittance.frag");
-    if (!vctVertex_ || !vctEmittance_) return fail("the device could not create the voxelization shaders");
+    // coverage; without the hook to run, the clip-map's own opacity shader serves (voxelizeVct).
+    const char* fragment = desc.emittance != vct::EmittanceMode::None
+                               ? (coverage ? "render/voxel_emittance.frag" : "render/voxel_emittance_solid.frag")
+                               : (coverage ? "render/voxel_coverage.frag" : nullptr);
+    if (fragment) vctEmittance_ = shader(fragment);
+    if (!vctVertex_ || (fragment && !vctEmittance_)) return fail("the device could not create the voxelization shaders");
     return true;
 }
 
@@ -66,9 +74,9 @@ void RasterRenderer::voxelizeVct() {
         vct::VoxelMaterial material;
         material.twoSided = true;  // the renderer lights both sides of every surface, as the path tracer does
         material.thickness = options_.vctThickness;
-        // Voxel AO of a scene without alpha-tested materials: the clip-map's own opacity shader (no hook to run).
+        // Null for voxel AO without the coverage hook: the clip-map's own opacity shader.
         const bool lit = options_.vctEmittance != vct::EmittanceMode::None;
-        material.fragmentShader = lit || scene_->hasAlphaTested() ? vctEmittance_ : rhi::ShaderHandle{};
+        material.fragmentShader = vctEmittance_;
         std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &why);
         if (state) {
             state->label = "vct voxelize scene";
@@ -83,6 +91,8 @@ void RasterRenderer::voxelizeVct() {
             if (material.fragmentShader) {  // the hooks' resources: materials and textures (coverage), lights, BVH
                 state->bindings.constants.push(rhi::constants(1, light));
                 scene_->bind(state->bindings, true);
+            } else if (options_.foliage == FoliageMode::LeftOut && scene_->hasAlphaTested()) {
+                state->bindings.readBuffers.push({2, scene_->materialBuffer(), {}});  // voxelize_solid_only.vert's
             }
             if (lit) {  // the emittance function's own (voxel AO has none)
                 state->bindings.constants.push(rhi::constants(0, lighting));

@@ -1,0 +1,96 @@
+// Voxel cone tracing's three ways with the foliage scene's alpha-tested cards (RasterOptions::foliage: coverage-
+// weighted voxels, cards voxelized solid, cards left out of the voxels) against the path tracer's indirect
+// diffuse, over the whole image and over the grass pixels, with the sun behind the camera (the scene's) and
+// turned round (behind the cards). Figures are printed (WARN) for docs/vct.md, "Foliage".
+#include <chrono>
+
+#include "backend_test.h"
+#include "foliage_test_support.h"
+#include "image_metrics.h"
+#include "path_tracer.h"
+#include "raster_renderer.h"
+#include "render_test_support.h"
+
+using namespace bricklight;
+using namespace bricklight::testing;
+
+namespace {
+
+struct Figures {
+    render::ImageMetrics whole, grass;
+};
+
+void vctFoliageVariants(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    const auto start = std::chrono::steady_clock::now();
+    // One bounce (bounces off: the clip-map is voxelized once and kept), against the path tracer's one bounce:
+    // converged after the first frame (16 frames differ from 2 by < 1 %); 6 frames give every pixel of the
+    // sparse tracing's 2 × 2 blocks its cones. 32 spp: relMSE 0.005 against 256 spp, far below the differences
+    // measured here. With bounces each frame revoxelizes the whole scene (~10 s a frame on lavapipe) and the
+    // light climbs one bounce a frame (alpha-aware, frames 4 / 8 / 12: mean 4.9 / 6.5 / 7.5 × the reference's).
+    constexpr uint32_t kSize = 64, kFrames = 6, kSpp = 32;
+    for (bool backLit : {false, true}) {
+        scenes::SceneGeometry s = scenes::foliage();
+        if (backLit) {
+            s.environment.sunDirection.x = -s.environment.sunDirection.x;
+            s.environment.sunDirection.z = -s.environment.sunDirection.z;
+        }
+        auto reference = traced(td, s, kSize, kSpp, true, 1, 1);
+        const render::Image ref = reference->read(render::Aov::IndirectDiffuse);
+        size_t grassPixels = 0;
+        const std::vector<uint8_t> grass = grassMask(reference->read(render::Aov::Albedo), &grassPixels);
+        REQUIRE(grassPixels > kSize * kSize / 8);
+        Figures f[3];
+        const render::FoliageMode modes[3] = {render::FoliageMode::AlphaAware, render::FoliageMode::Opaque, render::FoliageMode::LeftOut};
+        const char* names[3] = {"alpha-aware", "opaque", "left out"};
+        double flickerOf = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            render::RasterOptions o;
+            o.width = o.height = kSize;
+            o.gi = true;
+            o.giTechnique = render::GiTechnique::Vct;
+            o.giFeedback = false;
+            o.foliage = modes[k];
+            std::string error;
+            auto r = render::RasterRenderer::create(*td.device, s, o, &error);
+            INFO(error);
+            REQUIRE(r);
+            frames(td, *r, kFrames);
+            const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
+            REQUIRE(allFinite(indirect.rgb));
+            f[k] = {render::compareImages(indirect, ref), render::compareImages(indirect, ref, &grass)};
+            if (k == 0) flickerOf = flicker(td, *r, grass, 4);
+            WARN(backend << (backLit ? ", sun behind the cards, " : ", sun behind the camera, ") << names[k] << ": whole relMSE "
+                         << f[k].whole.relMse << " mean " << f[k].whole.meanA << " vs " << f[k].whole.meanB << "; grass ("
+                         << grassPixels << " pixels) relMSE " << f[k].grass.relMse << " mean " << f[k].grass.meanA << " vs "
+                         << f[k].grass.meanB << (k == 0 ? "; frame-to-frame change " + std::to_string(flickerOf) : ""));
+        }
+        // Solid cards: every voxel a card touches opaque and lit as if whole.
+        CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
+        CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
+        CHECK(meanError(f[0].whole) < 0.9 * meanError(f[1].whole));
+        CHECK(meanError(f[0].grass) < 0.9 * meanError(f[1].grass));
+        // Against the cards left out the target is not met (docs/vct.md, "Foliage"): every variant is 6-13 x too
+        // bright on this scene, with the cards left out too — the ground box's sky-lit bottom face sends its light
+        // down from the voxels its top face is in, and the cones above read it — and fewer lit voxels come out
+        // closer. Alpha-aware is closer
+        // only over the whole image with the sun behind the camera (relMSE 1.11 against 1.21, mean 6.5 against 7.4
+        // x); on the grass in that light, and everywhere with the sun behind the cards, the cards left out are
+        // (grass 2.07 against 2.45; whole 0.93 against 1.77, grass 1.68 against 4.11).
+        if (!backLit) {
+            CHECK(f[0].whole.relMse < 0.95 * f[2].whole.relMse);
+            CHECK(meanError(f[0].whole) < 0.9 * meanError(f[2].whole));
+        }
+        // The voxels' words are deterministic (no frame in the coverage points or the emittance's seed); what moves
+        // is the sparse tracing's pixel of each 2 × 2 block and the history.
+        CHECK(flickerOf < 0.03);
+    }
+    WARN(backend << ": " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s");
+    REQUIRE_NO_MESSAGES(td);
+}
+
+}  // namespace
+
+BACKEND_TEST("foliage: voxel cone tracing's alpha-aware cards against built-opaque and left-out ones, and the path tracer", "[vct]",
+             vctFoliageVariants)
