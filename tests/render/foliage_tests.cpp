@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "backend_test.h"
+#include "foliage_test_support.h"
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
@@ -29,10 +30,6 @@ double coverage(const scenes::GeneratedTexture& t) {
     for (size_t i = 3; i < t.rgba.size(); i += 4) covered += t.rgba[i] >= 128;
     return double(covered) / double(t.width * t.height);
 }
-
-// Foliage in an albedo image: the cards' texture colour is green-dominant; the ground (brown), the wall (grey),
-// the trunk and the sky (0) are not.
-bool isFoliage(const glm::vec3& albedo) { return albedo.g > 1.3f * albedo.r && albedo.g > 1.3f * albedo.b && albedo.g > 0.01f; }
 
 // The foliage scene at 64 x 64, pixel centres: the G-buffer's and the path tracer's primary-hit albedo.
 void foliageRenders(const std::string& backend) {
@@ -114,28 +111,6 @@ void badGeneratedTextures(const std::string& backend) {
 struct Figures {
     render::ImageMetrics whole, grass;
 };
-double meanError(const render::ImageMetrics& m) { return std::fabs(m.meanA / m.meanB - 1.0); }
-
-// The largest frame-to-frame change of the grass pixels' indirect light over `n` more frames: the mean absolute
-// difference over the mean.
-double flicker(TestDevice& td, render::RasterRenderer& r, const std::vector<uint8_t>& mask, uint32_t n) {
-    render::Image last = r.read(render::Aov::IndirectDiffuse);
-    double worst = 0.0;
-    for (uint32_t f = 0; f < n; ++f) {
-        frames(td, r, 1);
-        const render::Image now = r.read(render::Aov::IndirectDiffuse);
-        double diff = 0.0, sum = 0.0;
-        for (size_t p = 0; p < mask.size(); ++p)
-            if (mask[p])
-                for (int c = 0; c < 3; ++c) {
-                    diff += std::fabs(now.rgb[3 * p + size_t(c)] - last.rgb[3 * p + size_t(c)]);
-                    sum += now.rgb[3 * p + size_t(c)];
-                }
-        worst = std::max(worst, sum > 0.0 ? diff / sum : 0.0);
-        last = now;
-    }
-    return worst;
-}
 
 void giFoliageVariants(const std::string& backend) {
     TestDevice td = makeDevice(backend);
@@ -149,10 +124,8 @@ void giFoliageVariants(const std::string& backend) {
         }
         auto reference = traced(td, s, kSize, kSpp);
         const render::Image ref = reference->read(render::Aov::IndirectDiffuse), albedo = reference->read(render::Aov::Albedo);
-        std::vector<uint8_t> grass(size_t(kSize) * kSize, 0);
         size_t grassPixels = 0;
-        for (uint32_t y = kSize * 3 / 4; y < kSize; ++y)
-            for (uint32_t x = 0; x < kSize; ++x) grassPixels += grass[size_t(y) * kSize + x] = isFoliage(albedo.at(x, y));
+        const std::vector<uint8_t> grass = grassMask(albedo, &grassPixels);
         REQUIRE(grassPixels > kSize * kSize / 8);
         Figures f[3];
         const render::FoliageMode modes[3] = {render::FoliageMode::AlphaAware, render::FoliageMode::Opaque, render::FoliageMode::LeftOut};
