@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image_metrics.h"
+#include "raster_renderer.h"
 #include "render_test_support.h"
 
 namespace bricklight::testing {
@@ -52,6 +53,51 @@ inline double flicker(TestDevice& td, render::RasterRenderer& r, const std::vect
         last = now;
     }
     return worst;
+}
+
+// The foliage scene in its own light (the sun behind the camera: the camera sees the cards' lit sides) or with the
+// sun turned round (behind the cards: their lit sides face away).
+inline scenes::SceneGeometry foliageScene(bool sunBehindCards) {
+    scenes::SceneGeometry s = scenes::foliage();
+    if (sunBehindCards) {
+        s.environment.sunDirection.x = -s.environment.sunDirection.x;
+        s.environment.sunDirection.z = -s.environment.sunDirection.z;
+    }
+    return s;
+}
+
+// One GI technique's three ways with the cards against a reference's indirect diffuse.
+struct FoliageFigures {
+    render::ImageMetrics whole, grass;
+    double flicker = -1.0;  // frame-to-frame change of the grass after convergence, where measured
+};
+constexpr render::FoliageMode kFoliageModes[3] = {render::FoliageMode::AlphaAware, render::FoliageMode::Opaque, render::FoliageMode::LeftOut};
+constexpr const char* kFoliageModeNames[3] = {"alpha-aware", "opaque", "left out"};
+
+// Renders `s` with `options` in each of kFoliageModes for `frames` frames and compares the indirect diffuse with
+// `reference`, over the whole image and the `grass` mask; for the modes whose bit is set in `flickerModes`, the
+// frame-to-frame change over `flickerFrames` more frames. The figures are printed (WARN) after `label`.
+inline void foliageVariants(TestDevice& td, const scenes::SceneGeometry& s, render::RasterOptions options, uint32_t frameCount,
+                            const render::Image& reference, const std::vector<uint8_t>& grass, unsigned flickerModes,
+                            uint32_t flickerFrames, const std::string& label, FoliageFigures figures[3]) {
+    size_t grassPixels = 0;
+    for (uint8_t g : grass) grassPixels += g;
+    for (int k = 0; k < 3; ++k) {
+        options.foliage = kFoliageModes[k];
+        std::string error;
+        auto r = render::RasterRenderer::create(*td.device, s, options, &error);
+        INFO(error);
+        REQUIRE(r);
+        frames(td, *r, frameCount);
+        const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
+        REQUIRE(allFinite(indirect.rgb));
+        FoliageFigures& f = figures[k];
+        f = {render::compareImages(indirect, reference), render::compareImages(indirect, reference, &grass)};
+        if (flickerModes & (1u << k)) f.flicker = flicker(td, *r, grass, flickerFrames);
+        WARN(label << ", " << kFoliageModeNames[k] << ": whole relMSE " << f.whole.relMse << " mean " << f.whole.meanA << " vs "
+                   << f.whole.meanB << "; grass (" << grassPixels << " pixels) relMSE " << f.grass.relMse << " mean " << f.grass.meanA
+                   << " vs " << f.grass.meanB << (f.flicker >= 0.0 ? "; frame-to-frame change " + std::to_string(f.flicker) : ""));
+    }
 }
 
 }  // namespace bricklight::testing

@@ -105,51 +105,24 @@ void badGeneratedTextures(const std::string& backend) {
 }
 
 // The SDF GI's three ways with the cards (RasterOptions::foliage) against the path tracer's indirect diffuse, over
-// the whole image and over the grass pixels (the meadow's foliage pixels in the bottom quarter), in the scene's
-// light (the sun behind the camera: the camera sees the cards' lit sides) and with the sun turned round (behind
-// the cards: their lit sides face away). Figures are printed (WARN) for docs/gi.md, "Foliage".
-struct Figures {
-    render::ImageMetrics whole, grass;
-};
-
+// the whole image and over the grass pixels (the meadow's foliage pixels in the bottom quarter), with the sun behind
+// the camera and behind the cards. Figures are printed (WARN) for docs/gi.md, "Foliage".
 void giFoliageVariants(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     constexpr uint32_t kSize = 64, kFrames = 32, kSpp = 256;
     for (bool backLit : {false, true}) {
-        scenes::SceneGeometry s = scenes::foliage();
-        if (backLit) {
-            s.environment.sunDirection.x = -s.environment.sunDirection.x;
-            s.environment.sunDirection.z = -s.environment.sunDirection.z;
-        }
+        const scenes::SceneGeometry s = foliageScene(backLit);
         auto reference = traced(td, s, kSize, kSpp);
-        const render::Image ref = reference->read(render::Aov::IndirectDiffuse), albedo = reference->read(render::Aov::Albedo);
         size_t grassPixels = 0;
-        const std::vector<uint8_t> grass = grassMask(albedo, &grassPixels);
+        const std::vector<uint8_t> grass = grassMask(reference->read(render::Aov::Albedo), &grassPixels);
         REQUIRE(grassPixels > kSize * kSize / 8);
-        Figures f[3];
-        const render::FoliageMode modes[3] = {render::FoliageMode::AlphaAware, render::FoliageMode::Opaque, render::FoliageMode::LeftOut};
-        const char* names[3] = {"alpha-aware", "opaque", "left out"};
-        double flickerOf[2] = {0.0, 0.0};
-        for (int k = 0; k < 3; ++k) {
-            render::RasterOptions o;
-            o.width = o.height = kSize;
-            o.gi = true;
-            o.foliage = modes[k];
-            std::string error;
-            auto r = render::RasterRenderer::create(*td.device, s, o, &error);
-            INFO(error);
-            REQUIRE(r);
-            frames(td, *r, kFrames);
-            const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
-            REQUIRE(allFinite(indirect.rgb));
-            f[k] = {render::compareImages(indirect, ref), render::compareImages(indirect, ref, &grass)};
-            if (k < 2 && !backLit) flickerOf[k] = flicker(td, *r, grass, 8);
-            WARN(backend << (backLit ? ", sun behind the cards, " : ", sun behind the camera, ") << names[k] << ": whole relMSE "
-                         << f[k].whole.relMse << " mean " << f[k].whole.meanA << " vs " << f[k].whole.meanB << "; grass ("
-                         << grassPixels << " pixels) relMSE " << f[k].grass.relMse << " mean " << f[k].grass.meanA << " vs "
-                         << f[k].grass.meanB << (k < 2 && !backLit ? "; frame-to-frame change " + std::to_string(flickerOf[k]) : ""));
-        }
+        render::RasterOptions o;
+        o.width = o.height = kSize;
+        o.gi = true;
+        FoliageFigures f[3];
+        foliageVariants(td, s, o, kFrames, reference->read(render::Aov::IndirectDiffuse), grass, backLit ? 0u : 3u, 8,
+                        backend + (backLit ? ", sun behind the cards" : ", sun behind the camera"), f);
         // What holds (measured at 64², 32 frames, 256 spp; both backends alike; docs/gi.md, "Foliage"): with the sun
         // behind the camera the alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.085
         // against 0.229, grass 0.156 against 0.415; means 1.78x and 2.33x the reference's) and lose to the cards
@@ -164,7 +137,7 @@ void giFoliageVariants(const std::string& backend) {
             CHECK(meanError(f[0].whole) < meanError(f[1].whole));
             CHECK(meanError(f[0].grass) < meanError(f[1].grass));
             // Converged grass does not flicker: the continued rays' draws are averaged by the GI's history.
-            CHECK(flickerOf[0] < 0.05);
+            CHECK(f[0].flicker < 0.05);
         } else {
             for (int naive = 1; naive < 3; ++naive) {
                 CHECK(f[0].whole.relMse < 0.9 * f[naive].whole.relMse);

@@ -16,10 +16,6 @@ using namespace bricklight::testing;
 
 namespace {
 
-struct Figures {
-    render::ImageMetrics whole, grass;
-};
-
 void vctFoliageVariants(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
@@ -31,41 +27,19 @@ void vctFoliageVariants(const std::string& backend) {
     // light climbs one bounce a frame (alpha-aware, frames 4 / 8 / 12: mean 4.9 / 6.5 / 7.5 × the reference's).
     constexpr uint32_t kSize = 64, kFrames = 6, kSpp = 32;
     for (bool backLit : {false, true}) {
-        scenes::SceneGeometry s = scenes::foliage();
-        if (backLit) {
-            s.environment.sunDirection.x = -s.environment.sunDirection.x;
-            s.environment.sunDirection.z = -s.environment.sunDirection.z;
-        }
+        const scenes::SceneGeometry s = foliageScene(backLit);
         auto reference = traced(td, s, kSize, kSpp, true, 1, 1);
-        const render::Image ref = reference->read(render::Aov::IndirectDiffuse);
         size_t grassPixels = 0;
         const std::vector<uint8_t> grass = grassMask(reference->read(render::Aov::Albedo), &grassPixels);
         REQUIRE(grassPixels > kSize * kSize / 8);
-        Figures f[3];
-        const render::FoliageMode modes[3] = {render::FoliageMode::AlphaAware, render::FoliageMode::Opaque, render::FoliageMode::LeftOut};
-        const char* names[3] = {"alpha-aware", "opaque", "left out"};
-        double flickerOf = 0.0;
-        for (int k = 0; k < 3; ++k) {
-            render::RasterOptions o;
-            o.width = o.height = kSize;
-            o.gi = true;
-            o.giTechnique = render::GiTechnique::Vct;
-            o.giFeedback = false;
-            o.foliage = modes[k];
-            std::string error;
-            auto r = render::RasterRenderer::create(*td.device, s, o, &error);
-            INFO(error);
-            REQUIRE(r);
-            frames(td, *r, kFrames);
-            const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
-            REQUIRE(allFinite(indirect.rgb));
-            f[k] = {render::compareImages(indirect, ref), render::compareImages(indirect, ref, &grass)};
-            if (k == 0) flickerOf = flicker(td, *r, grass, 4);
-            WARN(backend << (backLit ? ", sun behind the cards, " : ", sun behind the camera, ") << names[k] << ": whole relMSE "
-                         << f[k].whole.relMse << " mean " << f[k].whole.meanA << " vs " << f[k].whole.meanB << "; grass ("
-                         << grassPixels << " pixels) relMSE " << f[k].grass.relMse << " mean " << f[k].grass.meanA << " vs "
-                         << f[k].grass.meanB << (k == 0 ? "; frame-to-frame change " + std::to_string(flickerOf) : ""));
-        }
+        render::RasterOptions o;
+        o.width = o.height = kSize;
+        o.gi = true;
+        o.giTechnique = render::GiTechnique::Vct;
+        o.giFeedback = false;
+        FoliageFigures f[3];
+        foliageVariants(td, s, o, kFrames, reference->read(render::Aov::IndirectDiffuse), grass, 1u, 4,
+                        backend + (backLit ? ", sun behind the cards" : ", sun behind the camera"), f);
         // Solid cards: every voxel a card touches opaque and lit as if whole.
         CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
         CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
@@ -84,7 +58,7 @@ void vctFoliageVariants(const std::string& backend) {
         }
         // The voxels' words are deterministic (no frame in the coverage points or the emittance's seed); what moves
         // is the sparse tracing's pixel of each 2 × 2 block and the history.
-        CHECK(flickerOf < 0.03);
+        CHECK(f[0].flicker < 0.03);
     }
     WARN(backend << ": " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s");
     REQUIRE_NO_MESSAGES(td);
