@@ -102,8 +102,7 @@ void main() {
     // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
     uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);
     uint unseen = giFrameIndex() + 1u - seen;
-    if ((brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
-    bool whole = unseen >= (GI_RELIGHT_AFTER << level);
+    bool whole = unseen >= (GI_RELIGHT_AFTER << level) && (brick + giFrameIndex()) % GI_RELIGHT_PERIOD == 0u;
     // The view test is conservative (in doubt, in view), so a brick it calls visible may still be one the
     // screen never reaches (its centre on sky, behind a thin occluder, ...): after GI_RELIGHT_STALE × 2^k
     // frames without injection it is re-lit all the same, or it would keep stale light for ever.
@@ -112,9 +111,13 @@ void main() {
         ivec3 voxel = giOwnerVoxel(owner, cascade);
         whole = !giBrickInView(voxel, giVoxelSize(cascade));
     }
-    // A brick holding cards is listed even while in view, for the cards' sides the camera does not see
-    // (GI_RELIGHT_CARD_SIDES, relight_cache.comp).
-    if (!whole && !giBrickHoldsCards(brick)) return;
+    // A brick holding cards is listed even while in view, every GI_RELIGHT_CARD_PERIOD-th frame, for the cards'
+    // sides the camera does not see (GI_RELIGHT_CARD_SIDES, relight_cache.comp).
+    bool cardSides = !whole && (brick + giFrameIndex()) % GI_RELIGHT_CARD_PERIOD == 0u && giBrickHoldsCards(brick);
+    if (!whole && !cardSides) return;
+    // Cards take at most about half the budget (the count read before the add races a little): the other half stays
+    // for the bricks whose light may have changed out of view.
+    if (cardSides && relightList[3] >= GI_RELIGHT_BUDGET / 2u) return;
     uint slot = atomicAdd(relightList[3], 1u);
     if (slot >= GI_RELIGHT_BUDGET) return;
     relightList[4u + slot] = brick | (whole ? 0u : GI_RELIGHT_CARD_SIDES);
