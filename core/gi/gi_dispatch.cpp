@@ -184,7 +184,8 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addTrace(s.bindings);
         addAlphaCache(s.bindings, Access::ReadWrite);  // forgets the alpha cells of reallocated bricks
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
-        if (desc_.flags & ContextFlags::AlphaCache) device_.clearBuffer(alphaCache_, {4, 4}, 0);  // the pass's cells are old now
+        // The pass's cells are old now (only a frame with an alpha pass set the word: alphaPassState).
+        if ((desc_.flags & ContextFlags::AlphaCache) && alphaPassClearedAt_ == frameIndex_ + 1) device_.clearBuffer(alphaCache_, {4, 4}, 0);
     }
     {  // 6. spawn screen probes
         rhi::DispatchState s;
