@@ -6,14 +6,17 @@
 #   3. runs every fuzzer for BRICKLIGHT_FUZZ_SECONDS seconds (default 20) from its seeds
 #      (tests/fuzz/seeds/<fuzzer>/) and prints how many inputs it ran; a crash, a leak, a timeout or an
 #      out-of-memory fails the script (the input that did it is left in <work-dir>/findings/<fuzzer>/).
-# tests/CMakeLists.txt registers this as the ctest test bricklight-sanitizers.
+# tests/CMakeLists.txt registers this as the ctest test bricklight-sanitizers, with the main build's shader
+# compiler: the shaders are data to the code under test, and a compiler built and run under ASan only costs time.
 #
-#   scripts/test_sanitizers.sh <work-dir>
+#   scripts/test_sanitizers.sh <work-dir> [<bricklight-shaderc to use>]
 set -euo pipefail
-if [ $# -ne 1 ]; then
-  echo "usage: $0 <work-dir>" >&2
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then
+  echo "usage: $0 <work-dir> [<bricklight-shaderc>]" >&2
   exit 2
 fi
+shaderc=()
+if [ $# -eq 2 ]; then shaderc=(-DBRICKLIGHT_SHADERC="$2"); fi
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 mkdir -p "$1"
 work="$(cd "$1" && pwd)"
@@ -28,7 +31,7 @@ step() { echo "== [$((SECONDS - start)) s] $*"; }
 step "configure (clang, ASan + UBSan, fuzzers, no GPU backend)"
 cmake -S "$root" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DBRICKLIGHT_SANITIZE=ON -DBRICKLIGHT_FUZZ=ON \
-  -DBRICKLIGHT_VULKAN=OFF -DBRICKLIGHT_GL=OFF -DBRICKLIGHT_INSTALL=OFF > "$work/configure.log" ||
+  -DBRICKLIGHT_VULKAN=OFF -DBRICKLIGHT_GL=OFF -DBRICKLIGHT_INSTALL=OFF "${shaderc[@]}" > "$work/configure.log" ||
   { cat "$work/configure.log"; exit 1; }
 step "build the CPU-side tests and the fuzzers"
 # The build runs bricklight-shaderc, itself built with the sanitizers: glslang keeps its pools to the end.

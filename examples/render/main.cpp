@@ -17,6 +17,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -111,26 +112,35 @@ Options parse(int argc, char** argv) {
         const render::OptionParse shared = render::parseSharedOption(argc, argv, i, o, &error);
         if (shared == render::OptionParse::Error) usage(error);
         if (shared == render::OptionParse::Consumed) continue;
+        // --gi-debug and --aov take one or more values: every following argument up to the next option.
+        auto values = [&]() {
+            std::vector<std::string> list{value()};
+            while (i + 1 < argc && argv[i + 1][0] != '-') list.push_back(argv[++i]);
+            return list;
+        };
         if (a == "--gi-debug") {
-            const std::string v = value();
-            bool known = false;
-            for (const char* n : kGiDebugNames) known = known || v == n;
-            known = known || isVctDebug(v) || isReflectionDebug(v);
-            if (!known)
-                usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (the SDF GI's), "
-                      "vct-opacity, vct-emittance, vct-level, vct-rewritten or vct-cone-samples (voxel cone tracing's) "
-                      "or reflections, reflection-tile-class, reflection-rays or reflection-counters (hybrid reflections') (got '" + v + "')");
-            o.giDebug.push_back(v);
+            for (const std::string& v : values()) {
+                bool known = false;
+                for (const char* n : kGiDebugNames) known = known || v == n;
+                known = known || isVctDebug(v) || isReflectionDebug(v);
+                if (!known)
+                    usage("--gi-debug must be radiance-cache, irradiance-cache, probes, probe-sh, disocclusion or samples (the SDF GI's), "
+                          "vct-opacity, vct-emittance, vct-level, vct-rewritten or vct-cone-samples (voxel cone tracing's) "
+                          "or reflections, reflection-tile-class, reflection-rays or reflection-counters (hybrid reflections') (got '" + v + "')");
+                if (std::find(o.giDebug.begin(), o.giDebug.end(), v) == o.giDebug.end()) o.giDebug.push_back(v);
+            }
         }
         else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
         else if (a == "--reference") o.reference = true;
         else if (a == "--record") o.record = value();
         else if (a == "--out") o.out = value();
         else if (a == "--aov") {
-            render::Aov aov;
-            const std::string name = value();
-            if (!render::aovFromName(name, &aov)) usage("unknown AOV '" + name + "'");
-            o.aovs.push_back(aov);
+            for (const std::string& name : values()) {
+                render::Aov aov;
+                if (!render::aovFromName(name, &aov))
+                    usage("unknown AOV '" + name + "' (combined, direct, indirect-diffuse, albedo, normal, depth or ao)");
+                if (std::find(o.aovs.begin(), o.aovs.end(), aov) == o.aovs.end()) o.aovs.push_back(aov);
+            }
         } else {
             usage("unknown option '" + a + "'");
         }

@@ -2,7 +2,6 @@
 // with BRICKLIGHT_GL_CONTEXT=egl): compute + read-back, image write then sampled read, a depth-tested
 // draw read back at known pixels (memory row 0 = clip y -1), culling with the Vulkan winding rule,
 // indirect dispatch with GPU-written args, barrier counting, timestamps, and error reporting.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <array>

@@ -3,7 +3,6 @@
 // checks that the backend itself works: compute + read-back, storage image -> sampled read, a depth-tested
 // draw checked pixel-exact, indirect dispatch with GPU-written args, barrier counts, timestamps, errors,
 // embedded mode (application command buffer, descriptor-pool path).
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <cstring>

@@ -141,5 +141,5 @@ void badInputRefused(const std::string& backend) {
 
 }  // namespace
 
-BACKEND_TEST("depth pyramid: min/max mips match a CPU reduction of the depth, odd sizes included", "[classify]", pyramidMatchesCpu)
+BACKEND_TEST("depth pyramid: min/max mips match a CPU reduction of the depth, odd sizes included", "[classify][quick]", pyramidMatchesCpu)
 BACKEND_TEST("depth pyramid: bad input is refused and records nothing", "[classify]", badInputRefused)

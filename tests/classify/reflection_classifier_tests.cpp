@@ -753,7 +753,7 @@ BACKEND_TEST("reflection classifier: rays follow roughness and samplesPerQuad, t
 BACKEND_TEST("reflection classifier: tile classes follow the hit counters, the safe band and the dice", "[classify][reflect]", classesFollowCounters)
 BACKEND_TEST("reflection classifier: the hit counters follow a camera move, from depth or motion vectors", "[classify][reflect]",
              countersFollowTheMotion)
-BACKEND_TEST("reflection classifier: a mirror floor reads the wall from the lit image, misses go to the SDF list", "[classify][reflect]",
+BACKEND_TEST("reflection classifier: a mirror floor reads the wall from the lit image, misses go to the SDF list", "[classify][reflect][quick]",
              mirrorReadsTheWall)
 BACKEND_TEST("reflection classifier: glossy rays sample GGX per pixel and frame, repeatably", "[classify][reflect]", glossyRaysFollowTheFrame)
 BACKEND_TEST("reflection classifier: bad input is refused and changes nothing", "[classify][reflect]", refusesBadInput)

@@ -391,7 +391,7 @@ void refusesBadInput(const std::string& backend) {
 
 }  // namespace
 
-BACKEND_TEST("shadow classifier: decided pixels are right, the penumbra gets rays within the blocker's interval", "[classify]",
+BACKEND_TEST("shadow classifier: decided pixels are right, the penumbra gets rays within the blocker's interval", "[classify][quick]",
              cascadesDecideRight)
 BACKEND_TEST("shadow classifier: bad input is refused", "[classify]", refusesBadInput)
 BACKEND_TEST("hybrid shadows: rays through the distance field decide the penumbra", "[classify]", hybridTraceFixesThePenumbra)

@@ -431,7 +431,7 @@ void refusesBadInput(const std::string& backend) {
 }  // namespace
 
 BACKEND_TEST("soft hybrid shadows: the denoised penumbra beats PCF against the exact sun disc", "[classify]", softPenumbraBeatsPcf)
-BACKEND_TEST("shadow denoiser: converges, and leaves pixels that needed no ray at the hit mask's answer", "[classify]",
+BACKEND_TEST("shadow denoiser: converges, and leaves pixels that needed no ray at the hit mask's answer", "[classify][quick]",
              denoiserConvergesOnListedTilesOnly)
 BACKEND_TEST("shadow denoiser: bad input is refused, recording nothing", "[classify]", refusesBadInput)
 

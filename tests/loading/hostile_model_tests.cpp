@@ -1,6 +1,5 @@
 // Every hostile file of issue 23 through loadModel, out of process (the default) and in process: a clear
 // message naming the file and the problem, within seconds, and this process still standing.
-#define CATCH_CONFIG_MAIN
 #include "test_support.h"
 
 #include "hostile_files.h"

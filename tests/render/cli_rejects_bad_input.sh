@@ -88,6 +88,14 @@ else
 fi
 log=$("$render" "${common[@]}" --scene "$data/non_manifold_degenerate.obj" --out "$out/ok.png" 2>&1); rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: non-manifold/degenerate geometry: exit $rc: $log"; failures=$((failures + 1)); else echo "ok: non-manifold/degenerate geometry renders: $log"; fi
+# --aov and --gi-debug take a list as the usage line shows them (or the flag repeated).
+rm -f "$out"/list.*
+log=$("$render" "${common[@]}" --aov direct indirect-diffuse --aov albedo --out "$out/list.png" 2>&1); rc=$?
+if [ $rc -ne 0 ] || [ ! -f "$out/list.direct.exr" ] || [ ! -f "$out/list.indirect-diffuse.exr" ] || [ ! -f "$out/list.albedo.exr" ]; then
+  echo "FAIL: --aov direct indirect-diffuse --aov albedo: exit $rc, files: $(ls "$out" | grep '^list' | tr '\n' ' '): $log"; failures=$((failures + 1))
+else
+  echo "ok: --aov takes a list"
+fi
 # Textures from a file and embedded in a binary glTF give the same albedo (Debian's assimp-testmodels).
 models=/usr/share/assimp/models/glTF2
 if [ -d "$models/BoxTextured-glTF" ]; then

@@ -11,6 +11,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "reference_cache.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -113,15 +114,15 @@ void giFoliageVariants(const std::string& backend) {
     constexpr uint32_t kSize = 64, kFrames = 32, kSpp = 256;
     for (bool backLit : {false, true}) {
         const scenes::SceneGeometry s = foliageScene(backLit);
-        auto reference = traced(td, s, kSize, kSpp);
+        auto reference = pathTraced(td, s, kSize, kSpp);
         size_t grassPixels = 0;
-        const std::vector<uint8_t> grass = grassMask(reference->read(render::Aov::Albedo), &grassPixels);
+        const std::vector<uint8_t> grass = grassMask(reference.read(render::Aov::Albedo), &grassPixels);
         REQUIRE(grassPixels > kSize * kSize / 8);
         render::RasterOptions o;
         o.width = o.height = kSize;
         o.gi = true;
         FoliageFigures f[3];
-        foliageVariants(td, s, o, kFrames, reference->read(render::Aov::IndirectDiffuse), grass, backLit ? 0u : 3u, 8,
+        foliageVariants(td, s, o, kFrames, reference.read(render::Aov::IndirectDiffuse), grass, backLit ? 0u : 3u, 8,
                         backend + (backLit ? ", sun behind the cards" : ", sun behind the camera"), f);
         // What holds (measured at 64², 32 frames, 256 spp; both backends alike; docs/gi.md, "Foliage"): with the sun
         // behind the camera the alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.095
@@ -180,7 +181,7 @@ void alphaCellsOfNewBricks(const std::string& backend) {
 
 }  // namespace
 
-BACKEND_TEST("foliage: the path tracer and the G-buffer see the same grass and leaves", "[render]", foliageRenders)
+BACKEND_TEST("foliage: the path tracer and the G-buffer see the same grass and leaves", "[render][quick]", foliageRenders)
 BACKEND_TEST("foliage: the first frame's alpha pass fills the cells of the bricks that frame built", "[gi]", alphaCellsOfNewBricks)
 BACKEND_TEST("foliage: bad generated textures are refused naming the mesh", "[render]", badGeneratedTextures)
 BACKEND_TEST("foliage: the SDF GI's alpha-aware cards against built-opaque and left-out ones, and the path tracer", "[gi]",

@@ -9,6 +9,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "reference_cache.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -28,9 +29,9 @@ void vctFoliageVariants(const std::string& backend) {
     constexpr uint32_t kSize = 64, kFrames = 6, kSpp = 32;
     for (bool backLit : {false, true}) {
         const scenes::SceneGeometry s = foliageScene(backLit);
-        auto reference = traced(td, s, kSize, kSpp, true, 1, 1);
+        auto reference = pathTraced(td, s, kSize, kSpp, true, 1, 1);
         size_t grassPixels = 0;
-        const std::vector<uint8_t> grass = grassMask(reference->read(render::Aov::Albedo), &grassPixels);
+        const std::vector<uint8_t> grass = grassMask(reference.read(render::Aov::Albedo), &grassPixels);
         REQUIRE(grassPixels > kSize * kSize / 8);
         render::RasterOptions o;
         o.width = o.height = kSize;
@@ -38,7 +39,7 @@ void vctFoliageVariants(const std::string& backend) {
         o.giTechnique = render::GiTechnique::Vct;
         o.giFeedback = false;
         FoliageFigures f[3];
-        foliageVariants(td, s, o, kFrames, reference->read(render::Aov::IndirectDiffuse), grass, 1u, 4,
+        foliageVariants(td, s, o, kFrames, reference.read(render::Aov::IndirectDiffuse), grass, 1u, 4,
                         backend + (backLit ? ", sun behind the cards" : ", sun behind the camera"), f);
         // Solid cards: every voxel a card touches opaque and lit as if whole.
         CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);

@@ -9,6 +9,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "reference_cache.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -128,7 +129,7 @@ void cornellGlassAgainstReference(const std::string& backend) {
     const render::Image glass = fastPath(td, scene, vxgiOptions(kCornellSize), 32);
     const render::Image opaque = fastPath(td, opaqueScene, vxgiOptions(kCornellSize), 32);
     REQUIRE(allFinite(glass.rgb));
-    const render::Image reference = traced(td, scene, kCornellSize, 512)->read(render::Aov::Combined);
+    const render::Image reference = pathTraced(td, scene, kCornellSize, 512).read(render::Aov::Combined);
     const render::ImageMetrics whole = render::compareImages(glass, reference);
     const render::ImageMetrics inGlass = render::compareImages(glass, reference, &mask);
     const render::ImageMetrics asOpaque = render::compareImages(opaque, reference, &mask);
@@ -195,7 +196,7 @@ void seesWhatIsBehind(const std::string& backend) {
     const std::vector<uint8_t> mask = glassPixels(td, scene, size);
     const render::Image glass = fastPath(td, scene, vxgiOptions(size), 8);
     const render::Image opaque = fastPath(td, opaqueScene, vxgiOptions(size), 8);
-    const render::Image reference = traced(td, scene, size, 64)->read(render::Aov::Combined);
+    const render::Image reference = pathTraced(td, scene, size, 64).read(render::Aov::Combined);
     const double shares[3][2] = {{greenShare(reference, mask, true), greenShare(reference, mask, false)},
                                  {greenShare(glass, mask, true), greenShare(glass, mask, false)},
                                  {greenShare(opaque, mask, true), greenShare(opaque, mask, false)}};
@@ -298,7 +299,7 @@ TEST_CASE("glass: Vulkan and GL agree", "[glass][cross]") {
         REQUIRE(td.device);
         if (b == 0) mask = glassPixels(td, scene, 64);
         fast[b] = fastPath(td, scene, vxgiOptions(64), 8);
-        traced[b] = testing::traced(td, scene, 64, 64)->read(render::Aov::Combined);
+        traced[b] = testing::pathTraced(td, scene, 64, 64).read(render::Aov::Combined);
         REQUIRE_NO_MESSAGES(td);
     }
     const render::ImageMetrics f = render::compareImages(fast[0], fast[1]), g = render::compareImages(fast[0], fast[1], &mask);

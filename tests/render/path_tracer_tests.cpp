@@ -5,6 +5,7 @@
 #include "backend_test.h"
 #include "image_metrics.h"
 #include "path_tracer.h"
+#include "reference_cache.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -125,18 +126,20 @@ void aovsAreConsistent(const std::string& backend) {
 }
 
 void cornellConverges(const std::string& backend) {
-    // 64 spp against 1024 spp at 128 x 128: relMSE (epsilon 0.01) below 0.006 (measured 0.0031); each quadrupling of the
-    // samples should divide it by about four (checked between 16 and 64 spp).
+    // 64 spp against the suite's 512-spp Cornell reference at 128 x 128 (the one the GI and VCT tests compare with,
+    // traced once per run: reference_cache.h): relMSE (epsilon 0.01) below 0.006 (measured 0.0031 against 1024 spp;
+    // the reference's own noise adds ~0.0002 at 512); each quadrupling of the samples should divide it by about four
+    // (checked between 16 and 64 spp). Seeds 3 and 5 against the reference's 1: independent samples.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry cornell = scenes::cornellBox();
-    const render::Image reference = renderScene(td, cornell, 128, 1024, render::Aov::Combined, 7);
+    const render::Image reference = pathTraced(td, cornell, 128, 512).read(render::Aov::Combined);
     const render::Image at64 = renderScene(td, cornell, 128, 64, render::Aov::Combined, 3);
     const render::Image at16 = renderScene(td, cornell, 128, 16, render::Aov::Combined, 5);
     const render::ImageMetrics m64 = render::compareImages(at64, reference);
     const render::ImageMetrics m16 = render::compareImages(at16, reference);
     INFO("relMSE 16 spp " << m16.relMse << ", 64 spp " << m64.relMse << "; means " << m64.meanA << " vs " << m64.meanB);
-    WARN("cornell " << backend << ": relMSE vs 1024 spp: 16 spp " << m16.relMse << ", 64 spp " << m64.relMse
+    WARN("cornell " << backend << ": relMSE vs 512 spp: 16 spp " << m16.relMse << ", 64 spp " << m64.relMse
                     << " (PSNR " << m64.psnr << " dB)");
     CHECK(m64.relMse < 0.006);
     CHECK(m16.relMse / m64.relMse > 2.5);
@@ -183,7 +186,7 @@ void badScenes(const std::string& backend) {
 }  // namespace
 
 BACKEND_TEST("path tracer: white furnace converges to the analytic radiance", "[render]", whiteFurnace)
-BACKEND_TEST("path tracer: a plane under a uniform sky", "[render]", planeUnderSky)
+BACKEND_TEST("path tracer: a plane under a uniform sky", "[render][quick]", planeUnderSky)
 BACKEND_TEST("path tracer: albedo 1 under a uniform sky conserves energy", "[render]", energyConservation)
 BACKEND_TEST("path tracer: combined = direct + albedo * indirect-diffuse", "[render]", aovsAreConsistent)
 BACKEND_TEST("path tracer: cornell converges", "[render]", cornellConverges)

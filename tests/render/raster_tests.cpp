@@ -115,7 +115,7 @@ void motionVectors(const std::string& backend) {
 
 }  // namespace
 
-BACKEND_TEST("raster: G-buffer matches the path tracer's primary-hit AOVs", "[render]", gbufferMatchesPathTracer)
+BACKEND_TEST("raster: G-buffer matches the path tracer's primary-hit AOVs", "[render][quick]", gbufferMatchesPathTracer)
 BACKEND_TEST("raster: direct lighting matches the path tracer's direct-only output", "[render]", directMatchesPathTracer)
 BACKEND_TEST("raster: motion vectors follow the camera", "[render]", motionVectors)
 

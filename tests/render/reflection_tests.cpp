@@ -9,6 +9,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "reference_cache.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -72,10 +73,10 @@ FloorResult floorAgainstReference(const std::string& backend, float roughness) {
     frames(td, *gi, kFrames);
     frames(td, *hybrid, kFrames);
     REQUIRE(hybrid->reflectionClassifier());
-    auto reference = traced(td, scene, kSize, 512, true, 1, /*maxBounces*/ 1);
+    auto reference = pathTraced(td, scene, kSize, 512, true, 1, /*maxBounces*/ 1);
     const std::vector<uint8_t> mask = floorMask(*hybrid);
     REQUIRE(count(mask) > kSize * kSize / 16);  // about 9 % of the image
-    const render::Image ref = reference->read(render::Aov::Combined);
+    const render::Image ref = reference.read(render::Aov::Combined);
     const render::Image a = gi->read(render::Aov::Combined), b = hybrid->read(render::Aov::Combined);
     REQUIRE(allFinite(b.rgb));
     FloorResult r{render::compareImages(a, ref, &mask), render::compareImages(b, ref, &mask)};

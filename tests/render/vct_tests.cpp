@@ -10,6 +10,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
+#include "reference_cache.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -45,16 +46,16 @@ void cornellAgainstReference(const std::string& backend) {
     const scenes::SceneGeometry cornell = scenes::cornellBox();
     auto vct = vctRenderer(td, cornell, vctOptions(kCornellSize));
     frames(td, *vct, 32);
-    auto reference = traced(td, cornell, kCornellSize, 512);
+    auto reference = pathTraced(td, cornell, kCornellSize, 512);
     const render::Image indirect = vct->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
-    const render::ImageMetrics m = render::compareImages(indirect, reference->read(render::Aov::IndirectDiffuse));
+    const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
     INFO("indirect-diffuse relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
     CHECK(m.relMse < 0.1);
     CHECK(m.ssim > 0.5);
     CHECK(m.meanA > 0.4 * m.meanB);
     CHECK(m.meanA < 1.3 * m.meanB);
-    const render::ImageMetrics c = render::compareImages(vct->read(render::Aov::Combined), reference->read(render::Aov::Combined));
+    const render::ImageMetrics c = render::compareImages(vct->read(render::Aov::Combined), reference.read(render::Aov::Combined));
     INFO("combined relMSE " << c.relMse << " SSIM " << c.ssim << " mean " << c.meanA << " vs " << c.meanB);
     CHECK(c.relMse < 0.035);
     CHECK(c.ssim > 0.75);
@@ -69,9 +70,9 @@ void cornellSingleBounce(const std::string& backend) {
     const scenes::SceneGeometry cornell = scenes::cornellBox();
     auto vct = vctRenderer(td, cornell, vctOptions(kCornellSize, false));
     frames(td, *vct, 16);
-    auto reference = traced(td, cornell, kCornellSize, 512, true, 1, 1);
+    auto reference = pathTraced(td, cornell, kCornellSize, 512, true, 1, 1);
     const render::ImageMetrics m =
-        render::compareImages(vct->read(render::Aov::IndirectDiffuse), reference->read(render::Aov::IndirectDiffuse));
+        render::compareImages(vct->read(render::Aov::IndirectDiffuse), reference.read(render::Aov::IndirectDiffuse));
     INFO("single bounce: relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
     CHECK(m.relMse < 0.03);
     CHECK(m.ssim > 0.5);
@@ -101,8 +102,8 @@ void glossyFloor(const std::string& backend) {
     o.vctTrace.specularJitter = 1.0f;
     auto vct = vctRenderer(td, scene, o);
     frames(td, *vct, 32);
-    auto reference = traced(td, scene, kCornellSize, 512);
-    const render::Image combined = vct->read(render::Aov::Combined), refCombined = reference->read(render::Aov::Combined);
+    auto reference = pathTraced(td, scene, kCornellSize, 512);
+    const render::Image combined = vct->read(render::Aov::Combined), refCombined = reference.read(render::Aov::Combined);
     REQUIRE(allFinite(combined.rgb));
     const render::ImageMetrics c = render::compareImages(combined, refCombined);
     auto lowerThird = [](const render::Image& img) {
@@ -229,11 +230,11 @@ void sdfOcclusionAgainstReference(const std::string& backend) {
     o.vctSdfOcclusion = true;
     auto vct = vctRenderer(td, cornell, o);
     frames(td, *vct, 32);
-    auto reference = traced(td, cornell, kCornellSize, 512);
+    auto reference = pathTraced(td, cornell, kCornellSize, 512);
     const render::Image indirect = vct->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
-    const render::ImageMetrics m = render::compareImages(indirect, reference->read(render::Aov::IndirectDiffuse));
-    const render::ImageMetrics c = render::compareImages(vct->read(render::Aov::Combined), reference->read(render::Aov::Combined));
+    const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
+    const render::ImageMetrics c = render::compareImages(vct->read(render::Aov::Combined), reference.read(render::Aov::Combined));
     INFO("indirect relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB << "; combined relMSE "
                             << c.relMse << " mean " << c.meanA << " vs " << c.meanB);
     CHECK(m.relMse < 0.03);
@@ -263,10 +264,10 @@ void sdfGiWithUnseenLight(const std::string& backend) {
     o.giUnseenFromVct = true;
     auto gi = vctRenderer(td, cornell, o);
     frames(td, *gi, 64);
-    auto reference = traced(td, cornell, kCornellSize, 512);
+    auto reference = pathTraced(td, cornell, kCornellSize, 512);
     const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
-    const render::ImageMetrics m = render::compareImages(indirect, reference->read(render::Aov::IndirectDiffuse));
+    const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
     INFO("indirect relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
     CHECK(m.relMse < 0.02);
     CHECK(m.ssim > 0.7);

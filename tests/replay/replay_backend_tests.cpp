@@ -2,7 +2,6 @@
 // writes, each valid), recorded on the null device, replays on Vulkan and GL under the validation wrapper
 // with every call accepted and no message at all (the Vulkan validation layer and synchronization
 // validation on); and a recording made on one backend replays on the other.
-#define CATCH_CONFIG_MAIN
 #include <sstream>
 
 #include "backend_test.h"

@@ -95,4 +95,4 @@ void distancesAllScenes(const std::string& backend) {
 
 }  // namespace
 
-BACKEND_TEST("sdf distances match exact point-triangle distances", "[sdf]", distancesAllScenes)
+BACKEND_TEST("sdf distances match exact point-triangle distances", "[sdf][quick]", distancesAllScenes)

@@ -1,6 +1,5 @@
 // The validation wrapper's rejections, one test each, on the null device: each bad call gets a clear
 // message naming the object and field, nothing reaches the inner device, and the device stays usable.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <chrono>

@@ -108,6 +108,6 @@ void isotropicBox(const std::string& backend) { conesInsideAnEmissiveBox(backend
 
 }  // namespace
 
-BACKEND_TEST("cones inside an emissive box gather its radiance (anisotropic)", "[vct]", anisotropicBox)
+BACKEND_TEST("cones inside an emissive box gather its radiance (anisotropic)", "[vct][quick]", anisotropicBox)
 BACKEND_TEST("cones inside an emissive box gather its radiance (isotropic)", "[vct]", isotropicBox)
 BACKEND_TEST("cones see a lit wall ahead and nothing through an open side", "[vct]", conesThroughAnOpenSide)

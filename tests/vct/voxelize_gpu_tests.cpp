@@ -372,7 +372,7 @@ void hookSeesTheFragment(const std::string& backend) {
 }  // namespace
 
 BACKEND_TEST("voxelization hands the emittance function the fragment's position", "[vct]", hookSeesTheFragment)
-BACKEND_TEST("voxelization of the emissive test cube gives exactly the expected voxels", "[vct]", emissiveCubeVoxelizesExactly)
+BACKEND_TEST("voxelization of the emissive test cube gives exactly the expected voxels", "[vct][quick]", emissiveCubeVoxelizesExactly)
 BACKEND_TEST("voxelization loses no small or thin triangle", "[vct]", smallTrianglesAreNotLost)
 BACKEND_TEST("voxelization after scrolling and a moved object equals one from scratch", "[vct]", scrollingEqualsFromScratch)
 BACKEND_TEST("voxelization refuses bad materials and boxes and drops bad triangles", "[vct]", refusesBadInput)
