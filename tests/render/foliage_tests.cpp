@@ -111,7 +111,7 @@ void badGeneratedTextures(const std::string& backend) {
 void giFoliageVariants(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    constexpr uint32_t kSize = 64, kFrames = 32, kSpp = 256;
+    constexpr uint32_t kSize = 64, kFrames = 16, kSpp = 256;
     for (bool backLit : {false, true}) {
         const scenes::SceneGeometry s = foliageScene(backLit);
         auto reference = pathTraced(td, s, kSize, kSpp);
@@ -124,14 +124,17 @@ void giFoliageVariants(const std::string& backend) {
         FoliageFigures f[3];
         foliageVariants(td, s, o, kFrames, reference.read(render::Aov::IndirectDiffuse), grass, backLit ? 0u : 3u, 8,
                         backend + (backLit ? ", sun behind the cards" : ", sun behind the camera"), f);
-        // What holds (measured at 64², 32 frames, 256 spp; both backends alike; docs/gi.md, "Foliage"): with the sun
-        // behind the camera the alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.095
-        // against 0.229, grass 0.177 against 0.415; means 1.84x and 2.33x the reference's) and lose to the cards
-        // left out (0.047, grass 0.053, mean 1.46x). With the sun behind the cards they beat both (relMSE 0.015
-        // against 0.018 and 0.033, grass 0.016 against 0.022 and 0.054; mean 1.00 against 0.87 and 0.54), except
-        // the solid cards' grass mean (0.94 against 0.90). The target, better than both naive variants in
-        // both lights, is not met: a card is thinner than a cache texel and its sides are not resolved (the GI is
-        // 2.5x too bright with every card solid in both renderers).
+        // What holds (measured at 64², 16 frames, 256 spp; both backends alike): with the sun behind the camera the
+        // alpha-aware cards beat the solid ones on both numbers, whole and grass (relMSE 0.099 against 0.191, grass
+        // 0.178 against 0.373; means 1.86x and 2.22x the reference's) and lose to the cards left out (0.044, grass
+        // 0.046, mean 1.40x). With the sun behind the cards they beat both (relMSE 0.0155 against 0.0190 and 0.037,
+        // grass 0.021 against 0.026 and 0.057; mean 0.87 against 0.81 and 0.51). After 32 frames (docs/gi.md,
+        // "Foliage") the sun-behind-the-camera figures are the same to 0.01 (the solid cards drift up to 0.229, grass
+        // 0.415) and with the sun behind the cards the alpha-aware mean reaches 1.00 (the card sides are relit every
+        // 8th frame); every check below holds at both. With the alpha cache ignored (the defect these checks guard) the
+        // alpha-aware cards are the solid ones, and the first ratio is 1. The target, better than both naive
+        // variants in both lights, is not met: a card is thinner than a cache texel and its sides are not resolved
+        // (the GI is 2.5x too bright with every card solid in both renderers).
         if (!backLit) {
             CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
             CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
