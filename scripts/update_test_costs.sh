@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes tests/costs/test_costs.cmake from the seconds each test took in the last full run of the suite
+# Writes tests/schedule/test_costs.cmake from the seconds each test took in the last full run of the suite
 # (ctest's own record, build/Testing/Temporary/CTestCostData.txt), so that a fresh clone's parallel ctest
 # starts the longest tests first: every core stays busy to the end instead of waiting on one long test
 # started last. Run it after a full `scripts/test.sh` when tests were added or their cost moved a lot.
@@ -8,7 +8,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 data="${1:-$root/build}/Testing/Temporary/CTestCostData.txt"
-out="$root/tests/costs/test_costs.cmake"
+out="$root/tests/schedule/test_costs.cmake"
 if [ ! -f "$data" ]; then
   echo "update_test_costs: no $data (run the suite first)" >&2
   exit 1

@@ -8,6 +8,7 @@
 #include "path_tracer.h"
 #include "raster_renderer.h"
 #include "reference_cache.h"
+#include "shared_references.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -16,7 +17,7 @@ using namespace bricklight::testing;
 namespace {
 
 constexpr uint32_t kSize = 64;
-constexpr uint32_t kCornellSize = 128;  // the Cornell comparison at the size
+constexpr uint32_t kCornellSize = kSharedReferenceSize;  // the Cornell comparison at the size (128)
 
 std::unique_ptr<render::RasterRenderer> giRenderer(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size = kSize,
                                                    bool relight = true, uint32_t cacheBricks = 0, uint32_t injectTile = 0,
@@ -72,7 +73,7 @@ void cornellAgainstReference(const std::string& backend) {
     const scenes::SceneGeometry cornell = scenes::cornellBox();
     auto gi = giRenderer(td, cornell, kCornellSize);
     frames(td, *gi, 64);
-    auto reference = pathTraced(td, cornell, kCornellSize, 512);
+    auto reference = cornellReference(td);
     const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
     const render::Image refIndirect = reference.read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
@@ -108,7 +109,7 @@ void cornellSingleBounceAgainstReference(const std::string& backend) {
     const scenes::SceneGeometry cornell = scenes::cornellBox();
     auto gi = giRenderer(td, cornell, kCornellSize, true, 0, 0, 0, /*feedback*/ false);
     frames(td, *gi, 64);
-    auto reference = pathTraced(td, cornell, kCornellSize, 512, true, 1, /*maxBounces*/ 1);
+    auto reference = cornellOneBounceReference(td);
     const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
     const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
@@ -134,20 +135,10 @@ void glossyFloorAgainstReference(const std::string& backend) {
     // distance from perfect.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    scenes::SceneGeometry scene = scenes::cornellBox();
-    bool found = false;
-    for (scenes::TriangleMesh& m : scene.meshes)
-        if (m.name == "floor") {
-            m.albedo = glm::vec3(0.9f);
-            m.metalness = 1.0f;
-            m.roughness = 0.3f;
-            m.specular = true;
-            found = true;
-        }
-    REQUIRE(found);
+    const scenes::SceneGeometry scene = glossyFloorCornell();
     auto gi = giRenderer(td, scene, kCornellSize);
     frames(td, *gi, 64);
-    auto reference = pathTraced(td, scene, kCornellSize, 512);
+    auto reference = glossyFloorReference(td);
     const render::Image combined = gi->read(render::Aov::Combined), refCombined = reference.read(render::Aov::Combined);
     REQUIRE(allFinite(combined.rgb));
     const render::ImageMetrics c = render::compareImages(combined, refCombined);

@@ -6,6 +6,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "reference_cache.h"
+#include "shared_references.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -133,7 +134,7 @@ void cornellConverges(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry cornell = scenes::cornellBox();
-    const render::Image reference = pathTraced(td, cornell, 128, 512).read(render::Aov::Combined);
+    const render::Image reference = cornellReference(td).read(render::Aov::Combined);
     const render::Image at64 = renderScene(td, cornell, 128, 64, render::Aov::Combined, 3);
     const render::Image at16 = renderScene(td, cornell, 128, 16, render::Aov::Combined, 5);
     const render::ImageMetrics m64 = render::compareImages(at64, reference);

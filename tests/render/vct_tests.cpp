@@ -11,6 +11,7 @@
 #include "path_tracer.h"
 #include "raster_renderer.h"
 #include "reference_cache.h"
+#include "shared_references.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -18,7 +19,7 @@ using namespace bricklight::testing;
 
 namespace {
 
-constexpr uint32_t kCornellSize = 128;
+constexpr uint32_t kCornellSize = kSharedReferenceSize;  // 128
 
 render::RasterOptions vctOptions(uint32_t size, bool bounces = true) {
     render::RasterOptions o;
@@ -48,7 +49,7 @@ void cornellAgainstReference(const std::string& backend) {
     const scenes::SceneGeometry cornell = scenes::cornellBox();
     auto vct = vctRenderer(td, cornell, vctOptions(kCornellSize));
     frames(td, *vct, 16);
-    auto reference = pathTraced(td, cornell, kCornellSize, 512);
+    auto reference = cornellReference(td);
     const render::Image indirect = vct->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
     const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
@@ -72,7 +73,7 @@ void cornellSingleBounce(const std::string& backend) {
     const scenes::SceneGeometry cornell = scenes::cornellBox();
     auto vct = vctRenderer(td, cornell, vctOptions(kCornellSize, false));
     frames(td, *vct, 16);
-    auto reference = pathTraced(td, cornell, kCornellSize, 512, true, 1, 1);
+    auto reference = cornellOneBounceReference(td);
     const render::ImageMetrics m =
         render::compareImages(vct->read(render::Aov::IndirectDiffuse), reference.read(render::Aov::IndirectDiffuse));
     INFO("single bounce: relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
@@ -93,19 +94,12 @@ void glossyFloor(const std::string& backend) {
     // without.)
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    scenes::SceneGeometry scene = scenes::cornellBox();
-    for (scenes::TriangleMesh& m : scene.meshes)
-        if (m.name == "floor") {
-            m.albedo = glm::vec3(0.9f);
-            m.metalness = 1.0f;
-            m.roughness = 0.3f;
-            m.specular = true;
-        }
+    const scenes::SceneGeometry scene = glossyFloorCornell();
     render::RasterOptions o = vctOptions(kCornellSize);
     o.vctTrace.specularJitter = 1.0f;
     auto vct = vctRenderer(td, scene, o);
     frames(td, *vct, 16);
-    auto reference = pathTraced(td, scene, kCornellSize, 512);
+    auto reference = glossyFloorReference(td);
     const render::Image combined = vct->read(render::Aov::Combined), refCombined = reference.read(render::Aov::Combined);
     REQUIRE(allFinite(combined.rgb));
     const render::ImageMetrics c = render::compareImages(combined, refCombined);
@@ -236,7 +230,7 @@ void sdfOcclusionAgainstReference(const std::string& backend) {
     o.vctSdfOcclusion = true;
     auto vct = vctRenderer(td, cornell, o);
     frames(td, *vct, 16);
-    auto reference = pathTraced(td, cornell, kCornellSize, 512);
+    auto reference = cornellReference(td);
     const render::Image indirect = vct->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
     const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
@@ -271,7 +265,7 @@ void sdfGiWithUnseenLight(const std::string& backend) {
     o.giUnseenFromVct = true;
     auto gi = vctRenderer(td, cornell, o);
     frames(td, *gi, 32);
-    auto reference = pathTraced(td, cornell, kCornellSize, 512);
+    auto reference = cornellReference(td);
     const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
     REQUIRE(allFinite(indirect.rgb));
     const render::ImageMetrics m = render::compareImages(indirect, reference.read(render::Aov::IndirectDiffuse));
