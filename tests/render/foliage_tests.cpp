@@ -11,7 +11,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
-#include "reference_cache.h"
+#include "shared_references.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -111,10 +111,10 @@ void badGeneratedTextures(const std::string& backend) {
 void giFoliageVariants(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    constexpr uint32_t kSize = 64, kFrames = 16, kSpp = 256;
+    constexpr uint32_t kSize = 64, kFrames = 16;  // the reference: 64², 256 spp (shared_references.cpp)
     for (bool backLit : {false, true}) {
         const scenes::SceneGeometry s = foliageScene(backLit);
-        auto reference = pathTraced(td, s, kSize, kSpp);
+        auto reference = foliageReference(td, backLit);
         size_t grassPixels = 0;
         const std::vector<uint8_t> grass = grassMask(reference.read(render::Aov::Albedo), &grassPixels);
         REQUIRE(grassPixels > kSize * kSize / 8);

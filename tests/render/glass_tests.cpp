@@ -9,7 +9,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
-#include "reference_cache.h"
+#include "shared_references.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -130,7 +130,7 @@ void cornellGlassAgainstReference(const std::string& backend) {
     const render::Image glass = fastPath(td, scene, vxgiOptions(kCornellSize), 16);
     const render::Image opaque = fastPath(td, opaqueScene, vxgiOptions(kCornellSize), 16);
     REQUIRE(allFinite(glass.rgb));
-    const render::Image reference = pathTraced(td, scene, kCornellSize, 512).read(render::Aov::Combined);
+    const render::Image reference = cornellGlassReference(td).read(render::Aov::Combined);  // kCornellSize², 512 spp
     const render::ImageMetrics whole = render::compareImages(glass, reference);
     const render::ImageMetrics inGlass = render::compareImages(glass, reference, &mask);
     const render::ImageMetrics asOpaque = render::compareImages(opaque, reference, &mask);

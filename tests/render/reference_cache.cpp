@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "bricklight/rhi_validation.h"
+#include "committed_references.h"
 #include "bricklight/shader_blob.h"
 
 namespace bricklight::testing {
@@ -48,9 +49,9 @@ bool cacheEnabled() {
     return !(v && std::strcmp(v, "0") == 0);
 }
 
-// Every shader blob the recording names ("createShader" lines carry the blob's name): its GL source and its
-// SPIR-V go into the key, so an edited shader never meets an image traced with the old one.
-void addShaders(Hash128& h, const std::string& recording) {
+// Every shader blob the recording names ("createShader" lines carry the blob's name): its GL source (and, for
+// the cache's key, its SPIR-V) go into the key, so an edited shader never meets an image traced with the old one.
+void addShaders(Hash128& h, const std::string& recording, bool withSpirv) {
     const std::string marker = "\"blob\":\"";
     for (size_t at = recording.find(marker); at != std::string::npos; at = recording.find(marker, at + 1)) {
         const size_t start = at + marker.size(), end = recording.find('"', start);
@@ -59,7 +60,7 @@ void addShaders(Hash128& h, const std::string& recording) {
         h.add(name);
         if (!blob) continue;
         h.add(blob->glsl ? std::string(blob->glsl) : std::string());
-        h.add(blob->spirv, blob->spirvWords * sizeof(uint32_t));
+        if (withSpirv) h.add(blob->spirv, blob->spirvWords * sizeof(uint32_t));
     }
 }
 
@@ -122,8 +123,12 @@ private:
 
 }  // namespace
 
-std::string referenceKey(TestDevice& td, const scenes::SceneGeometry& scene, const render::PathTracerOptions& options, uint32_t spp) {
-    std::unique_ptr<rhi::IDevice> null = rhi::createNullDevice(&td.device->capabilities());
+namespace {
+
+// The path tracer's creation and samples recorded on a null device with `capabilities` ("" if it refuses them).
+std::string recordedTrace(const rhi::Capabilities* capabilities, const scenes::SceneGeometry& scene, const render::PathTracerOptions& options,
+                          uint32_t spp) {
+    std::unique_ptr<rhi::IDevice> null = rhi::createNullDevice(capabilities);
     std::ostringstream recording;
     {
         std::unique_ptr<rhi::IDevice> recorder = rhi::createRecordingDevice(*null, recording);
@@ -132,13 +137,30 @@ std::string referenceKey(TestDevice& td, const scenes::SceneGeometry& scene, con
         if (!tracer) return "";  // the real device refuses it too: the caller reports why
         tracer->addSamples(spp);
     }
+    return recording.str();
+}
+
+}  // namespace
+
+std::string referenceKey(TestDevice& td, const scenes::SceneGeometry& scene, const render::PathTracerOptions& options, uint32_t spp) {
+    const std::string text = recordedTrace(&td.device->capabilities(), scene, options, spp);
+    if (text.empty()) return "";
     Hash128 h;
     h.add(std::string("bricklight path-traced reference 1"));
     h.add(td.backend);
     h.add(td.device->capabilities().deviceName);
-    const std::string text = recording.str();
     h.add(text);
-    addShaders(h, text);
+    addShaders(h, text, true);
+    return h.hex();
+}
+
+std::string portableReferenceKey(const scenes::SceneGeometry& scene, const render::PathTracerOptions& options, uint32_t spp) {
+    const std::string text = recordedTrace(nullptr, scene, options, spp);
+    if (text.empty()) return "";
+    Hash128 h;
+    h.add(std::string("bricklight portable path-traced reference 1"));
+    h.add(text);
+    addShaders(h, text, false);
     return h.hex();
 }
 
@@ -163,6 +185,10 @@ Reference pathTraced(TestDevice& td, const scenes::SceneGeometry& scene, const r
     FileLock lock(base + ".lock");
     if (readFile(base + ".ref", options, spp, r.aovs_)) {
         r.fromCache_ = true;
+        return r;
+    }
+    if (readCommittedReference(portableReferenceKey(scene, options, spp), options.width, options.height, spp, r.aovs_)) {
+        r.fromCommitted_ = true;
         return r;
     }
     trace();

@@ -9,7 +9,7 @@
 #include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
-#include "reference_cache.h"
+#include "shared_references.h"
 #include "render_test_support.h"
 
 using namespace bricklight;
@@ -73,7 +73,7 @@ FloorResult floorAgainstReference(const std::string& backend, float roughness) {
     frames(td, *gi, kFrames);
     frames(td, *hybrid, kFrames);
     REQUIRE(hybrid->reflectionClassifier());
-    auto reference = pathTraced(td, scene, kSize, 512, true, 1, /*maxBounces*/ 1);
+    auto reference = mirrorFloorReference(td, roughness);  // kSize², 512 spp, one bounce
     const std::vector<uint8_t> mask = floorMask(*hybrid);
     REQUIRE(count(mask) > kSize * kSize / 16);  // about 9 % of the image
     const render::Image ref = reference.read(render::Aov::Combined);

@@ -1,8 +1,13 @@
-// The path-traced references several comparisons share. The test "path-traced references the comparisons share"
-// traces them once per backend, and ctest runs it before the comparisons that read them (a fixture:
+// The path-traced references the comparisons read, as recipes: each is committed under tests/references/
+// (committed_references.h; scripts/update_test_references.sh traces them anew), so a fresh build tree reads
+// instead of tracing. When a recipe's file is stale or missing, the test "path-traced references the comparisons
+// share" traces it once per backend, and ctest runs it before the comparisons that read it (a fixture:
 // tests/schedule/reference_fixtures.cmake), so that no comparison waits with a core idle while another traces the
-// image it needs. Run alone, a comparison traces (or reads) the image itself: reference_cache.h.
+// image it needs; the test "committed references are current" fails and names the file.
 #pragma once
+
+#include <string>
+#include <vector>
 
 #include "reference_cache.h"
 
@@ -15,8 +20,22 @@ constexpr uint32_t kSharedReferenceSpp = 512;
 // tracing's specular comparisons.
 scenes::SceneGeometry glossyFloorCornell();
 
+struct ReferenceRecipe {
+    std::string name;  // tests/references/<name>.exr
+    scenes::SceneGeometry scene;
+    render::PathTracerOptions options;
+    uint32_t spp = 0;
+};
+
+// Every committed reference's recipe.
+std::vector<ReferenceRecipe> referenceRecipes();
+ReferenceRecipe referenceRecipe(const std::string& name);  // fails the test if there is none of that name
+
 Reference cornellReference(TestDevice& td);           // every bounce
 Reference cornellOneBounceReference(TestDevice& td);  // maxBounces 1
 Reference glossyFloorReference(TestDevice& td);
+Reference foliageReference(TestDevice& td, bool sunBehindCards);  // foliage_test_support.h's scene, 64², 256 spp
+Reference mirrorFloorReference(TestDevice& td, float roughness);   // cornellMirror(0.05 or 0.3), 1 bounce
+Reference cornellGlassReference(TestDevice& td);
 
 }  // namespace bricklight::testing
