@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The CPU-side code under AddressSanitizer + UndefinedBehaviorSanitizer, and a short fuzz run:
 #   1. configures <work-dir>/build with clang, BRICKLIGHT_SANITIZE=ON and BRICKLIGHT_FUZZ=ON, without the GPU
-#      backends, and builds only the CPU-side test programs (target bricklight-cpu-tests) and the fuzzers;
+#      backends, as a unity build (two thirds of the time), and builds only the CPU-side test programs (target
+#      bricklight-cpu-tests) and the fuzzers;
 #   2. runs the CPU-side tests there (ctest -L cpu): any sanitizer report fails its test;
 #   3. runs every fuzzer for BRICKLIGHT_FUZZ_SECONDS seconds (default 20) from its seeds
 #      (tests/fuzz/seeds/<fuzzer>/) and prints how many inputs it ran; a crash, a leak, a timeout or an
@@ -31,7 +32,7 @@ step() { echo "== [$((SECONDS - start)) s] $*"; }
 step "configure (clang, ASan + UBSan, fuzzers, no GPU backend)"
 cmake -S "$root" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DBRICKLIGHT_SANITIZE=ON -DBRICKLIGHT_FUZZ=ON \
-  -DBRICKLIGHT_VULKAN=OFF -DBRICKLIGHT_GL=OFF -DBRICKLIGHT_INSTALL=OFF "${shaderc[@]}" > "$work/configure.log" ||
+  -DBRICKLIGHT_VULKAN=OFF -DBRICKLIGHT_GL=OFF -DBRICKLIGHT_INSTALL=OFF -DCMAKE_UNITY_BUILD=ON "${shaderc[@]}" > "$work/configure.log" ||
   { cat "$work/configure.log"; exit 1; }
 step "build the CPU-side tests and the fuzzers"
 # The build runs bricklight-shaderc, itself built with the sanitizers: glslang keeps its pools to the end.

@@ -11,12 +11,12 @@ namespace bricklight::classify {
 namespace {
 
 // reflection_denoise_params.glsl's Params (std430).
-struct Params {
+struct ReflectionDenoiseParams {
     glm::mat4 inverseViewProjection, previousViewProjection, previousInverseViewProjection;
     glm::vec4 eye, normalScale, normalOffset;
     glm::uvec4 size, list;
 };
-static_assert(sizeof(Params) == 64 * 3 + 16 * 5);
+static_assert(sizeof(ReflectionDenoiseParams) == 64 * 3 + 16 * 5);
 
 }  // namespace
 
@@ -45,7 +45,7 @@ std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& dev
         d->historyDepth_[i] = device.createTexture(td);
     }
     rhi::BufferDesc bd;
-    bd.size = sizeof(Params);
+    bd.size = sizeof(ReflectionDenoiseParams);
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "reflection denoiser parameters";
     d->params_ = device.createBuffer(bd);
@@ -122,7 +122,7 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
     const glm::dmat4 previousViewProjection = glm::dmat4(d.previousProjection) * glm::dmat4(d.previousView);
     if (std::abs(glm::determinant(viewProjection)) < 1e-30 || std::abs(glm::determinant(previousViewProjection)) < 1e-30)
         return fail("the camera's view-projection (this frame's or the previous) is not invertible");
-    Params p{};
+    ReflectionDenoiseParams p{};
     p.inverseViewProjection = glm::mat4(glm::inverse(viewProjection));
     p.previousViewProjection = glm::mat4(previousViewProjection);
     p.previousInverseViewProjection = glm::mat4(glm::inverse(previousViewProjection));

@@ -14,7 +14,7 @@ constexpr uint32_t kCountWords = 8;
 constexpr uint32_t kAlphaCacheHeaderWords = 4;  // BL_ALPHA_CACHE_HEADER: the least an alpha cache buffer holds
 
 // The pass's parameters (the Params block of classify_shadows.comp, std430).
-struct Params {
+struct ShadowClassifyParams {
     glm::mat4 inverseViewProjection;
     glm::mat4 worldToShadow[kMaxShadowCascades];
     glm::vec4 uvRect[kMaxShadowCascades];
@@ -22,8 +22,8 @@ struct Params {
     glm::uvec4 size, options, options2;
     glm::vec4 trace, trust;
 };
-static_assert(sizeof(Params) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16 * 2);
-static_assert(sizeof(Params) == kShadowParamsBytes);
+static_assert(sizeof(ShadowClassifyParams) == 64 * 5 + 16 * 4 + 16 * 4 + 16 * 3 + 16 * 2);
+static_assert(sizeof(ShadowClassifyParams) == kShadowParamsBytes);
 
 }  // namespace
 
@@ -48,7 +48,7 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead | rhi::BufferUsage::IndirectArgs;
     bd.debugName = "shadow tile count";
     c->count_ = device.createBuffer(bd);
-    bd.size = sizeof(Params);
+    bd.size = sizeof(ShadowClassifyParams);
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "shadow classifier parameters";
     c->params_ = device.createBuffer(bd);
@@ -136,7 +136,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
         if (ad->size < kAlphaCacheHeaderWords * 4)
             return fail("alphaCache '" + ad->debugName + "' holds " + std::to_string(ad->size) + " bytes, less than the cache's 16-byte header");
     }
-    Params p{};
+    ShadowClassifyParams p{};
     p.inverseViewProjection = inverse;
     p.sun = glm::vec4(d.sunDirection / sunLength, std::tan(0.5f * d.sunAngle));
     p.normalScale = glm::vec4(d.normalsUnpackScale, d.blockerOffset);

@@ -12,12 +12,12 @@ namespace bricklight::classify {
 namespace {
 
 // The passes' parameters (the Params block of denoise_shadows_common.glsl, std430).
-struct Params {
+struct ShadowDenoiseParams {
     glm::mat4 inverseViewProjection, previousViewProjection, inversePreviousViewProjection;
     glm::vec4 eye, normalScale, normalBias;
     glm::uvec4 size, options;
 };
-static_assert(sizeof(Params) == 272);
+static_assert(sizeof(ShadowDenoiseParams) == 272);
 
 }  // namespace
 
@@ -57,7 +57,7 @@ std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, uin
     td.debugName = "shadow denoiser tiles";
     d->listed_ = device.createTexture(td);
     rhi::BufferDesc bd;
-    bd.size = sizeof(Params);
+    bd.size = sizeof(ShadowDenoiseParams);
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "shadow denoiser parameters";
     d->params_ = device.createBuffer(bd);
@@ -123,7 +123,7 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     if (d.filterPasses > kMaxShadowFilterPasses)
         return fail("filterPasses " + std::to_string(d.filterPasses) + " is outside 0.." + std::to_string(kMaxShadowFilterPasses));
 
-    Params p{};
+    ShadowDenoiseParams p{};
     p.inverseViewProjection = inverse;
     p.previousViewProjection = previous;
     p.inversePreviousViewProjection = inversePrevious;

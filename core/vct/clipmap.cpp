@@ -23,12 +23,6 @@ bool checkVoxelMaterial(const VoxelMaterial& m, std::string* error) {
 
 namespace {
 
-rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader(name);
-    return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-}
-
 // The constants of the clear and downsampling passes: one box of one level.
 struct BoxConstants {
     glm::ivec4 minLevel, size;
@@ -56,21 +50,21 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
                     std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: use isotropic emittance, fewer levels or a lower resolution");
     shaders::link_bricklight_core();
     std::unique_ptr<Clipmap> c(new Clipmap(device, *placement));
-    c->clearBoxes_ = makeShader(device, "vct/clear_boxes.comp");
-    c->clearEmittance_ = makeShader(device, "vct/clear_emittance_boxes.comp");
-    c->downsample_ = makeShader(device, "vct/downsample.comp");
-    c->debugView_ = makeShader(device, "vct/debug_view.comp");
+    c->clearBoxes_ = shaders::createCoreShader(device, "vct/clear_boxes.comp");
+    c->clearEmittance_ = shaders::createCoreShader(device, "vct/clear_emittance_boxes.comp");
+    c->downsample_ = shaders::createCoreShader(device, "vct/downsample.comp");
+    c->debugView_ = shaders::createCoreShader(device, "vct/debug_view.comp");
     const char* resolve = desc.emittance == EmittanceMode::Anisotropic ? "vct/resolve_anisotropic.comp"
                           : desc.emittance == EmittanceMode::Isotropic ? "vct/resolve_isotropic.comp"
                                                                        : "vct/resolve_opacity.comp";
-    c->resolve_ = makeShader(device, resolve);
+    c->resolve_ = shaders::createCoreShader(device, resolve);
     const char* mips = desc.emittance == EmittanceMode::Anisotropic ? "vct/mip_build_anisotropic.comp"
                        : desc.emittance == EmittanceMode::Isotropic ? "vct/mip_build_isotropic.comp"
                                                                     : "vct/mip_build_opacity.comp";
-    c->mipBuild_ = makeShader(device, mips);
+    c->mipBuild_ = shaders::createCoreShader(device, mips);
     if (device.capabilities().geometryShader) {
-        c->voxelizeGeometry_ = makeShader(device, "vct/voxelize.geom");
-        c->voxelizeOpacity_ = makeShader(device, "vct/voxelize_opacity.frag");
+        c->voxelizeGeometry_ = shaders::createCoreShader(device, "vct/voxelize.geom");
+        c->voxelizeOpacity_ = shaders::createCoreShader(device, "vct/voxelize_opacity.frag");
     }
     rhi::TextureDesc td;
     td.dimension = rhi::TextureDimension::Texture3D;

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "bricklight/vct.h"
+#include "../core_shaders.h"
 
 namespace bricklight::vct {
 
@@ -12,12 +13,6 @@ namespace {
 constexpr uint32_t kRecordedCones = kSpecularCone + 1;
 constexpr uint64_t kHeaderBytes = (kRecordedCones + 3) * 4;  // the counts, padded to 16 bytes (cone_samples_layout.glsl)
 constexpr uint64_t kRecordBytes = kHeaderBytes + uint64_t(kRecordedCones) * kMaxConeSamples * 3 * 16;
-
-rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader(name);
-    return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-}
 
 }  // namespace
 
@@ -39,9 +34,9 @@ bool ConeTracer::debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle out
         if (!device_.describe(t)) return fail("an input of the latest dispatch is no longer live");
     if (d.motionVectors && !device_.describe(d.motionVectors)) return fail("an input of the latest dispatch is no longer live");
     if (!coneSampleRecord_) {
-        coneSamples_ = makeShader(device_, "vct/cone_samples.comp");
-        coneSamplesSdf_ = makeShader(device_, "vct/cone_samples_sdf.comp");
-        coneSamplesView_ = makeShader(device_, "vct/cone_samples_view.comp");
+        coneSamples_ = shaders::createCoreShader(device_, "vct/cone_samples.comp");
+        coneSamplesSdf_ = shaders::createCoreShader(device_, "vct/cone_samples_sdf.comp");
+        coneSamplesView_ = shaders::createCoreShader(device_, "vct/cone_samples_view.comp");
         rhi::BufferDesc bd;
         bd.size = kRecordBytes;
         bd.usage = rhi::BufferUsage::ShaderRead | rhi::BufferUsage::ShaderWrite;

@@ -45,12 +45,6 @@ struct TraceParamsBlock {
 };
 static_assert(sizeof(TraceParamsBlock) == 272);
 
-rhi::ShaderHandle makeShader(rhi::IDevice& device, const char* name) {
-    rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader(name);
-    return sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-}
-
 rhi::TextureHandle makeTexture(rhi::IDevice& device, uint32_t w, uint32_t h, rhi::Format format, const char* name) {
     rhi::TextureDesc td;
     td.width = w;
@@ -77,11 +71,11 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     std::unique_ptr<ConeTracer> t(new ConeTracer(device, clipmap));
     t->width_ = width;
     t->height_ = height;
-    t->traceDiffuse_ = makeShader(device, "vct/trace_diffuse.comp");
-    t->resolveDiffuse_ = makeShader(device, "vct/resolve_diffuse.comp");
-    t->traceSpecular_ = makeShader(device, "vct/trace_specular.comp");
-    t->traceDiffuseSdf_ = makeShader(device, "vct/trace_diffuse_sdf.comp");
-    t->traceSpecularSdf_ = makeShader(device, "vct/trace_specular_sdf.comp");
+    t->traceDiffuse_ = shaders::createCoreShader(device, "vct/trace_diffuse.comp");
+    t->resolveDiffuse_ = shaders::createCoreShader(device, "vct/resolve_diffuse.comp");
+    t->traceSpecular_ = shaders::createCoreShader(device, "vct/trace_specular.comp");
+    t->traceDiffuseSdf_ = shaders::createCoreShader(device, "vct/trace_diffuse_sdf.comp");
+    t->traceSpecularSdf_ = shaders::createCoreShader(device, "vct/trace_specular_sdf.comp");
     const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
                                {"vct specular history 0", "vct specular history 1"},
                                {"vct guide 0", "vct guide 1"}};
