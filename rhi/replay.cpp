@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "bricklight/rhi_validation.h"
+#include "bricklight/shader_blob.h"
 #include "record_json.h"
 #include "size_math.h"
 
@@ -19,6 +20,18 @@ using record::Fields;
 using record::json;
 
 enum class LineStatus { Line, End, TooLong };
+
+// A line past one of ReplayOptions' work or memory budgets (ReplayStats::overBudget).
+struct OverBudget : DecodeError {
+    using DecodeError::DecodeError;
+};
+
+uint64_t saturatingProduct(std::initializer_list<uint64_t> factors) {
+    uint64_t p = 1;
+    for (uint64_t f : factors)
+        if (__builtin_mul_overflow(p, f, &p)) return UINT64_MAX;
+    return p;
+}
 
 // One line, without its '\n', stopping (TooLong) as soon as it exceeds `maxBytes`: std::getline would first
 // read a line of any length into memory.
@@ -72,7 +85,8 @@ public:
 
     // Executes one recorded call; throws DecodeError when the line cannot be understood (nothing has been
     // called then). Returns whether the device accepted the call.
-    bool replay(const json& line) {
+    bool replay(const json& line, uint64_t lineNumber) {
+        lineNumber_ = lineNumber;
         const Fields f(line, "");
         const std::string& call = f.string("call");
         ctx_.startLine(options_.maxDataBytes);
@@ -98,6 +112,8 @@ public:
         if (it == handlers.end()) throw DecodeError("call: unknown call '" + call.substr(0, 64) + "'");
         try {
             return (this->*it->second)(f);
+        } catch (const OverBudget& e) {
+            throw OverBudget(call + ": " + e.what());
         } catch (const DecodeError& e) {
             throw DecodeError(call + ": " + e.what());
         }
@@ -136,9 +152,13 @@ private:
                 throw DecodeError("data: " + std::to_string(initial->size()) + " bytes, but the description needs " +
                                   (need ? std::to_string(*need) : std::string("a size that cannot be computed")));
         }
+        notLive(liveTextures_, result, "texture");
+        const uint64_t bytes = sizes::textureBytes(desc).value_or(0);  // 0: the device refuses the description
+        reserveBytes(bytes, "texture");
         // A wrapped native texture cannot be replayed elsewhere: an ordinary texture stands in for it.
         const TextureHandle h = device_.createTexture(desc, initial ? initial->data() : nullptr);
         remember(ctx_.textures, result, h.id);
+        if (h && result) liveTextures_[result] = {lineNumber_, bytes}, addLiveBytes(bytes);
         return bool(h);
     }
     bool createBuffer(const Fields& f) {
@@ -147,14 +167,20 @@ private:
         const std::vector<uint8_t>* initial = data(f);
         if (initial && initial->size() != desc.size)
             throw DecodeError("data: " + std::to_string(initial->size()) + " bytes, but desc.size is " + std::to_string(desc.size));
+        notLive(liveBuffers_, result, "buffer");
+        reserveBytes(desc.size, "buffer");
         const BufferHandle h = device_.createBuffer(desc, initial ? initial->data() : nullptr);
         remember(ctx_.buffers, result, h.id);
+        if (h && result) liveBuffers_[result] = {lineNumber_, desc.size}, addLiveBytes(desc.size);
         return bool(h);
     }
     bool createSampler(const Fields& f) {
         const uint32_t result = f.u32("result");
-        const SamplerHandle h = device_.createSampler(record::decodeSamplerDesc(f.object("desc")));
+        const SamplerDesc desc = record::decodeSamplerDesc(f.object("desc"));
+        notLive(liveSamplers_, result, "sampler");
+        const SamplerHandle h = device_.createSampler(desc);
         remember(ctx_.samplers, result, h.id);
+        if (h && result) liveSamplers_[result] = {lineNumber_, 0};
         return bool(h);
     }
     bool createShader(const Fields& f) {
@@ -165,17 +191,19 @@ private:
         // An empty name is a recorded call with a null blob, which fails again; any other name must be here.
         if (!name.empty() && !(desc.blob = findShader(name.c_str())))
             throw DecodeError("blob: shader '" + name.substr(0, 128) + "' is not embedded in this program");
+        notLive(liveShaders_, result, "shader");
         const ShaderHandle h = device_.createShader(desc);
         remember(ctx_.shaders, result, h.id);
+        if (h && result) liveShaders_[result] = {lineNumber_, 0}, shaderBlobs_[h.id] = desc.blob;
         return bool(h);
     }
-    bool destroyTexture(const Fields& f) { return device_.destroy(texture(f, "handle")), true; }
-    bool destroyBuffer(const Fields& f) { return device_.destroy(buffer(f, "handle")), true; }
+    bool destroyTexture(const Fields& f) { return device_.destroy(texture(f, "handle")), forget(liveTextures_, f), true; }
+    bool destroyBuffer(const Fields& f) { return device_.destroy(buffer(f, "handle")), forget(liveBuffers_, f), true; }
     bool destroySampler(const Fields& f) {
-        return device_.destroy(ctx_.map<SamplerHandle>(ctx_.samplers, f.at("handle"), f.path("handle"))), true;
+        return device_.destroy(ctx_.map<SamplerHandle>(ctx_.samplers, f.at("handle"), f.path("handle"))), forget(liveSamplers_, f), true;
     }
     bool destroyShader(const Fields& f) {
-        return device_.destroy(ctx_.map<ShaderHandle>(ctx_.shaders, f.at("handle"), f.path("handle"))), true;
+        return device_.destroy(ctx_.map<ShaderHandle>(ctx_.shaders, f.at("handle"), f.path("handle"))), forget(liveShaders_, f), true;
     }
 
     bool writeBuffer(const Fields& f) {
@@ -273,18 +301,26 @@ private:
         uint32_t groups[3];
         for (size_t i = 0; i < 3; ++i)
             groups[i] = uint32_t(record::readUnsigned(g[i], UINT32_MAX, "groups[" + std::to_string(i) + "]", "uint32"));
+        checkDispatchWork(s, groups, "groups");
         return device_.dispatch(s, groups[0], groups[1], groups[2]);
     }
     bool dispatchIndirect(const Fields& f) {
         const DispatchState s = record::decodeDispatch(f.object("state"), ctx_);
         const BufferHandle args = buffer(f, "args");
-        return device_.dispatchIndirect(s, args, f.u64("offset"));
+        const uint64_t offset = f.u64("offset");
+        DispatchIndirectArgs a{};
+        if (readIndirect(args, offset, &a, sizeof a)) {
+            const uint32_t groups[3] = {a.x, a.y, a.z};
+            checkDispatchWork(s, groups, "the argument buffer's groups");
+        }
+        return device_.dispatchIndirect(s, args, offset);
     }
     bool draw(const Fields& f) {
         const DrawCallState s = record::decodeDraw(f.object("state"), ctx_);
         const json& a = f.tuple("args", 4);
         uint32_t v[4];
         for (size_t i = 0; i < 4; ++i) v[i] = uint32_t(record::readUnsigned(a[i], UINT32_MAX, "args[" + std::to_string(i) + "]", "uint32"));
+        checkDrawWork(v[0], v[1], "vertices", "args");
         return device_.draw(s, DrawArgs{v[0], v[1], v[2], v[3]});
     }
     bool drawIndexed(const Fields& f) {
@@ -292,25 +328,101 @@ private:
         const json& a = f.tuple("args", 5);
         auto u = [&](size_t i) { return uint32_t(record::readUnsigned(a[i], UINT32_MAX, "args[" + std::to_string(i) + "]", "uint32")); };
         const DrawIndexedArgs args{u(0), u(1), u(2), int32_t(record::readSigned(a[3], INT32_MIN, INT32_MAX, "args[3]", "int32")), u(4)};
+        checkDrawWork(args.indexCount, args.instanceCount, "indices", "args");
         return device_.drawIndexed(s, args);
     }
     bool drawIndirect(const Fields& f) {
         const DrawCallState s = record::decodeDraw(f.object("state"), ctx_);
         const BufferHandle args = buffer(f, "args");
         const uint64_t offset = f.u64("offset");
-        return device_.drawIndirect(s, args, offset, f.boolean("indexed"));
+        const bool indexed = f.boolean("indexed");
+        DrawIndexedArgs a{};  // DrawArgs' first two fields are the same counts
+        if (readIndirect(args, offset, &a, indexed ? sizeof(DrawIndexedArgs) : sizeof(DrawArgs)))
+            checkDrawWork(a.indexCount, a.instanceCount, indexed ? "indices" : "vertices", "the argument buffer");
+        return device_.drawIndirect(s, args, offset, indexed);
     }
 
-    bool beginMarker(const Fields& f) { return device_.beginMarker(f.string("label").c_str()), true; }
-    bool endMarker(const Fields&) { return device_.endMarker(), true; }
+    bool beginMarker(const Fields& f) {
+        const std::string& label = f.string("label");
+        if (openMarkers_ >= options_.maxMarkerDepth)
+            throw OverBudget("a marker opened inside " + std::to_string(openMarkers_) + " open ones, more than the budget of " +
+                             std::to_string(options_.maxMarkerDepth) + " (ReplayOptions::maxMarkerDepth; an endMarker missing?)");
+        ++openMarkers_;
+        return device_.beginMarker(label.c_str()), true;
+    }
+    bool endMarker(const Fields&) {
+        if (openMarkers_) --openMarkers_;
+        return device_.endMarker(), true;
+    }
     bool setTimingEnabled(const Fields& f) { return device_.setTimingEnabled(f.boolean("enabled")), true; }
     bool setTimingDepth(const Fields& f) { return device_.setTimingDepth(f.u32("depth")), true; }
     bool endFrame(const Fields&) { return device_.endFrame(), pollReadbacks(), true; }
     bool waitIdle(const Fields&) { return device_.waitIdle(), pollReadbacks(), true; }
 
+    // A recorded result id that is still live may not be created again: every later line naming it would be
+    // ambiguous. (An id destroyed earlier may be: an engine's RHI may reuse ids.)
+    struct LiveObject {
+        uint64_t line = 0;   // where it was created
+        uint64_t bytes = 0;  // textures and buffers: what it counts against maxLiveBytes
+    };
+    void notLive(const std::unordered_map<uint32_t, LiveObject>& live, uint32_t result, const char* kind) const {
+        auto it = live.find(result);
+        if (it != live.end())
+            throw DecodeError("result: " + std::string(kind) + " #" + std::to_string(result) + " is already live (created at line " +
+                              std::to_string(it->second.line) + " and not destroyed since)");
+    }
+    void forget(std::unordered_map<uint32_t, LiveObject>& live, const Fields& f) {
+        auto it = live.find(uint32_t(record::readUnsigned(f.at("handle"), UINT32_MAX, f.path("handle"), "handle id")));
+        if (it == live.end()) return;
+        liveBytes_ = liveBytes_ == UINT64_MAX ? UINT64_MAX : liveBytes_ - it->second.bytes;  // saturated: stays so
+        live.erase(it);
+    }
+    void addLiveBytes(uint64_t bytes) {
+        if (__builtin_add_overflow(liveBytes_, bytes, &liveBytes_)) liveBytes_ = UINT64_MAX;
+    }
+    void reserveBytes(uint64_t bytes, const char* kind) const {
+        if (options_.maxLiveBytes == UINT64_MAX) return;  // no budget (liveBytes_ may have saturated)
+        if (bytes > options_.maxLiveBytes || liveBytes_ > options_.maxLiveBytes - bytes)
+            throw OverBudget("a " + std::string(kind) + " of " + std::to_string(bytes) + " bytes with " + std::to_string(liveBytes_) +
+                             " bytes already live exceeds the budget of " + std::to_string(options_.maxLiveBytes) +
+                             " bytes (ReplayOptions::maxLiveBytes)");
+    }
+    void checkDispatchWork(const DispatchState& s, const uint32_t groups[3], const std::string& what) const {
+        auto blob = shaderBlobs_.find(s.shader.id);
+        if (blob == shaderBlobs_.end() || !blob->second) return;  // no such shader: the device refuses the call
+        const uint32_t* local = blob->second->reflection.localSize;
+        const uint64_t invocations = saturatingProduct({groups[0], groups[1], groups[2], local[0], local[1], local[2]});
+        if (invocations > options_.maxDispatchInvocations)
+            throw OverBudget(what + ": " + std::to_string(groups[0]) + " x " + std::to_string(groups[1]) + " x " + std::to_string(groups[2]) +
+                             " groups of " + std::to_string(uint64_t(local[0]) * local[1] * local[2]) + " invocations (" +
+                             (invocations == UINT64_MAX ? std::string("more than 2^64") : std::to_string(invocations)) +
+                             ") exceed the budget of " + std::to_string(options_.maxDispatchInvocations) +
+                             " invocations per dispatch (ReplayOptions::maxDispatchInvocations)");
+    }
+    void checkDrawWork(uint32_t count, uint32_t instances, const char* unit, const std::string& what) const {
+        const uint64_t work = uint64_t(count) * instances;
+        if (work > options_.maxDrawVertices)
+            throw OverBudget(what + ": " + std::to_string(count) + " " + unit + " x " + std::to_string(instances) + " instances (" +
+                             std::to_string(work) + ") exceed the budget of " + std::to_string(options_.maxDrawVertices) +
+                             " per draw (ReplayOptions::maxDrawVertices)");
+    }
+    // An indirect call's arguments as the GPU will read them; false when they cannot be read (the device then
+    // refuses the call itself) or the budget is not to be applied.
+    bool readIndirect(BufferHandle args, uint64_t offset, void* out, uint64_t size) {
+        if (!options_.boundIndirectWork) return false;
+        const BufferDesc* d = device_.describe(args);
+        if (!d || !sizes::rangeInside(offset, size, d->size)) return false;
+        return device_.readBuffer(args, offset, size, out);
+    }
+
     IDevice& device_;
     const ReplayOptions& options_;
     DecodeContext ctx_;
+    uint64_t lineNumber_ = 0;
+    std::unordered_map<uint32_t, LiveObject> liveTextures_, liveBuffers_, liveSamplers_, liveShaders_;  // by recorded id
+    std::unordered_map<uint32_t, const ShaderBlob*> shaderBlobs_;                                     // by live id
+    uint64_t liveBytes_ = 0;
+    uint32_t openMarkers_ = 0;
     std::vector<std::pair<uint64_t, uint64_t>> pendingReadbacks_;  // ticket, size
 };
 
@@ -340,13 +452,17 @@ bool replayStream(std::istream& in, IDevice& device, const ReplayOptions& option
             return false;
         }
         try {
-            const bool accepted = replayer.replay(j);
+            const bool accepted = replayer.replay(j, lineNumber);
             ++stats.calls;
             if (!accepted) {
                 if (!stats.failedCalls) stats.firstFailedLine = lineNumber;
                 ++stats.failedCalls;
                 if (options.onFailedCall) options.onFailedCall(lineNumber, j.at("call").get<std::string>());
             }
+        } catch (const OverBudget& e) {
+            *message = e.what();
+            stats.overBudget = true;
+            return false;
         } catch (const DecodeError& e) {
             *message = e.what();
             return false;

@@ -63,4 +63,26 @@ std::optional<uint64_t> textureBytes(const TextureDesc& d) {
     return multiply(perLayer, layered(d) ? d.depthOrLayers : 1);
 }
 
+uint32_t vertexFormatBytes(VertexFormat format) {
+    switch (format) {
+        case VertexFormat::Float1: return 4;
+        case VertexFormat::Float2: return 8;
+        case VertexFormat::Float3: return 12;
+        case VertexFormat::Float4: return 16;
+        case VertexFormat::UByte4Norm: return 4;
+        case VertexFormat::UInt1: return 4;
+        case VertexFormat::Half4: return 8;
+    }
+    return 0;
+}
+
+std::optional<uint64_t> fetchEnd(uint64_t offset, uint64_t first, uint64_t count, uint64_t stride, uint64_t elementBytes) {
+    if (count == 0) return std::nullopt;
+    uint64_t last, start, end;
+    if (__builtin_add_overflow(first, count - 1, &last) || __builtin_mul_overflow(last, stride, &start) ||
+        __builtin_add_overflow(start, offset, &start) || __builtin_add_overflow(start, elementBytes, &end))
+        return std::nullopt;
+    return end;
+}
+
 }  // namespace bricklight::rhi::sizes

@@ -23,6 +23,14 @@ inline bool rangeInside(uint64_t offset, uint64_t size, uint64_t total) {
     return offset <= total && size <= total - offset;
 }
 
+// Bytes one vertex input of `format` reads (0 for a value outside the enum).
+uint32_t vertexFormatBytes(VertexFormat format);
+
+// The end (exclusive) of the bytes elements first .. first + count - 1 read from a buffer: element i starts at
+// offset + i * stride and reads `elementBytes`; nullopt for count 0 or when the end does not fit 64 bits (a
+// first vertex near 2^32 times a large stride).
+std::optional<uint64_t> fetchEnd(uint64_t offset, uint64_t first, uint64_t count, uint64_t stride, uint64_t elementBytes);
+
 // Bytes of one subresource as readTexture/writeTexture move them; nullopt when the subresource is outside
 // the texture (mip or layers), the format has no size, or the count does not fit 64 bits.
 std::optional<uint64_t> subresourceBytes(const TextureDesc& desc, TextureSubresource sub);

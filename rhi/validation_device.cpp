@@ -27,7 +27,7 @@ public:
         checkTextureDesc(desc, caps(), r);
         if (!finish(r)) return {};
         TextureHandle h = inner_.createTexture(desc, initialData);
-        if (h) objects_.textures[h.id] = desc;
+        if (h) adopt(objects_.textures, h.id, desc, "createTexture" + labelOf(desc.debugName.c_str()), "texture");
         return h;
     }
     BufferHandle createBuffer(const BufferDesc& desc, const void* initialData) override {
@@ -35,7 +35,7 @@ public:
         checkBufferDesc(desc, r);
         if (!finish(r)) return {};
         BufferHandle h = inner_.createBuffer(desc, initialData);
-        if (h) objects_.buffers[h.id] = desc;
+        if (h) adopt(objects_.buffers, h.id, desc, "createBuffer" + labelOf(desc.debugName.c_str()), "buffer");
         return h;
     }
     SamplerHandle createSampler(const SamplerDesc& desc) override {
@@ -43,7 +43,7 @@ public:
         checkSamplerDesc(desc, r);
         if (!finish(r)) return {};
         SamplerHandle h = inner_.createSampler(desc);
-        if (h) objects_.samplers[h.id] = desc;
+        if (h) adopt(objects_.samplers, h.id, desc, "createSampler" + labelOf(desc.debugName.c_str()), "sampler");
         return h;
     }
     ShaderHandle createShader(const ShaderDesc& desc) override {
@@ -52,7 +52,7 @@ public:
         checkShaderDesc(desc, caps(), r);
         if (!finish(r)) return {};
         ShaderHandle h = inner_.createShader(desc);
-        if (h) objects_.shaders[h.id] = ShaderInfo{desc.blob, name};
+        if (h) adopt(objects_.shaders, h.id, ShaderInfo{desc.blob, name}, "createShader" + labelOf(name.c_str()), "shader");
         return h;
     }
     TextureHandle wrapNativeTexture(const TextureDesc& desc, NativeObject native) override {
@@ -61,7 +61,7 @@ public:
         if (!native.object) r.error("native.object is null");
         if (!finish(r)) return {};
         TextureHandle h = inner_.wrapNativeTexture(desc, native);
-        if (h) objects_.textures[h.id] = desc;
+        if (h) adopt(objects_.textures, h.id, desc, "wrapNativeTexture" + labelOf(desc.debugName.c_str()), "texture");
         return h;
     }
     BufferHandle wrapNativeBuffer(const BufferDesc& desc, NativeObject native) override {
@@ -70,7 +70,7 @@ public:
         if (!native.object) r.error("native.object is null");
         if (!finish(r)) return {};
         BufferHandle h = inner_.wrapNativeBuffer(desc, native);
-        if (h) objects_.buffers[h.id] = desc;
+        if (h) adopt(objects_.buffers, h.id, desc, "wrapNativeBuffer" + labelOf(desc.debugName.c_str()), "buffer");
         return h;
     }
 
@@ -229,12 +229,14 @@ public:
     bool draw(const DrawCallState& s, const DrawArgs& a) override {
         Report r{drawName("draw", s)};
         checkDraw(objects_, caps(), s, r);
+        if (r.errors.empty()) checkDrawFetch(objects_, s, a, r);
         return finish(r) && inner_.draw(s, a);
     }
     bool drawIndexed(const DrawCallState& s, const DrawIndexedArgs& a) override {
         Report r{drawName("drawIndexed", s)};
         checkDraw(objects_, caps(), s, r);
         checkIndexBuffer(s, r);
+        if (r.errors.empty()) checkDrawFetch(objects_, s, a, r);
         return finish(r) && inner_.drawIndexed(s, a);
     }
     bool drawIndirect(const DrawCallState& s, BufferHandle args, uint64_t offset, bool indexed) override {
@@ -245,11 +247,24 @@ public:
         return finish(r) && inner_.drawIndirect(s, args, offset, indexed);
     }
 
+    // Markers nest at most kMaxMarkerDepth deep: a deeper one is refused, and so is the endMarker that closes
+    // it (refused markers are always the innermost, so a count is all it takes).
     void beginMarker(const char* label) override {
+        if (markerDepth_ + refusedMarkers_ >= kMaxMarkerDepth) {
+            if (refusedMarkers_++ == 0)
+                emit(Severity::Error, "beginMarker" + labelOf(label) + ": " + std::to_string(markerDepth_ + refusedMarkers_) +
+                                          " markers open, more than kMaxMarkerDepth " + std::to_string(kMaxMarkerDepth) +
+                                          " (an endMarker missing?); refused");
+            return;
+        }
         ++markerDepth_;
         inner_.beginMarker(label ? label : "");
     }
     void endMarker() override {
+        if (refusedMarkers_) {
+            --refusedMarkers_;
+            return;
+        }
         if (markerDepth_ == 0) {
             emit(Severity::Error, "endMarker: no marker is open");
             return;
@@ -261,7 +276,8 @@ public:
     void setTimingDepth(uint32_t depth) override { inner_.setTimingDepth(depth); }
     std::vector<MarkerTiming> takeTimings() override { return inner_.takeTimings(); }
     void endFrame() override {
-        if (markerDepth_) emit(Severity::Warning, "endFrame: " + std::to_string(markerDepth_) + " marker(s) still open");
+        if (markerDepth_ + refusedMarkers_)
+            emit(Severity::Warning, "endFrame: " + std::to_string(markerDepth_ + refusedMarkers_) + " marker(s) still open");
         inner_.endFrame();
     }
     void waitIdle() override { inner_.waitIdle(); }
@@ -297,6 +313,18 @@ private:
         if (s.indexBuffer.offset >= d->size) r.error("indexBuffer.offset is beyond the end of the buffer");
     }
 
+    // Records a new object. A device that hands out an id still live is broken (an engine's RHI under the
+    // conformance kit, say): every later use of the id would reach the wrong object, so it is reported here,
+    // naming both; the new description replaces the old.
+    template <typename Map, typename Desc>
+    void adopt(Map& map, uint32_t id, Desc desc, const std::string& call, const char* kind) {
+        auto [it, inserted] = map.try_emplace(id, std::move(desc));
+        if (inserted) return;
+        emit(Severity::Error, call + ": the device returned " + kind + " handle #" + std::to_string(id) +
+                                  ", which is already live (created earlier and not destroyed)");
+        it->second = std::move(desc);
+    }
+
     // Sends the report; returns true when the call may be forwarded.
     bool finish(const Report& r) {
         for (const auto& w : r.warnings) emit(Severity::Warning, w);
@@ -311,7 +339,8 @@ private:
     IDevice& inner_;
     ErrorCallback callback_;
     ObjectTable objects_;
-    uint32_t markerDepth_ = 0;
+    uint32_t markerDepth_ = 0;     // forwarded markers open
+    uint64_t refusedMarkers_ = 0;  // refused markers open (beyond kMaxMarkerDepth)
 };
 
 }  // namespace

@@ -53,6 +53,11 @@ void checkShaderDesc(const ShaderDesc& d, const Capabilities& caps, Report& r);
 // Records against the reflection of their shaders.
 void checkDispatch(const ObjectTable& t, const Capabilities& caps, const DispatchState& s, Report& r);
 void checkDraw(const ObjectTable& t, const Capabilities& caps, const DrawCallState& s, Report& r);
+// What a direct draw reads: the vertices first .. first + count - 1 of every per-vertex buffer (not for an
+// indexed draw: its indices pick the vertices on the GPU) and the instances of every per-instance buffer lie
+// inside their buffers, and so do an indexed draw's indices. Call after checkDraw passed.
+void checkDrawFetch(const ObjectTable& t, const DrawCallState& s, const DrawArgs& a, Report& r);
+void checkDrawFetch(const ObjectTable& t, const DrawCallState& s, const DrawIndexedArgs& a, Report& r);
 
 // Transfers.
 bool checkSubresource(const TextureDesc& d, TextureSubresource sub, const std::string& field, Report& r);

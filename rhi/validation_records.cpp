@@ -3,9 +3,11 @@
 // dimension and range, and no subresource bound for both reading and writing.
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "validation_internal.h"
 #include "binding_rules.h"
+#include "size_math.h"
 
 namespace bricklight::rhi::validation {
 
@@ -472,6 +474,49 @@ void checkDraw(const ObjectTable& t, const Capabilities& caps, const DrawCallSta
         r.error("depth test or write enabled without a depthTarget");
     }
     checker.checkOverlaps();
+}
+
+namespace {
+
+// Elements first .. first + count - 1 of every vertex buffer of the given rate, against the buffer's size: one
+// message per buffer, for the input that reads furthest.
+void checkFetchRange(const ObjectTable& t, const DrawCallState& s, uint32_t first, uint32_t count, bool perInstance, Report& r) {
+    if (!count) return;
+    for (size_t b = 0; b < s.vertexBuffers.size(); ++b) {
+        const VertexBufferBinding& vb = s.vertexBuffers[b];
+        if (vb.perInstance != perInstance) continue;
+        std::optional<uint64_t> furthest = 0;
+        uint32_t location = 0;
+        for (const VertexInput& in : s.vertexInputs) {
+            if (in.bufferIndex != b) continue;
+            const auto end = sizes::fetchEnd(vb.offset + in.offset, first, count, vb.stride, sizes::vertexFormatBytes(in.format));
+            if (furthest && (!end || *end > *furthest)) furthest = end, location = in.location;
+        }
+        const BufferDesc* d = liveBuffer(t, vb.buffer, "vertexBuffers[" + std::to_string(b) + "]", r);
+        if (!d || (furthest && *furthest <= d->size)) continue;
+        r.error(std::string(perInstance ? "instances " : "vertices ") + std::to_string(first) + ".." + std::to_string(uint64_t(first) + count - 1) +
+                " read past the end of vertexBuffers[" + std::to_string(b) + "] " + describeBuffer(t, vb.buffer) + " (" +
+                std::to_string(d->size) + " bytes; location " + std::to_string(location) + " reads " +
+                (furthest ? "up to byte " + std::to_string(*furthest) : std::string("beyond 2^64")) + ")");
+    }
+}
+
+}  // namespace
+
+void checkDrawFetch(const ObjectTable& t, const DrawCallState& s, const DrawArgs& a, Report& r) {
+    checkFetchRange(t, s, a.firstVertex, a.vertexCount, false, r);
+    checkFetchRange(t, s, a.firstInstance, a.instanceCount, true, r);
+}
+
+void checkDrawFetch(const ObjectTable& t, const DrawCallState& s, const DrawIndexedArgs& a, Report& r) {
+    checkFetchRange(t, s, a.firstInstance, a.instanceCount, true, r);
+    const BufferDesc* d = liveBuffer(t, s.indexBuffer.buffer, "indexBuffer.buffer", r);
+    if (!d || !a.indexCount) return;
+    const uint32_t bytes = s.indexBuffer.format == IndexFormat::U16 ? 2 : 4;
+    const auto end = sizes::fetchEnd(s.indexBuffer.offset, a.firstIndex, a.indexCount, bytes, bytes);
+    if (!end || *end > d->size)
+        r.error("indices " + std::to_string(a.firstIndex) + ".." + std::to_string(uint64_t(a.firstIndex) + a.indexCount - 1) +
+                " read past the end of indexBuffer " + describeBuffer(t, s.indexBuffer.buffer) + " (" + std::to_string(d->size) + " bytes)");
 }
 
 }  // namespace bricklight::rhi::validation

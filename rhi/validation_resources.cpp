@@ -1,6 +1,7 @@
 // Validation of resource descriptions and transfer ranges against the device's capabilities.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "size_math.h"
 #include "validation_internal.h"
@@ -22,6 +23,16 @@ std::string describeBuffer(const ObjectTable& t, BufferHandle h) {
 }
 
 namespace {
+constexpr uint32_t kKnownTextureUsage = TextureUsage::Sampled | TextureUsage::Storage | TextureUsage::RenderTarget | TextureUsage::DepthTarget;
+constexpr uint32_t kKnownBufferUsage =
+    BufferUsage::ShaderRead | BufferUsage::ShaderWrite | BufferUsage::IndirectArgs | BufferUsage::Vertex | BufferUsage::Index;
+
+std::string hex(uint32_t bits) {
+    char text[16];
+    std::snprintf(text, sizeof text, "0x%x", bits);
+    return text;
+}
+
 template <typename Map, typename Dead>
 const typename Map::mapped_type* live(const Map& map, const Dead& dead, uint32_t id, const char* kind,
                                       const std::string& field, Report& r) {
@@ -95,6 +106,7 @@ void checkTextureDesc(const TextureDesc& d, const Capabilities& caps, Report& r)
     if (d.mipLevels == 0 || d.mipLevels > maxMips)
         r.error("mipLevels " + std::to_string(d.mipLevels) + " out of range 1.." + std::to_string(maxMips));
     if (d.usage == 0) r.error("usage is empty: give at least one TextureUsage bit");
+    if (const uint32_t unknown = d.usage & ~kKnownTextureUsage) r.error("usage has unknown bits " + hex(unknown) + " (TextureUsage has 4)");
     const char* fmt = formatName(d.format);
     auto need = [&](uint32_t usageBit, uint32_t supportBit, const char* usageName) {
         if ((d.usage & usageBit) && !caps.supports(d.format, supportBit))
@@ -111,6 +123,7 @@ void checkTextureDesc(const TextureDesc& d, const Capabilities& caps, Report& r)
 void checkBufferDesc(const BufferDesc& d, Report& r) {
     if (d.size == 0) r.error("zero-size buffer: size must be at least 1 byte");
     if (d.usage == 0) r.error("usage is empty: give at least one BufferUsage bit");
+    if (const uint32_t unknown = d.usage & ~kKnownBufferUsage) r.error("usage has unknown bits " + hex(unknown) + " (BufferUsage has 5)");
     if (d.structStride) {
         if (d.structStride % 4) r.error("structStride " + std::to_string(d.structStride) + " is not a multiple of 4");
         else if (d.size % d.structStride)

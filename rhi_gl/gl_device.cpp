@@ -223,6 +223,13 @@ BL_GL_LOOKUP(ShaderRecord, ShaderHandle, shaders_, shader)
 void Device::beginMarker(const char* label) {
     makeCurrent();
     std::string name = label ? label : "";
+    // Bounded: GL's debug-group stack holds 64 at least, and each open marker keeps its whole path.
+    if (markers_.size() + refusedMarkers_ >= rhi::kMaxMarkerDepth) {
+        if (refusedMarkers_++ == 0)
+            report(rhi::Severity::Error, "beginMarker '" + name.substr(0, 64) + "': more than kMaxMarkerDepth " +
+                                             std::to_string(rhi::kMaxMarkerDepth) + " markers open; refused");
+        return;
+    }
     Marker m;
     m.path = markers_.empty() ? name : markers_.back().path + "/" + name;
     gl.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name.c_str());
@@ -235,6 +242,10 @@ void Device::beginMarker(const char* label) {
 
 void Device::endMarker() {
     makeCurrent();
+    if (refusedMarkers_) {
+        --refusedMarkers_;
+        return;
+    }
     if (markers_.empty()) {
         report(rhi::Severity::Error, "endMarker: no marker is open");
         return;

@@ -207,6 +207,7 @@ private:
         size_t timerIndex = 0;
     };
     std::vector<Marker> markers_;
+    uint64_t refusedMarkers_ = 0;  // beginMarker calls beyond rhi::kMaxMarkerDepth still open
     bool timingEnabled_ = false;
     uint32_t timingDepth_ = UINT32_MAX;  // setTimingDepth
     uint64_t frame_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../rhi/size_math.h"
 #include "gl_device.h"
 #include "gl_formats.h"
 
@@ -238,8 +239,8 @@ bool Device::drawImpl(const Call& call, const DrawCallState& s, DrawKind kind, c
         for (const VertexInput& in : s.vertexInputs) {
             const VertexBufferBinding& vb = s.vertexBuffers[in.bufferIndex];
             if (vb.perInstance != perInstance) continue;
-            const uint64_t end = vb.offset + (uint64_t(first) + count - 1) * vb.stride + in.offset + vertexFormatBytes(in.format);
-            if (end > plan.vertexBuffers[in.bufferIndex]->desc.size)
+            const auto end = rhi::sizes::fetchEnd(vb.offset + in.offset, first, count, vb.stride, rhi::sizes::vertexFormatBytes(in.format));
+            if (!end || *end > plan.vertexBuffers[in.bufferIndex]->desc.size)
                 return fail(call, std::string(perInstance ? "instances " : "vertices ") + std::to_string(first) + ".." +
                                       std::to_string(uint64_t(first) + count - 1) + " read past the end of vertexBuffers[" +
                                       std::to_string(in.bufferIndex) + "] " + detail::describe(*plan.vertexBuffers[in.bufferIndex]));

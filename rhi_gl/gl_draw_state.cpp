@@ -62,20 +62,6 @@ void FramebufferCache::clear(const Functions& gl) {
     fbos_.clear();
 }
 
-uint32_t vertexFormatBytes(rhi::VertexFormat format) {
-    using VF = rhi::VertexFormat;
-    switch (format) {
-        case VF::Float1: return 4;
-        case VF::Float2: return 8;
-        case VF::Float3: return 12;
-        case VF::Float4: return 16;
-        case VF::UByte4Norm: return 4;
-        case VF::UInt1: return 4;
-        case VF::Half4: return 8;
-    }
-    return 0;
-}
-
 GLuint VertexArrayCache::get(const Functions& gl, const rhi::DrawCallState& state) {
     std::vector<uint32_t> key;
     for (const rhi::VertexInput& in : state.vertexInputs)

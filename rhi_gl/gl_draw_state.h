@@ -46,7 +46,6 @@ private:
 
 GLenum compareFunc(rhi::CompareOp op);
 GLenum topologyMode(rhi::PrimitiveTopology topology);
-uint32_t vertexFormatBytes(rhi::VertexFormat format);
 
 // Sets every piece of fixed-function state a draw depends on (the backend assumes nothing about what
 // the app or an earlier call left): clip control, viewport, scissor, raster, depth, blend, masks.

@@ -413,6 +413,7 @@ private:
         VkCommandBuffer labelCommandBuffer = VK_NULL_HANDLE;  // where its debug label is open
     };
     std::vector<OpenMarker> markers_;
+    uint64_t refusedMarkers_ = 0;  // beginMarker calls beyond rhi::kMaxMarkerDepth still open
     bool timingEnabled_ = false;
     uint32_t timingDepth_ = UINT32_MAX;  // setTimingDepth
     std::vector<rhi::MarkerTiming> finishedTimings_;

@@ -184,6 +184,13 @@ void VulkanDevice::waitIdle() { waitForGpu(); }
 
 void VulkanDevice::beginMarker(const char* label) {
     std::string name = label ? label : "";
+    // Bounded: each open marker keeps its whole path, and every new command buffer re-opens them all.
+    if (markers_.size() + refusedMarkers_ >= rhi::kMaxMarkerDepth) {
+        if (refusedMarkers_++ == 0)
+            reporter_->report(rhi::Severity::Error, "beginMarker '" + name.substr(0, 64) + "': more than kMaxMarkerDepth " +
+                                                        std::to_string(rhi::kMaxMarkerDepth) + " markers open; refused");
+        return;
+    }
     OpenMarker m;
     m.label = markers_.empty() ? name : markers_.back().label + "/" + name;
     m.frame = frameSerial_;
@@ -211,6 +218,10 @@ void VulkanDevice::beginMarker(const char* label) {
 }
 
 void VulkanDevice::endMarker() {
+    if (refusedMarkers_) {
+        --refusedMarkers_;
+        return;
+    }
     if (markers_.empty()) {
         warn("endMarker: no marker is open");
         return;

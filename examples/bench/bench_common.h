@@ -94,6 +94,9 @@ BarrierCounts barriersSoFar(const Options& o, rhi::IDevice& device);
 // Every technique's start: the scene of --scene and the device of --backend (a warning on stderr when it has
 // no GPU timestamps). False with a message on stderr.
 bool openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_ptr<rhi::IDevice>* device);
+// Writes a run's --json report (whole or not at all: render::writeFileAtomically) and says so; false with the
+// reason printed when it cannot (a full disk, a folder gone since the run began).
+bool writeJsonReport(const std::string& path, const std::string& json);
 
 // The scene's distance field with o.cascades cascades, cascade 0 spanning 1/8 of the scene (cascade 3 all
 // of it), every mesh and instance added (not built yet). Null with a message on stderr.

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <algorithm>
 #include <array>
-#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -223,7 +223,7 @@ int benchGi(const Options& o, const scenes::SceneGeometry& geometry, std::unique
                 context->desc().radianceCacheBricks ? context->desc().radianceCacheBricks : std::min(scene->brickCapacity(), 65536u),
                 scene->latestStats().bricksUsed);
     if (!o.json.empty()) {
-        std::ofstream out(o.json);
+        std::ostringstream out;
         out << "{\"technique\": \"gi\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend << "\", \"device\": \""
             << device->capabilities().deviceName << "\", \"width\": " << o.width << ", \"height\": " << o.height
             << ", \"scale_percent\": " << o.scalePercent << ", \"iterations_per_cascade\": " << iterations
@@ -235,11 +235,7 @@ int benchGi(const Options& o, const scenes::SceneGeometry& geometry, std::unique
             first = false;
         }
         out << "}, \"gpu_bytes\": " << memory.totalBytes << ", \"cache_slots_in_use\": " << slotsInUse << "}\n";
-        if (!out) {
-            std::fprintf(stderr, "bricklight-bench: cannot write %s\n", o.json.c_str());
-            return 1;
-        }
-        std::printf("wrote %s\n", o.json.c_str());
+        if (!writeJsonReport(o.json, out.str())) return 1;
     }
     for (rhi::TextureHandle h : {albedo, diffuse, specular}) device->destroy(h);
     gbuffer.destroy(*device);

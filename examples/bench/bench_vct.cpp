@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "bench_common.h"
@@ -278,7 +278,7 @@ int runVct(const Options& o) {
             std::printf("  %3u^3 x %u: %9.1f / %8.1f / %7.1f\n", res, levels, mib[0], mib[1], mib[2]);
         }
     if (!o.json.empty()) {
-        std::ofstream out(o.json);
+        std::ostringstream out;
         out << "{\"technique\": \"vct\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend << "\", \"device\": \""
             << device->capabilities().deviceName << "\", \"width\": " << o.width << ", \"height\": " << o.height
             << ", \"resolution\": " << o.vctResolution << ", \"levels\": " << o.vctLevels << ", \"revoxelize_ms\": " << revoxelize
@@ -289,11 +289,7 @@ int runVct(const Options& o) {
             first = false;
         }
         out << "}, \"gpu_bytes\": " << giMemory.totalBytes << ", \"ao_gpu_bytes\": " << aoMemory.totalBytes << "}\n";
-        if (!out) {
-            std::fprintf(stderr, "bricklight-bench: cannot write %s\n", o.json.c_str());
-            return 1;
-        }
-        std::printf("wrote %s\n", o.json.c_str());
+        if (!writeJsonReport(o.json, out.str())) return 1;
     }
     for (rhi::TextureHandle h : {diffuse, specular}) device->destroy(h);
     device->destroy(vertexBuffer);

@@ -13,9 +13,11 @@
 // files).
 #include <chrono>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,7 @@
 #include "bricklight/rhi_gl.h"
 #include "bricklight/rhi_vulkan.h"
 #include "bench_common.h"
+#include "output_file.h"
 #include "bricklight/sdf.h"
 #include "scene_geometry.h"
 
@@ -150,6 +153,9 @@ Options parse(int argc, char** argv) {
         else usage("unknown option '" + a + "'");
     }
     if (o.backend != "vulkan" && o.backend != "gl") usage("--backend must be vulkan or gl");
+    // Checked before the run: a report that cannot be written must not cost a benchmark first.
+    std::string error;
+    if (!o.json.empty() && !render::checkOutputPath(o.json, &error)) usage("--json: " + error);
     return o;
 }
 
@@ -227,6 +233,26 @@ std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& d
         scene->addInstance(d);
     }
     return scene;
+}
+
+bool bricklight::bench::writeJsonReport(const std::string& path, const std::string& json) {
+    std::string error;
+    const bool written = render::writeFileAtomically(
+        path,
+        [&](const std::string& temp, std::string* why) {
+            std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+            out << json;
+            out.flush();
+            if (!out) *why = "'" + temp + "': " + std::strerror(errno);
+            return bool(out);
+        },
+        nullptr, &error);
+    if (!written) {
+        std::fprintf(stderr, "bricklight-bench: --json: %s\n", error.c_str());
+        return false;
+    }
+    std::printf("wrote %s\n", path.c_str());
+    return true;
 }
 
 bool bricklight::bench::openBench(const Options& o, scenes::SceneGeometry* geometry, std::unique_ptr<rhi::IDevice>* device) {
@@ -371,7 +397,7 @@ int bricklight::bench::runSdf(const Options& o) {
     for (const auto& r : memory.resources) std::printf("  %-32s %10.2f MiB\n", r.name.c_str(), double(r.bytes) / (1 << 20));
 
     if (!o.json.empty()) {
-        std::ofstream out(o.json);
+        std::ostringstream out;
         out << "{\"technique\": \"sdf\", \"scene\": \"" << geometry.name << "\", \"backend\": \"" << o.backend
             << "\", \"device\": \"" << device->capabilities().deviceName << "\", \"triangles\": " << geometry.triangleCount()
             << ", \"cascades\": " << o.cascades << ", \"finest_voxel\": " << desc.finestVoxelSize
@@ -380,11 +406,7 @@ int bricklight::bench::runSdf(const Options& o) {
             << ", \"rays_per_second\": " << raysPerSecond << ", \"width\": " << o.width << ", \"height\": " << o.height
             << "},\n \"bricks_used\": " << afterBuild.bricksUsed << ", \"references\": " << afterBuild.referencesProcessed
             << ", \"gpu_bytes\": " << memory.totalBytes << "}\n";
-        if (!out) {
-            std::fprintf(stderr, "bricklight-bench: cannot write %s\n", o.json.c_str());
-            return 1;
-        }
-        std::printf("wrote %s\n", o.json.c_str());
+        if (!writeJsonReport(o.json, out.str())) return 1;
     }
     device->destroy(depth);
     device->destroy(tracer);

@@ -4,6 +4,7 @@
 //   hello_rhi [--backend vulkan|gl] [--out FILE.png] [--size N]
 #include <OpenImageIO/imageio.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -126,9 +127,13 @@ int main(int argc, char** argv) {
     std::vector<uint8_t> pixels(size_t(size) * size * 4);
     if (!device->readTexture(image, {}, pixels.data())) return 1;
     auto out = OIIO::ImageOutput::create(outPath);
+    errno = 0;
     if (!out || !out->open(outPath, OIIO::ImageSpec(int(size), int(size), 4, OIIO::TypeDesc::UINT8)) ||
         !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
-        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(), OIIO::geterror().c_str());
+        // The writer's own message, else the global one, else the system's (a missing folder).
+        std::string why = out ? out->geterror() : OIIO::geterror();
+        if (why.empty()) why = errno ? strerror(errno) : "the image writer gave no reason";
+        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(), why.c_str());
         return 1;
     }
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

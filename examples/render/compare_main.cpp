@@ -2,11 +2,13 @@
 //
 //   bricklight-compare A B [--max-relmse X]
 //
-// Prints relMSE (epsilon 0.01), RMSE, PSNR and SSIM of display luminance (docs/render.md). With
-// --max-relmse, exits 1 when relMSE exceeds X (for scripts). Exit status: 0 compared (and within
-// --max-relmse), 1 over it or an image cannot be read, 2 a usage error. --help, --version.
+// Prints relMSE (epsilon 0.01), RMSE, PSNR and SSIM of display luminance (docs/render.md). Exit status: 0
+// compared (and within --max-relmse); 1 not: relMSE over X, an image that cannot be read (bounded as every
+// image file we read: render::readImage), sizes that differ, or a value that is not finite in either image
+// (NaN or infinite: no figure would mean anything); 2 a usage error. --help, --version.
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <cstdlib>
 #include <string>
 
@@ -23,20 +25,28 @@ int main(int argc, char** argv) {
         const std::string arg = argv[i];
         if (arg == "--help" || arg == "-h") {
             std::printf("usage: bricklight-compare A B [--max-relmse X]   (B is the reference)\n"
-                        "exit status: 0 compared (within X), 1 over X or an image cannot be read, 2 usage error\n");
+                        "exit status: 0 compared (within X); 1 over X, an image cannot be read, the sizes differ\n"
+                        "             or a value is not finite (NaN, infinite); 2 usage error\n");
             return 0;
         }
         if (arg == "--version") {
             std::printf("bricklight-compare %s\n", BRICKLIGHT_VERSION_STRING);
             return 0;
         }
-        if (arg == "--max-relmse" && i + 1 < argc) {
+        if (arg == "--max-relmse") {
+            if (i + 1 >= argc) {
+                std::fprintf(stderr, "bricklight-compare: --max-relmse needs a value\n");
+                return 2;
+            }
             char* end = nullptr;
             maxRelMse = std::strtod(argv[++i], &end);
-            if (*end || !(maxRelMse >= 0.0)) {
+            if (end == argv[i] || *end || !(maxRelMse >= 0.0) || !std::isfinite(maxRelMse)) {
                 std::fprintf(stderr, "bricklight-compare: --max-relmse expects a number >= 0\n");
                 return 2;
             }
+        } else if (arg.size() > 1 && arg[0] == '-') {
+            std::fprintf(stderr, "bricklight-compare: unknown option '%s'\nusage: bricklight-compare A B [--max-relmse X]\n", arg.c_str());
+            return 2;
         } else if (a.empty()) {
             a = arg;
         } else if (b.empty()) {
@@ -52,14 +62,30 @@ int main(int argc, char** argv) {
     }
     render::Image ia, ib;
     std::string error;
-    if (!render::readImage(a, &ia, &error) || !render::readImage(b, &ib, &error)) {
-        std::fprintf(stderr, "bricklight-compare: %s\n", error.c_str());
-        return 2;
+    try {
+        if (!render::readImage(a, &ia, &error) || !render::readImage(b, &ib, &error)) {
+            std::fprintf(stderr, "bricklight-compare: %s\n", error.c_str());
+            return 1;
+        }
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "bricklight-compare: out of memory reading the images\n");
+        return 1;
     }
     if (ia.width != ib.width || ia.height != ib.height) {
         std::fprintf(stderr, "bricklight-compare: sizes differ: %ux%u vs %ux%u\n", ia.width, ia.height, ib.width, ib.height);
-        return 2;
+        return 1;
     }
+    // A NaN or an infinity makes every figure NaN or meaningless: not a comparison that passed.
+    auto finite = [](const std::string& name, const render::Image& image) {
+        size_t bad = 0;
+        for (float v : image.rgb) bad += !std::isfinite(v);
+        if (bad)
+            std::fprintf(stderr, "bricklight-compare: '%s' holds %zu values that are not finite (NaN or infinite) of %zu\n", name.c_str(), bad,
+                         image.rgb.size());
+        return bad == 0;
+    };
+    const bool finiteA = finite(a, ia), finiteB = finite(b, ib);
+    if (!finiteA || !finiteB) return 1;
     const render::ImageMetrics m = render::compareImages(ia, ib);
     std::printf("relMSE %.6g (eps %.2g)  RMSE %.6g  PSNR %.2f dB  SSIM %.4f  mean %.6g vs %.6g\n", m.relMse, render::kRelMseEpsilon,
                 m.rmse, m.psnr, m.ssim, m.meanA, m.meanB);

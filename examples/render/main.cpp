@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -95,6 +96,7 @@ uint32_t number(const char* text, const std::string& option, uint32_t lo, uint32
 
 Options parse(int argc, char** argv) {
     Options o;
+    bool sppGiven = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* {
@@ -130,7 +132,7 @@ Options parse(int argc, char** argv) {
                 if (std::find(o.giDebug.begin(), o.giDebug.end(), v) == o.giDebug.end()) o.giDebug.push_back(v);
             }
         }
-        else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20);
+        else if (a == "--spp") o.spp = number(value(), a, 1, 1u << 20), sppGiven = true;
         else if (a == "--reference") o.reference = true;
         else if (a == "--record") o.record = value();
         else if (a == "--out") o.out = value();
@@ -147,6 +149,7 @@ Options parse(int argc, char** argv) {
     }
     std::string error;
     if (!render::checkSharedOptions(o, &error)) usage(error);
+    if (sppGiven && !o.reference) usage("--spp sets the path tracer's samples: it needs --reference");
     if (o.reference && o.shadows != render::ShadowMode::Bvh)
         usage("--shadows shadowmap and hybrid need the fast path (not --reference, whose visibility is exact)");
     const bool vct = o.vxao || (o.gi && o.giTechnique == render::GiTechnique::Vct);
@@ -181,18 +184,26 @@ std::string giDebugPath(const std::string& out, const std::string& view) { retur
 
 // Every file the run will write, checked before any work: a bad path costs no render.
 void checkOutputs(const Options& o) {
-    std::vector<std::string> paths{o.out};
-    for (render::Aov aov : o.aovs) paths.push_back(aovPath(o.out, aov));
-    for (const std::string& view : o.giDebug) paths.push_back(giDebugPath(o.out, view));
-    if (!o.record.empty()) paths.push_back(o.record);
+    std::vector<std::pair<std::string, std::string>> paths{{o.out, "--out"}};  // path, what writes it
+    for (render::Aov aov : o.aovs) paths.push_back({aovPath(o.out, aov), std::string("--aov ") + render::aovName(aov)});
+    for (const std::string& view : o.giDebug) paths.push_back({giDebugPath(o.out, view), "--gi-debug " + view});
+    if (!o.record.empty()) paths.push_back({o.record, "--record"});
     std::string error;
-    for (const std::string& path : paths) {
+    for (const auto& [path, what] : paths) {
         const size_t dot = path.find_last_of('.');
         const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-        if (path != o.record && ext != ".png" && ext != ".exr")
+        if (what != "--record" && ext != ".png" && ext != ".exr")
             usage("'" + path + "': unsupported output format (use .png or .exr)");
         if (!render::checkOutputPath(path, &error)) usage(error);
     }
+    // Two outputs on one file: the second would overwrite the first (a recording where the image should be).
+    for (size_t i = 0; i < paths.size(); ++i)
+        for (size_t j = i + 1; j < paths.size(); ++j) {
+            std::error_code ec1, ec2;
+            const auto a = std::filesystem::weakly_canonical(paths[i].first, ec1), b = std::filesystem::weakly_canonical(paths[j].first, ec2);
+            if (ec1 || ec2 ? paths[i].first == paths[j].first : a == b)
+                usage(paths[i].second + " and " + paths[j].second + " name the same file ('" + paths[j].first + "'): give each its own");
+        }
 }
 
 // Counts what the layers report during the run (the device, the validation wrapper, the SDF, GI): an error

@@ -1,5 +1,6 @@
 #include "image_io.h"
 #include "output_file.h"
+#include "safe_file.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -111,18 +112,36 @@ bool writeDisplayImage(const std::string& path, uint32_t width, uint32_t height,
     return writeFileAtomically(path, encode, readsBack, error);
 }
 
-bool readImage(const std::string& path, Image* image, std::string* error) {
+bool readImage(const std::string& path, Image* image, std::string* error, const scenes::LoadLimits& limits) {
+    // Not a FIFO, /dev/zero or a directory (OpenImageIO probes every reader on them, forever), nor a file
+    // over the size limit.
+    std::string why;
+    scenes::RegularFile file;
+    if (!file.open(path, limits.maxFileBytes, &why)) {
+        if (error) *error = why;
+        return false;
+    }
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         if (error) *error = "cannot read '" + path + "': " + OIIO::geterror();
         return false;
     }
+    // The header says what decoding would cost: refused before anything is allocated for it.
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels < 1 || spec.width <= 0 || spec.height <= 0) {
-        if (error) *error = "'" + path + "' has no pixels";
+    if (spec.nchannels < 1 || spec.nchannels > 64 || spec.width <= 0 || spec.height <= 0 || spec.depth != 1) {
+        if (error)
+            *error = "'" + path + "': its header describes a " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
+                     std::to_string(spec.depth) + " image of " + std::to_string(spec.nchannels) + " channels (not a 2D image)";
         return false;
     }
-    std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+    const uint64_t pixelCount = uint64_t(spec.width) * uint64_t(spec.height);
+    if (pixelCount > limits.maxTexturePixels) {
+        if (error)
+            *error = "'" + path + "' is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels, over the limit of " +
+                     std::to_string(limits.maxTexturePixels) + " (LoadLimits::maxTexturePixels)";
+        return false;
+    }
+    std::vector<float> pixels(size_t(pixelCount) * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
         if (error) *error = "cannot read '" + path + "': " + in->geterror();
         return false;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "load_limits.h"
 #include "path_tracer.h"
 
 namespace bricklight::render {
@@ -16,7 +17,9 @@ bool writeImage(const std::string& path, const Image& image, float exposure, std
 // as an 8-bit RGB .png, written as writeImage writes (a temporary file, read back, renamed).
 bool writeDisplayImage(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba,
                        std::string* error);
-// Any format OpenImageIO reads, as linear RGB (8-bit sRGB files are linearised).
-bool readImage(const std::string& path, Image* image, std::string* error);
+// Any format OpenImageIO reads, as linear RGB (8-bit sRGB files are linearised). An image file is untrusted
+// input: a regular file only (never a FIFO or /dev/zero) of at most `limits.maxFileBytes`, and a 2D image of at
+// most `limits.maxTexturePixels` pixels and 64 channels by its header, checked before anything is decoded.
+bool readImage(const std::string& path, Image* image, std::string* error, const scenes::LoadLimits& limits = {});
 
 }  // namespace bricklight::render

@@ -14,7 +14,7 @@ bool unavailable(const std::string& path, std::string* error) {
 }  // namespace
 
 bool writeImage(const std::string& path, const Image&, float, std::string* error) { return unavailable(path, error); }
-bool readImage(const std::string& path, Image*, std::string* error) { return unavailable(path, error); }
+bool readImage(const std::string& path, Image*, std::string* error, const scenes::LoadLimits&) { return unavailable(path, error); }
 bool writeDisplayImage(const std::string& path, uint32_t, uint32_t, const std::vector<uint8_t>&, std::string* error) {
     return unavailable(path, error);
 }

@@ -1,11 +1,13 @@
 // bricklight-replay: runs a recording (bricklight-render --record, rhi::createRecordingDevice) on a backend
 // and reports how many calls it made and how many the device refused.
 //
-//   bricklight-replay FILE [--backend vulkan|gl|null] [--validate] [--quiet]
+//   bricklight-replay FILE [--backend vulkan|gl|null] [--validate] [--quiet] [--max-invocations N]
+//                          [--max-vertices N] [--max-bytes N] [--max-marker-depth N]
 //
 // Exit codes: 0 every line was understood and every call accepted with no error reported; 1 a call failed
 // or the device reported an error; 2 usage, or the file cannot be read; 3 the recording is malformed (a
-// line that cannot be understood: the lines before it have run); 4 the backend could not be created.
+// line that cannot be understood: the lines before it have run); 4 the backend could not be created; 5 a
+// line asks for more work or memory than the budget (rhi::ReplayOptions; the lines before it have run).
 // See docs/rhi.md §7.
 #include <cerrno>
 #include <cstdio>
@@ -36,21 +38,27 @@ using namespace bricklight;
 
 namespace {
 
-enum Exit { Ok = 0, CallFailed = 1, Usage = 2, Malformed = 3, NoBackend = 4 };
+enum Exit { Ok = 0, CallFailed = 1, Usage = 2, Malformed = 3, NoBackend = 4, OverBudget = 5 };
 
 const char kUsage[] =
-    "usage: bricklight-replay FILE [--backend vulkan|gl|null] [--validate] [--quiet]\n"
+    "usage: bricklight-replay FILE [--backend vulkan|gl|null] [--validate] [--quiet] [budgets]\n"
     "  Replays a recording (one JSON call per line, as bricklight-render --record writes it) on a backend.\n"
     "  --backend   vulkan (default), gl (headless) or null (executes nothing, checks nothing)\n"
     "  --validate  every call through the validation wrapper (rhi::createValidationDevice)\n"
     "  --quiet     no per-message output, only the summary\n"
     "  --help, --version\n"
+    "budgets (a line past one stops the replay, exit 5):\n"
+    "  --max-invocations N   invocations of one dispatch, groups x local size (default 268435456)\n"
+    "  --max-vertices N      vertices (indices) x instances of one draw (default 268435456)\n"
+    "  --max-bytes N         bytes of the textures and buffers alive at once (default 1073741824)\n"
+    "  --max-marker-depth N  markers open at once (default 32, also the most the devices take)\n"
     "exit codes: 0 ok; 1 a call failed or an error was reported; 2 usage or unreadable file;\n"
-    "            3 malformed recording; 4 the backend could not be created\n";
+    "            3 malformed recording; 4 the backend could not be created; 5 over a budget\n";
 
 struct Options {
     std::string file, backend = "vulkan";
     bool validate = false, quiet = false;
+    rhi::ReplayOptions replay;
 };
 
 [[noreturn]] void usage(const std::string& problem) {
@@ -76,6 +84,18 @@ Options parse(int argc, char** argv) {
             o.validate = true;
         } else if (a == "--quiet") {
             o.quiet = true;
+        } else if (a == "--max-invocations" || a == "--max-vertices" || a == "--max-bytes" || a == "--max-marker-depth") {
+            if (++i >= argc) usage(a + " needs a value");
+            const std::string v = argv[i];
+            char* end = nullptr;
+            errno = 0;
+            const unsigned long long n = v.empty() || v[0] == '-' ? 0 : std::strtoull(v.c_str(), &end, 10);
+            if (!end || *end || errno || n == 0) usage(a + ": '" + v + "' is not a positive whole number");
+            if (a == "--max-invocations") o.replay.maxDispatchInvocations = n;
+            else if (a == "--max-vertices") o.replay.maxDrawVertices = n;
+            else if (a == "--max-bytes") o.replay.maxLiveBytes = n;
+            else if (n > rhi::kMaxMarkerDepth) usage(a + ": at most " + std::to_string(rhi::kMaxMarkerDepth) + " (rhi::kMaxMarkerDepth)");
+            else o.replay.maxMarkerDepth = uint32_t(n);
         } else if (a.rfind("--", 0) == 0) {
             usage("unknown option '" + a + "'");
         } else if (o.file.empty()) {
@@ -144,7 +164,7 @@ int main(int argc, char** argv) {
         device = wrapper.get();
     }
 
-    rhi::ReplayOptions options;
+    rhi::ReplayOptions options = o.replay;
     options.onFailedCall = [&](uint64_t line, const std::string& call) {
         if (!o.quiet) std::fprintf(stderr, "bricklight-replay: line %llu: %s failed\n", (unsigned long long)line, call.c_str());
     };
@@ -157,7 +177,7 @@ int main(int argc, char** argv) {
     std::printf(", %llu error(s) reported\n", (unsigned long long)errors);
     if (!understood) {
         std::fprintf(stderr, "bricklight-replay: %s: %s\n", o.file.c_str(), error.c_str());
-        return Malformed;
+        return stats.overBudget ? OverBudget : Malformed;
     }
     return stats.failedCalls || errors ? CallFailed : Ok;
 }

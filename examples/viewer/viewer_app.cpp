@@ -56,16 +56,18 @@ int ViewerApp::run(const ViewerSettings& settings) {
                       app.stats_.averageCpuMilliseconds(), app.stats_.cpuFrameHistory().size(), gpuMean, app.renderWidth_,
                       app.renderHeight_);
         app.log(line);
+        // Errors first: a frame they spoiled is not written (as bricklight-render writes nothing then).
+        if (status == 0 && app.errors_ && settings.exitAfterFrames) {
+            std::fprintf(stderr, "bricklight-viewer: %llu error(s) were reported (the first: %s)%s\n",
+                         static_cast<unsigned long long>(app.errors_), app.firstError_.c_str(),
+                         settings.screenshot.empty() ? "" : "; no screenshot written");
+            status = 1;
+        }
         if (status == 0 && !settings.screenshot.empty()) {
             if (!app.writeScreenshot(settings.screenshot, &error)) {
                 std::fprintf(stderr, "bricklight-viewer: %s\n", error.c_str());
                 status = 1;
             }
-        }
-        if (status == 0 && app.errors_ && settings.exitAfterFrames) {
-            std::fprintf(stderr, "bricklight-viewer: %llu error(s) were reported (the first: %s)\n",
-                         static_cast<unsigned long long>(app.errors_), app.firstError_.c_str());
-            status = 1;
         }
     }
     if (app.backend_) app.backend_->waitIdle();
@@ -78,6 +80,11 @@ int ViewerApp::run(const ViewerSettings& settings) {
 bool ViewerApp::start(std::string* error) {
     // Outputs first: a bad path costs no window and no render.
     if (!settings_.screenshot.empty() && !render::checkOutputPath(settings_.screenshot, error)) return false;
+    // The screenshot key's folder: a file or a missing folder would only show when the key is pressed.
+    if (!render::checkOutputPath(settings_.screenshotDir + "/bricklight-viewer-1.png", error)) {
+        *error = "--screenshot-dir '" + settings_.screenshotDir + "': " + *error;
+        return false;
+    }
     loaded_ = render::loadSceneOf(settings_.render, error);
     if (loaded_.meshes.empty()) return false;
     for (const std::string& w : loaded_.warnings) log("warning: " + w);

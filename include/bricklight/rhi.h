@@ -220,6 +220,10 @@ constexpr uint32_t kMaxReadBufferSlots = 8;
 constexpr uint32_t kMaxStorageBufferSlots = 8;
 constexpr uint32_t kMaxStorageImageSlots = 8;
 constexpr uint32_t kMaxConstantsBytes = 256;
+// Markers nest at most this deep (GL promises 64 debug groups; deeper nesting is nearly always an endMarker
+// missing). The validation wrapper and our backends refuse a deeper beginMarker with an error, and ignore the
+// endMarker that closes it.
+constexpr uint32_t kMaxMarkerDepth = 32;
 
 struct Bindings {
     FixedVector<ConstantsBinding, kMaxConstantsSlots> constants;

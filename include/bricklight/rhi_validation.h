@@ -32,7 +32,8 @@ std::unique_ptr<IDevice> createRecordingDevice(IDevice& inner, std::ostream& out
 // Runs a recording on `device`, mapping recorded handles to new ones. Shaders are found by their
 // embedded name (findShader). A recording is untrusted input: every field of every line is checked
 // (presence, type, range; a number that does not fit its field is an error, not truncated) before the
-// device is called, what one line may make the replayer allocate is bounded by ReplayOptions, and nothing
+// device is called, what one line may make the replayer allocate and the work and memory the recording asks
+// of the device are bounded by ReplayOptions, a result id still live is not created again, and nothing
 // is thrown out of replayRecording. Returns false with `error` naming the line and the problem at the first
 // line that cannot be understood (the lines before it have run); true when every line was understood,
 // whether or not the device accepted each call (ReplayStats counts those it refused).
@@ -40,6 +41,7 @@ struct ReplayStats {
     uint64_t calls = 0;
     uint64_t failedCalls = 0;      // calls the device rejected
     uint64_t firstFailedLine = 0;  // line of the first of them (1-based; 0 if none)
+    bool overBudget = false;       // the replay stopped at a line past one of ReplayOptions' work or memory budgets
 };
 struct ReplayOptions {
     // Bounds on one line; a line beyond one of them is an error naming the line and the limit. The defaults
@@ -48,6 +50,19 @@ struct ReplayOptions {
     uint64_t maxJsonValues = 1u << 20;     // JSON values (numbers, strings, arrays, objects) on one line
     uint64_t maxDataBytes = 192ull << 20;  // decoded base64 payload of one line (initial data, writes, constants)
     uint64_t maxReadBytes = 256ull << 20;  // scratch memory one read-back line makes the replayer allocate
+    // The work and memory a recording may ask for. A line past one stops the replay before the device is
+    // called, with an error naming the line, what it asks for and the budget (ReplayStats::overBudget): work
+    // is never dropped silently, and a recording cannot make the replay run for hours or take the machine's
+    // memory. The defaults hold what bricklight-render records at its default settings many times over;
+    // UINT64_MAX turns a budget off.
+    uint64_t maxDispatchInvocations = 1ull << 28;  // one dispatch: groups x the shader's local size
+    uint64_t maxDrawVertices = 1ull << 28;         // one draw: vertices (indices) x instances
+    uint64_t maxLiveBytes = 1ull << 30;            // textures and buffers alive at once (their descriptions' bytes)
+    uint32_t maxMarkerDepth = kMaxMarkerDepth;     // markers open at once
+    // An indirect call's counts are read from its argument buffer (readBuffer, which waits for the GPU) and
+    // held to the same budgets; false skips the read and leaves indirect work unbounded (a replay that must
+    // make exactly the recorded calls, to record it again say).
+    bool boundIndirectWork = true;
     // Called after each call the device refused, with the line number and the call's name.
     std::function<void(uint64_t line, const std::string& call)> onFailedCall;
 };

@@ -38,6 +38,11 @@ expect_failure "--gi-debug vct-opacity needs voxel cone tracing" --gi-debug vct-
 expect_failure "--aov ao needs --reference" --aov ao --out "$out/x.png"
 expect_failure "--vct-occlusion must be voxels or sdf" --vct-occlusion rays
 expect_failure "--gi-unseen must be vxgi or none" --gi-unseen sdf
+# Two outputs on one file (the recording would replace the image), also through another spelling of the path.
+expect_failure "--out and --record name the same file" "${common[@]}" --out "$out/same.png" --record "$out/same.png"
+expect_failure "--out and --record name the same file" "${common[@]}" --out "$out/same.png" --record "$out/./same.png"
+expect_failure "--aov direct and --record name the same file" "${common[@]}" --aov direct --out "$out/y.png" --record "$out/y.direct.exr"
+expect_failure "--spp sets the path tracer's samples: it needs --reference" --spp 16 --width 8 --height 8 --out "$out/x.png"
 # Sun shadows: bvh, shadowmap or hybrid, and the shadow maps' parameters in range.
 expect_failure "--shadows must be bvh, shadowmap or hybrid \(got 'rays'\)" --shadows rays
 expect_failure "--shadows needs a value" --shadows

@@ -24,6 +24,14 @@ json bufferLine(uint32_t result, uint64_t size, uint32_t usage = 8) {
             {"desc", {{"size", size}, {"structStride", 0}, {"usage", usage}, {"debugName", "hostile"}}}};
 }
 
+// These tests are about what the device refuses: past the replay's memory budget (replay_budget_tests.cpp), the
+// replay would stop before the device saw the description.
+ReplayOptions unlimitedMemory() {
+    ReplayOptions o;
+    o.maxLiveBytes = UINT64_MAX;
+    return o;
+}
+
 void checkBounded(const ReplayResult& r) {
     CHECK_FALSE(r.threw);
     CHECK(r.seconds < kReplaySecondsBound);
@@ -42,7 +50,7 @@ TEST_CASE("a width or height of 2^31 or more is refused through the wrapper in b
         text += line(textureLine(id++, 4, 4, big, 2));                // 3D depth
         text += line(textureLine(id++, big, big, big, 1, UINT32_MAX));  // array of 2^31 layers, every mip
     }
-    const ReplayResult r = replayText(text);
+    const ReplayResult r = replayText(text, true, unlimitedMemory());
     INFO(r.error);
     checkBounded(r);
     REQUIRE(r.ok);
@@ -61,7 +69,7 @@ TEST_CASE("huge buffer sizes and ranges fail as calls, never as allocations", "[
     text += line({{"call", "clearBuffer"}, {"buffer", 4}, {"offset", 8}, {"size", UINT64_MAX - 3}, {"value", 0}});
     text += line({{"call", "readBuffer"}, {"buffer", 4}, {"offset", UINT64_MAX}, {"size", 16}});
     for (bool validate : {true, false}) {
-        const ReplayResult r = replayText(text, validate);
+        const ReplayResult r = replayText(text, validate, unlimitedMemory());
         INFO("validate " << validate << ": " << r.error);
         checkBounded(r);
         REQUIRE(r.ok);
@@ -69,7 +77,8 @@ TEST_CASE("huge buffer sizes and ranges fail as calls, never as allocations", "[
         CHECK(r.stats.failedCalls == (validate ? 4 : 0));  // the null device alone checks no range
     }
     // A read-back of 2^40 bytes would make the replayer allocate that much: refused before allocating.
-    const ReplayResult read = replayText(text + line({{"call", "readBuffer"}, {"buffer", 3}, {"offset", 0}, {"size", 1ull << 40}}));
+    const ReplayResult read =
+        replayText(text + line({{"call", "readBuffer"}, {"buffer", 3}, {"offset", 0}, {"size", 1ull << 40}}), true, unlimitedMemory());
     checkBounded(read);
     CHECK_FALSE(read.ok);
     CHECK(read.error == "recording line 9: readBuffer: size: a read of 1099511627776 bytes exceeds the limit of 268435456 "
@@ -79,8 +88,9 @@ TEST_CASE("huge buffer sizes and ranges fail as calls, never as allocations", "[
     huge.limits.maxTextureSize2D = 1u << 20;
     auto null = createNullDevice(&huge);
     auto wrapper = createValidationDevice(*null);
-    const ReplayResult texture = replayOn(*wrapper, line(textureLine(1, 1u << 20, 1u << 20)) +
-                                                        line({{"call", "readTexture"}, {"texture", 1}, {"sub", {0, 0, 0}}}));
+    const ReplayResult texture = replayOn(*wrapper,
+                                          line(textureLine(1, 1u << 20, 1u << 20)) + line({{"call", "readTexture"}, {"texture", 1}, {"sub", {0, 0, 0}}}),
+                                          unlimitedMemory());
     checkBounded(texture);
     CHECK(texture.error.find("recording line 2: readTexture: sub: a read of 4398046511104 bytes exceeds the limit") == 0);
 }

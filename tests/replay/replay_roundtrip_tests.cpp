@@ -17,7 +17,10 @@ std::string rerecord(const std::string& text, ReplayResult* result) {
     auto validation = createValidationDevice(*null);
     std::stringstream out;
     auto recorder = createRecordingDevice(*validation, out);
-    *result = replayOn(*recorder, text);
+    // Exactly the recorded calls: without the read of indirect arguments the budgets add (boundIndirectWork).
+    ReplayOptions exact;
+    exact.boundIndirectWork = false;
+    *result = replayOn(*recorder, text, exact);
     return out.str();
 }
 

@@ -13,7 +13,8 @@
 #    image with GI off of a later one differ only by the direct light's noise (relMSE < 0.02), GI on
 #    brightens the final image (mean > 1.1x).
 # 4. Frame time at 640x360 (printed, not asserted).
-# 5. Without a display: exit status 1 and the message, no crash.
+# 5. A refused camera: exit 1 and no screenshot; --screenshot-dir on a file or a missing folder refused.
+# 6. Without a display: exit status 1 and the message, no crash.
 set -uo pipefail
 viewer=$1 render=$2 compare=$3 backend=$4 number=$5 work=$6
 rm -rf "$work" && mkdir -p "$work" || exit 1
@@ -97,7 +98,23 @@ below "$(awk -v a="$off_mean" 'BEGIN { print a * 1.1 }')" "$gi_mean" || fail "tu
   fail "viewer at 640x360: $(cat "$work/timing.log")"
 grep "frame time" "$work/timing.log" | sed "s/^/$backend 640x360: /"
 
-# 5. No display.
+# 5. Failures leave nothing behind: a camera the renderer refuses reports errors and writes no screenshot; a
+# screenshot folder that is a file or missing is refused before the window opens.
+"$viewer" --backend "$backend" --width 32 --height 32 --frames 2 --camera 1e38,1e38,1e38,0,0,0 --screenshot "$work/refused.png" \
+  >"$work/refused.log" 2>&1
+status=$?
+[ $status -eq 1 ] || fail "a refused camera: exit status $status: $(cat "$work/refused.log")"
+[ ! -e "$work/refused.png" ] || fail "a refused camera left a screenshot behind: $(cat "$work/refused.log")"
+grep -q "no screenshot written" "$work/refused.log" || fail "a refused camera: $(cat "$work/refused.log")"
+echo "refused camera: exit 1, no screenshot"
+for dir in "$work/viewer.png" "$work/no/such/folder"; do
+  "$viewer" --backend "$backend" --width 32 --height 32 --frames 1 --screenshot-dir "$dir" >"$work/dir.log" 2>&1
+  status=$?
+  [ $status -ne 0 ] && grep -q -- "--screenshot-dir '$dir'" "$work/dir.log" || fail "--screenshot-dir $dir: status $status: $(cat "$work/dir.log")"
+done
+echo "--screenshot-dir on a file or a missing folder: refused"
+
+# 6. No display.
 env -u DISPLAY "$viewer" --backend "$backend" --frames 1 >"$work/nodisplay.log" 2>&1
 status=$?
 [ $status -eq 1 ] || fail "without a display the exit status was $status: $(cat "$work/nodisplay.log")"
