@@ -173,6 +173,9 @@ bool importAlpha(const aiMaterial* mat, const std::string& path, const LoadLimit
                     if (error) *error = "mesh '" + m.name + "': the base colour factor's alpha is not a finite number";
                     return false;
                 }
+                if (c.a < 0.0f || c.a > 1.0f)
+                    s.warnings.push_back("mesh '" + m.name + "': the base colour factor's alpha " + std::to_string(c.a) +
+                                         " is outside [0, 1]; clamped");
                 m.baseAlpha = std::clamp(float(c.a), 0.0f, 1.0f);
             }
             m.alphaCutoff = 0.5f;

@@ -66,9 +66,10 @@ class GltfChecker {
 public:
     GltfChecker(const std::string& path, const json& root, const LoadLimits& limits, std::string* error)
         : path_(path), limits_(limits), error_(error), nodes_(member(root, "nodes")), meshes_(member(root, "meshes")),
-          accessors_(member(root, "accessors")), buffers_(member(root, "buffers")), images_(member(root, "images")) {}
+          accessors_(member(root, "accessors")), buffers_(member(root, "buffers")), images_(member(root, "images")),
+          materials_(member(root, "materials")) {}
 
-    bool run() { return accessors() && buffers() && images() && nodes(); }
+    bool run() { return accessors() && buffers() && images() && materials() && nodes(); }
 
 private:
     bool fail(const std::string& why) {
@@ -102,9 +103,27 @@ private:
             const json* uri = member(images_[i], "uri");
             if (!uri || !uri->is_string()) continue;
             const std::string& text = uri->get_ref<const std::string&>();
+            // assimp takes an empty uri for no texture and drops it without a word.
+            if (text.empty()) return fail("image " + count(i) + "'s uri is empty (neither a file nor data)");
             if (text.rfind("data:", 0) != 0 && text.size() > kAssimpMaxName)
                 return fail("image " + count(i) + "'s file name is " + count(text.size()) + " characters; assimp keeps at most " +
                             count(kAssimpMaxName) + " and would drop the texture");
+        }
+        return true;
+    }
+
+    // What assimp would silently turn into an opaque material: an alphaMode that is not one of the three glTF
+    // names (they are case-sensitive: "mask" is not MASK), an alphaCutoff that is not a number.
+    bool materials() {
+        for (size_t i = 0; i < materials_.size(); ++i) {
+            if (const json* mode = member(materials_[i], "alphaMode")) {
+                const bool known = mode->is_string() && (*mode == "OPAQUE" || *mode == "MASK" || *mode == "BLEND");
+                if (!known)
+                    return fail("material " + count(i) + "'s alphaMode " + mode->dump().substr(0, 64) +
+                                " is not \"OPAQUE\", \"MASK\" or \"BLEND\" (glTF's names, case-sensitive)");
+            }
+            if (const json* cutoff = member(materials_[i], "alphaCutoff"); cutoff && !cutoff->is_number())
+                return fail("material " + count(i) + "'s alphaCutoff " + cutoff->dump().substr(0, 64) + " is not a number");
         }
         return true;
     }
@@ -177,7 +196,7 @@ private:
     const std::string& path_;
     const LoadLimits& limits_;
     std::string* error_;
-    Collection nodes_, meshes_, accessors_, buffers_, images_;
+    Collection nodes_, meshes_, accessors_, buffers_, images_, materials_;
 };
 
 }  // namespace

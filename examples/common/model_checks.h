@@ -23,7 +23,7 @@ bool checkPly(const std::string& path, std::string_view bytes, const LoadLimits&
 bool checkGlb(const std::string& path, std::string_view prefix, uint64_t fileSize, const LoadLimits& limits, std::string* error);
 // glTF's JSON: nesting within maxJsonDepth (before parsing), then nodes (count, a tree, depth), accessor
 // counts and the vertices and indices the node instances add up to, buffer sizes, image URIs that assimp
-// can hold (at most 1023 characters).
+// can hold (not empty, at most 1023 characters), alphaMode one of glTF's three names and alphaCutoff a number.
 bool checkGltfJson(const std::string& path, std::string_view json, const LoadLimits& limits, std::string* error);
 // OBJ: vertices and face corners within the limits, faces within maxFaceIndices.
 bool checkObj(const std::string& path, std::string_view bytes, const LoadLimits& limits, std::string* error);

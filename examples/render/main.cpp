@@ -300,6 +300,12 @@ int main(int argc, char** argv) {
             progress(done, o.spp);
         }
         how = std::to_string(tracer->samples()) + " spp path-traced";
+        if (const uint64_t cut = tracer->samplesCutShort())
+            std::fprintf(stderr,
+                         "bricklight-render: warning: %llu of %llu samples were cut short by the driver's limit on loop iterations "
+                         "(CPU drivers end a shader's loops after 65,535 iterations in all): the image is wrong where a ray crosses "
+                         "that many overlapping triangles\n",
+                         (unsigned long long)cut, (unsigned long long)tracer->samples() * o.width * o.height);
     } else {
         render::RasterOptions ro = render::rasterOptionsOf(o);
         ro.errorCallback = report;  // the SDF's and GI's messages count as the device's do

@@ -29,7 +29,8 @@ std::unique_ptr<PathTracer> PathTracer::create(rhi::IDevice& device, const scene
         return fail("aoRange must be finite and >= 0 (0: a tenth of the scene's diagonal), got " + std::to_string(options.aoRange));
     std::string sceneError;
     if (!checkImageSize(options.width, options.height, &sceneError)) return fail(sceneError);
-    const uint64_t accumulationBytes = uint64_t(options.width) * options.height * 16 * uint32_t(Aov::Count);
+    // Every AOV's sums, then one row of per-pixel counts of samples cut short (path_trace.comp).
+    const uint64_t accumulationBytes = uint64_t(options.width) * options.height * 16 * (uint32_t(Aov::Count) + 1);
     if (!checkStorageRange(device, accumulationBytes,
                            "the path tracer's accumulation at " + std::to_string(options.width) + "x" + std::to_string(options.height),
                            &sceneError))
@@ -124,6 +125,15 @@ Image PathTracer::read(Aov aov) {
         img.rgb[3 * i + 2] = sums[i].z / n;
     }
     return img;
+}
+
+uint64_t PathTracer::samplesCutShort() {
+    const size_t pixels = size_t(options_.width) * options_.height;
+    std::vector<glm::vec4> counts(pixels);
+    device_.readBuffer(accumulation_, uint64_t(Aov::Count) * pixels * 16, pixels * 16, counts.data());
+    double total = 0.0;
+    for (const glm::vec4& c : counts) total += c.x;
+    return uint64_t(total);
 }
 
 }  // namespace bricklight::render

@@ -34,7 +34,9 @@ struct Image {
 struct PathTracerOptions {
     uint32_t width = 256, height = 256;
     uint32_t maxBounces = 64;        // Russian roulette ends paths long before this
-    uint32_t samplesPerDispatch = 4; // per pixel
+    // Per pixel and dispatch: each invocation traces this many samples in a loop. 1: on CPU drivers the
+    // loop limit (samplesCutShort) is per invocation, and one sample of a deep scene may need most of it.
+    uint32_t samplesPerDispatch = 1;
     uint32_t seed = 1;
     // Samples spread over the pixel (anti-aliasing). Off: every camera ray through the pixel centre, as a
     // rasterizer samples (the primary-hit AOVs then equal a G-buffer's).
@@ -55,6 +57,12 @@ public:
     void addSamples(uint32_t samples);  // records dispatches; does not wait
     uint32_t samples() const { return samples_; }
     Image read(Aov aov);                // blocking; the mean of the samples so far
+    // Blocking: samples that a CPU driver's loop limit cut short since the last restart (0 on GPUs): llvmpipe
+    // and lavapipe end every loop of a shader invocation after 65,535 iterations of all its loops together, and
+    // a sample through thousands of overlapping triangles (coincident cut-out cards) can need more. Samples not
+    // finished are left out of the means; finished ones with a ray ended early are in them (the image is wrong
+    // there). Callers report a count above 0 (bricklight-render warns with it).
+    uint64_t samplesCutShort();
     uint32_t triangleCount() const { return scene_->triangleCount(); }
     float aoRange() const { return aoRange_; }  // the ao AOV's range: options.aoRange or its default
 

@@ -5,7 +5,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "isolated_call.h"
 #include "safe_file.h"
@@ -55,6 +57,26 @@ bool decode(const std::string& path, const std::vector<uint8_t>* encoded, const 
         return *why = "it is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels, over the limit of " +
                       std::to_string(limits.maxTexturePixels) + " " + scenes::raiseHint("maxTexturePixels"),
                false;
+    // A float image's NaN or infinity would become a 0 or 255 texel without a word (a NaN renders black): refused.
+    const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
+    if (base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE) {
+        uint64_t bad = 0;
+        if (spec.tile_width == 0) {  // row by row: a float copy of one row, not of the image
+            std::vector<float> row(size_t(spec.width) * size_t(spec.nchannels));
+            for (int y = 0; y < spec.height; ++y) {
+                if (!input->read_scanline(y, 0, OIIO::TypeDesc::FLOAT, row.data())) return *why = input->geterror(), false;
+                for (float v : row) bad += !std::isfinite(v);
+            }
+        } else {
+            std::vector<float> all(size_t(pixels) * size_t(spec.nchannels));
+            if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data())) return *why = input->geterror(), false;
+            for (float v : all) bad += !std::isfinite(v);
+        }
+        if (bad)
+            return *why = "it holds " + std::to_string(bad) + " values that are not finite (NaN or infinite) of " +
+                          std::to_string(pixels * uint64_t(spec.nchannels)),
+                   false;
+    }
     out->width = uint32_t(spec.width);
     out->height = uint32_t(spec.height);
     out->channels = uint32_t(spec.nchannels);

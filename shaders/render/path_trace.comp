@@ -19,6 +19,9 @@
 // Where the camera ray's first hit takes the glass lobe, the pixel has no diffuse surface of its own: direct =
 // combined (all it shows comes through or off the glass), indirect = 0, albedo = 0; normal, depth and ao are
 // the glass surface's. Light that reaches an opaque primary hit through glass is indirect (it was refracted).
+// Row 7 of the accumulation counts, per pixel (x), the samples a CPU driver's loop limit cut short
+// (loopBudgetSpent): they are left out of the sums and of their count (w); PathTracer::samplesCutShort()
+// reports them.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 BL_CONSTANTS(0) uniform Params {
@@ -31,6 +34,17 @@ BL_CONSTANTS(0) uniform Params {
 BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 7 AOVs x pixels: sums, w = samples
 #include "scene_trace.glsl"
 
+// CPU drivers (llvmpipe, lavapipe) end every loop of a shader invocation once all its loops together have run
+// 65,535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS): from then on each loop stops after one pass, silently.
+// A ray through thousands of overlapping triangles (a stack of coincident cut-out cards) needs that many. This
+// loop makes two passes unless the budget is spent (its bound is 2 at run time, which no compiler can fold into
+// an unrolled pair). GPUs have no such limit: there it always makes two.
+bool loopBudgetSpent() {
+    uint passes = 0u;
+    for (uint i = 0u; i < 2u + (params.size.x >> 31u); ++i) ++passes;
+    return passes < 2u;
+}
+
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(pixel, params.size.xy))) return;
@@ -38,7 +52,9 @@ void main() {
     uint pixelCount = params.size.x * params.size.y;
     float eps = sceneLight.lightWeight.y;
     vec3 sums[7] = vec3[7](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+    uint finished = 0u;
     for (uint s = 0u; s < params.size.w; ++s) {
+        vec3 aovs[7] = vec3[7](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
         rngState = pcg(pixelIndex ^ pcg(params.size.z + s + pcg(sceneLight.counts.y)));
         // Camera ray through a jittered point of the pixel (image origin top-left).
         vec2 jitter = vec2(rand(), rand());
@@ -60,7 +76,7 @@ void main() {
                 if (k <= 1u) direct += throughput * sceneLight.sky.rgb;
                 else indirect += relative * sceneLight.sky.rgb;
                 radiance += throughput * sceneLight.sky.rgb;
-                if (k == 0u) sums[6] += vec3(1.0);
+                if (k == 0u) aovs[6] += vec3(1.0);
                 break;
             }
             vec3 p = origin + d * hit.t;
@@ -72,14 +88,14 @@ void main() {
             Surface surface = surfaceAt(material, hit.triangle, hit.bary);
             vec3 v = -d;
             if (k == 0u) {
-                sums[4] += n;
-                sums[5] += vec3(dot(p - origin, params.forward.xyz));
+                aovs[4] += n;
+                aovs[5] += vec3(dot(p - origin, params.forward.xyz));
                 // AO from a stream of its own, so that the other AOVs draw the same numbers as without it. Always
                 // traced (no flag: a short any-hit ray); a range of 0 or below eps makes it 1.
                 uint pathRng = rngState;
                 rngState = pcg(pathRng ^ 0x9E3779B9u);
                 Hit occluder;
-                sums[6] += vec3(traceRay(p, cosineDirection(n), eps, params.eye.w, true, occluder) ? 0.0 : 1.0);
+                aovs[6] += vec3(traceRay(p, cosineDirection(n), eps, params.eye.w, true, occluder) ? 0.0 : 1.0);
                 rngState = pathRng;
             }
             if (countEmission && front) {
@@ -92,7 +108,7 @@ void main() {
             bool glass = transmission > 0.0 && (transmission >= 1.0 || rand() < transmission);
             if (k == 0u) {
                 glassPixel = glass;
-                sums[3] += glass ? vec3(0.0) : surface.baseColor;
+                aovs[3] += glass ? vec3(0.0) : surface.baseColor;
             }
             if (!glass) {
                 vec3 light = directLight(p, n, v, surface, eps);
@@ -122,9 +138,15 @@ void main() {
             origin = p;
             d = next;
         }
-        sums[0] += radiance;
-        sums[1] += glassPixel ? radiance : direct;
-        sums[2] += glassPixel ? vec3(0.0) : indirect;
+        aovs[0] += radiance;
+        aovs[1] += glassPixel ? radiance : direct;
+        aovs[2] += glassPixel ? vec3(0.0) : indirect;
+        // Spent now: this sample's loops (a traversal, its bounces) may have ended early, and so will every later one.
+        if (loopBudgetSpent()) break;
+        for (uint a = 0u; a < 7u; ++a) sums[a] += aovs[a];
+        ++finished;
     }
-    for (uint a = 0u; a < 7u; ++a) accumulated[a * pixelCount + pixelIndex] += vec4(sums[a], float(params.size.w));
+    // `finished`, not the samples asked for: samples a CPU driver's loop limit cut short must not dim the mean.
+    for (uint a = 0u; a < 7u; ++a) accumulated[a * pixelCount + pixelIndex] += vec4(sums[a], float(finished));
+    accumulated[7u * pixelCount + pixelIndex].x += float(params.size.w - finished);
 }

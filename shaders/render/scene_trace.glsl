@@ -128,6 +128,7 @@ bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) 
         if (triangles[3u * hit.triangle + 1u].w == 0.0 || !alphaCutOut(hit.triangle, hit.bary)) return true;
         tMin = hit.t;
     }
+    return false;  // only where a CPU driver ended the loop (path_trace.comp's loopBudgetSpent)
 }
 
 // Base colour at a hit: the material's factor, times its texture where it has one.

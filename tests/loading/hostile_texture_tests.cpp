@@ -4,6 +4,8 @@
 
 #include <sys/stat.h>
 
+#include <cmath>
+
 #include "hostile_files.h"
 #include "scene_geometry.h"
 #include "texture_loader.h"
@@ -100,4 +102,18 @@ TEST_CASE("loading: the texture loader refuses FIFOs, directories and missing fi
     const std::vector<uint8_t> noise(300, 0x5A);
     CHECK(!render::loadTextureLayer("noise.png", 4, &texels, &error, &noise));
     CHECK(texels.size() == 4 * 4 * 4);  // the failures appended nothing
+    // A float image (PFM: RGB floats) with a NaN and an infinity is refused, naming how many values; finite, it loads.
+    auto pfm = [](const std::vector<float>& rgb) {
+        std::string bytes = "PF\n2 2\n-1.0\n";
+        bytes.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * sizeof(float));
+        return bytes;
+    };
+    std::vector<float> values(12, 0.5f);
+    writeFile(dir + "/finite.pfm", pfm(values));
+    CHECK(render::loadTextureLayer(dir + "/finite.pfm", 4, &texels, &error));
+    values[4] = std::nanf("");
+    values[9] = INFINITY;
+    writeFile(dir + "/nan.pfm", pfm(values));
+    CHECK(!render::loadTextureLayer(dir + "/nan.pfm", 4, &texels, &error));
+    CHECK(matches(error, "nan\\.pfm' cannot be loaded: it holds 2 values that are not finite \\(NaN or infinite\\) of 12"));
 }

@@ -144,6 +144,8 @@ TEST_CASE("loading: alpha-tested materials (glTF alphaMode and alphaCutoff, OBJ 
          "alphaCutoff -0.500000 is outside \\[0, 1\\]; clamped"},
         {"over-one", R"({"alphaMode":"MASK","alphaCutoff":7,"pbrMetallicRoughness":{)" + texture + "}}", 1.0f, 1.0f,
          "alphaCutoff 7.000000 is outside \\[0, 1\\]; clamped"},
+        {"factor-over-one", R"({"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,3],)" + texture + "}}", 0.5f, 1.0f,
+         "the base colour factor's alpha 3.000000 is outside \\[0, 1\\]; clamped"},
     };
     for (const auto& c : gltf) {
         INFO(c.name);
@@ -174,6 +176,29 @@ TEST_CASE("loading: alpha-tested materials (glTF alphaMode and alphaCutoff, OBJ 
     CHECK(matches(error, "^cannot load '.*nan.gltf'"));
     CHECK(scenes::loadModel(dir + "/inf.gltf", &error).meshes.empty());
     CHECK(matches(error, "^cannot load '.*inf.gltf'"));
+    // What assimp would make opaque without a word: an alphaMode that is not one of glTF's three names (they are
+    // case-sensitive), a cut-off that is not a number.
+    const struct {
+        const char* name;
+        std::string material, message;
+    } refused[] = {
+        {"lower-case", R"({"alphaMode":"mask"})", R"(material 0's alphaMode "mask" is not "OPAQUE", "MASK" or "BLEND")"},
+        {"cutout", R"({"alphaMode":"CUTOUT"})", R"(material 0's alphaMode "CUTOUT" is not)"},
+        {"number", R"({"alphaMode":1})", "material 0's alphaMode 1 is not"},
+        {"empty", R"({"alphaMode":""})", R"(material 0's alphaMode "" is not)"},
+        {"cutoff-string", R"({"alphaMode":"MASK","alphaCutoff":"half"})", R"(material 0's alphaCutoff "half" is not a number)"},
+    };
+    for (const auto& c : refused) {
+        INFO(c.name);
+        writeFile(dir + "/refused.gltf", gltfWithMaterial(c.material));
+        CHECK(scenes::loadModel(dir + "/refused.gltf", &error).meshes.empty());
+        INFO(error);
+        CHECK(error.find(c.message) != std::string::npos);
+    }
+    // An image whose uri is empty: assimp drops the texture without a word.
+    writeFile(dir + "/empty_uri.gltf", gltfTriangle("", "triangle.bin"));
+    CHECK(scenes::loadModel(dir + "/empty_uri.gltf", &error).meshes.empty());
+    CHECK(error.find("image 0's uri is empty (neither a file nor data)") != std::string::npos);
 
     // OBJ: map_d is the coverage, tested at 0.5; without it the mesh is opaque.
     writeFile(dir + "/model.obj", objTriangle("model.mtl"));
