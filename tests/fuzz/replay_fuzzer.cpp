@@ -4,7 +4,9 @@
 //   - an exception leaving replayRecording, or an error that does not name its line;
 //   - the calls a replay made, recorded, not replaying to the very same recording with the same counts
 //     (the encoder and the decoder disagree on a field, or a decode lets through what the encoder cannot
-//     write back).
+//     write back). These replays make exactly the recorded calls (ReplayOptions::boundIndirectWork off: its
+//     reads of indirect arguments would be recorded too); a third replay, with the default options, holds the
+//     indirect calls to the budgets.
 #include <cstdint>
 #include <cstdio>
 #include <sstream>
@@ -24,10 +26,11 @@ struct Run {
     std::string recording;  // every call the replay made, as the recording device writes it
 };
 
-Run replayRecorded(const std::string& text) {
+Run replayRecorded(const std::string& text, bool exactCalls) {
     // Small bounds: an input is at most -max_len bytes, and what a line may allocate should stay far below
     // -rss_limit_mb.
     ReplayOptions options;
+    options.boundIndirectWork = !exactCalls;
     options.maxDataBytes = 1u << 20;
     options.maxReadBytes = 1u << 20;
     auto null = createNullDevice();
@@ -52,12 +55,15 @@ Run replayRecorded(const std::string& text) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool registered = (bricklight::fuzz::registerReplayFuzzShaders(), true);
     (void)registered;
-    const Run first = replayRecorded(std::string(reinterpret_cast<const char*>(data), size));
-    if (!first.ok && first.error.rfind("recording line ", 0) != 0) {
-        std::fprintf(stderr, "replay_fuzzer: error without a line: %s\n", first.error.c_str());
-        __builtin_trap();
-    }
-    const Run second = replayRecorded(first.recording);
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    const Run bounded = replayRecorded(text, false);
+    const Run first = replayRecorded(text, true);
+    for (const Run* run : {&bounded, &first})
+        if (!run->ok && run->error.rfind("recording line ", 0) != 0) {
+            std::fprintf(stderr, "replay_fuzzer: error without a line: %s\n", run->error.c_str());
+            __builtin_trap();
+        }
+    const Run second = replayRecorded(first.recording, true);
     if (!second.ok || second.recording != first.recording || second.stats.calls != first.stats.calls ||
         second.stats.failedCalls != first.stats.failedCalls) {
         std::fprintf(stderr, "replay_fuzzer: the re-recorded calls do not replay the same (%s)\n", second.error.c_str());
