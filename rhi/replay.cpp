@@ -203,7 +203,9 @@ private:
         return device_.destroy(ctx_.map<SamplerHandle>(ctx_.samplers, f.at("handle"), f.path("handle"))), forget(liveSamplers_, f), true;
     }
     bool destroyShader(const Fields& f) {
-        return device_.destroy(ctx_.map<ShaderHandle>(ctx_.shaders, f.at("handle"), f.path("handle"))), forget(liveShaders_, f), true;
+        const ShaderHandle h = ctx_.map<ShaderHandle>(ctx_.shaders, f.at("handle"), f.path("handle"));
+        shaderBlobs_.erase(h.id);
+        return device_.destroy(h), forget(liveShaders_, f), true;
     }
 
     bool writeBuffer(const Fields& f) {
