@@ -224,7 +224,8 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
     s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(normals_), point_});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::ReadWrite));
     s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::ReadWrite));
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{7, alphaCache_ ? alphaCache_ : alphaCacheNone_, {}, rhi::Access::Read});
+    // Atomic: a ray that reaches its bound on cards passed is counted in the cache's header (gi::GiContext::raysAtAlphaBound).
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{7, alphaCache_ ? alphaCache_ : alphaCacheNone_, {}, rhi::Access::Atomic});
     field.traceBindings(s.bindings);
     if (!device_.dispatchIndirect(s, count_, 0)) {
         if (error) *error = "shadow classifier: the device refused the trace (see its messages)";

@@ -346,6 +346,12 @@ void GiContextImpl::readCaches(std::vector<float>* radiance, std::vector<float>*
     }
 }
 
+uint64_t GiContextImpl::raysAtAlphaBound() {
+    uint32_t count = 0;
+    device_.readBuffer(alphaCache_, 8, 4, &count);  // header word 2 (bricklight/alpha_cache.glsl)
+    return count;
+}
+
 uint32_t GiContextImpl::radianceCacheBricksInUse() {
     int32_t free = 0;
     device_.readBuffer(freeSlots_, 0, 4, &free);

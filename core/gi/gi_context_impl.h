@@ -57,6 +57,7 @@ public:
     std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) override;
     std::vector<float> readAlphaCoverage(std::vector<uint32_t>* fragments) override;
     rhi::BufferHandle alphaCacheBuffer() const override { return alphaCache_; }
+    uint64_t raysAtAlphaBound() override;
 
 private:
     bool fail(ErrorCode code, const std::string& message);  // reports an error, returns false
@@ -70,8 +71,9 @@ private:
     void fillConstants(const DispatchDesc& d);
     void uploadLights(const DispatchDesc& d);
     void addTrace(rhi::Bindings& b) const;
-    // The alpha cache at storage buffer 7 (gi_alpha.glsl), for the passes that trace rays through foliage.
-    void addAlphaCache(rhi::Bindings& b, rhi::Access access = rhi::Access::Read) const;
+    // The alpha cache at storage buffer 7 (gi_alpha.glsl), for the passes that trace rays through foliage (atomic:
+    // they count the rays that reach their bound on cards passed in its header).
+    void addAlphaCache(rhi::Bindings& b, rhi::Access access = rhi::Access::Atomic) const;
     void addEnvironment(rhi::Bindings& b, const DispatchDesc& d) const;
     // Sets the shader, the label and the camera/frame constants, then records the dispatch in a marker.
     void prepare(const char* label, rhi::ShaderHandle shader, rhi::DispatchState& s);

@@ -278,6 +278,15 @@ int main(int argc, char** argv) {
         if (!recordTemp.empty()) std::remove(recordTemp.c_str());
         return 1;
     };
+    // Work a CPU driver's loop limit cut short is wrong, not missing: say so, with the count.
+    auto warnCutShort = [](uint64_t cut, uint64_t of, const char* what) {
+        if (cut)
+            std::fprintf(stderr,
+                         "bricklight-render: warning: %llu of %llu %s were cut short by the driver's limit on loop iterations "
+                         "(CPU drivers end a shader's loops after 65,535 iterations in all): the image is wrong where a ray crosses "
+                         "that many overlapping triangles\n",
+                         (unsigned long long)cut, (unsigned long long)of, what);
+    };
     const auto start = std::chrono::steady_clock::now();
     if (o.reference && scene.animate) scene.animate(scene, o.frames - 1);  // the last frame's state
     std::unique_ptr<render::PathTracer> tracer;
@@ -300,12 +309,7 @@ int main(int argc, char** argv) {
             progress(done, o.spp);
         }
         how = std::to_string(tracer->samples()) + " spp path-traced";
-        if (const uint64_t cut = tracer->samplesCutShort())
-            std::fprintf(stderr,
-                         "bricklight-render: warning: %llu of %llu samples were cut short by the driver's limit on loop iterations "
-                         "(CPU drivers end a shader's loops after 65,535 iterations in all): the image is wrong where a ray crosses "
-                         "that many overlapping triangles\n",
-                         (unsigned long long)cut, (unsigned long long)tracer->samples() * o.width * o.height);
+        warnCutShort(tracer->samplesCutShort(), uint64_t(tracer->samples()) * o.width * o.height, "samples");
     } else {
         render::RasterOptions ro = render::rasterOptionsOf(o);
         ro.errorCallback = report;  // the SDF's and GI's messages count as the device's do
@@ -317,6 +321,13 @@ int main(int argc, char** argv) {
             raster->render();
             device->endFrame();
         }
+        warnCutShort(raster->invocationsCutShort(), uint64_t(frames) * o.width * o.height, "pixel shadings (pixels x frames; fragments of glass and voxelization count too)");
+        if (gi::GiContext* giContext = raster->giContext())
+            if (const uint64_t bound = giContext->raysAtAlphaBound())
+                std::fprintf(stderr,
+                             "bricklight-render: warning: %llu GI rays through foliage passed as many cut-out cards as they may (6) and took "
+                             "the next one as opaque: the indirect light there is too dark (docs/gi.md, Foliage)\n",
+                             (unsigned long long)bound);
         const std::string technique = o.giTechnique == render::GiTechnique::Vct ? "voxel cone tracing"
                                       : o.giUnseenFromVct                         ? "SDF GI (unseen surfaces from a clip-map)"
                                                                                   : "SDF GI";

@@ -257,6 +257,8 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     s->vertices_ = buffer("vertices", vertices.data(), vertices.size() * 4, Vertex);
     s->uvs_ = buffer("texture coordinates", triangleUvs.data(), triangleUvs.size() * 16, ShaderRead);
     s->normals_ = buffer("shading normals", triangleNormals.data(), triangleNormals.size() * 16, ShaderRead);
+    const uint32_t noneCutShort[4] = {0, 0, 0, 0};
+    s->loopBudget_ = buffer("loop budget", noneCutShort, sizeof(noneCutShort), ShaderWrite);
     rhi::TextureDesc td;
     td.dimension = rhi::TextureDimension::Texture2DArray;
     td.format = rhi::Format::RGBA8_SRGB;
@@ -270,13 +272,13 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     sd.debugName = "base colour";
     s->sampler_ = device.createSampler(sd);
     if (!s->triangleBuffer_ || !s->nodes_ || !s->materials_ || !s->lights_ || !s->pointLights_ || !s->vertices_ || !s->uvs_ || !s->normals_ ||
-        !s->textures_ || !s->sampler_)
+        !s->loopBudget_ || !s->textures_ || !s->sampler_)
         return fail("the device could not create the scene's buffers (see its messages)");
     return s;
 }
 
 GpuScene::~GpuScene() {
-    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_, normals_})
+    for (rhi::BufferHandle b : {triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_, normals_, loopBudget_})
         if (b) device_.destroy(b);
     if (textures_) device_.destroy(textures_);
     if (sampler_) device_.destroy(sampler_);
@@ -291,6 +293,13 @@ void GpuScene::bind(rhi::Bindings& b) const {
     b.readBuffers.push({2, materials_, {}});
     b.readBuffers.push({3, lights_, {}});
     b.readBuffers.push({4, pointLights_, {}});
+    b.storageBuffers.push({4, loopBudget_, {}, rhi::Access::Atomic});
+}
+
+uint64_t GpuScene::invocationsCutShort() const {
+    uint32_t count = 0;
+    device_.readBuffer(loopBudget_, 0, sizeof(count), &count);
+    return count;
 }
 
 void GpuScene::bindVertices(rhi::DrawCallState& d) const {

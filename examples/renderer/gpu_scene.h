@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "bricklight/rhi.h"
 #include "scene_geometry.h"
@@ -35,13 +36,21 @@ public:
     static std::unique_ptr<GpuScene> create(rhi::IDevice& device, const scenes::SceneGeometry& scene, std::string* error,
                                             const std::vector<glm::vec3>* previous = nullptr);
     ~GpuScene();
-    // Read buffers 0..6 (triangles, BVH, materials, emitters, point lights, texture coordinates, normals) and
-    // the base-colour texture array (texture slot 4) as scene_trace.glsl declares them: every pass that
-    // traces rays reads the textures, for the alpha test of alpha-tested materials.
+    // Read buffers 0..6 (triangles, BVH, materials, emitters, point lights, texture coordinates, normals),
+    // the base-colour texture array (texture slot 4) and the loop-budget counter (storage buffer 4) as
+    // scene_trace.glsl declares them: every pass that traces rays reads the textures, for the alpha test of
+    // alpha-tested materials.
     void bind(rhi::Bindings& bindings) const;
     // The former form (`textures` chose whether slot 4 was bound); the textures are always bound now. Kept
     // for callers outside the renderer's own files until they drop the argument.
     void bind(rhi::Bindings& bindings, bool /*textures*/) const { bind(bindings); }
+    // Shader invocations (pixels, fragments) of every pass so far whose rays a CPU driver's limit on loop
+    // iterations cut short (scene_trace.glsl's loopBudgetSpent): their results are wrong. Zero on GPUs. A
+    // blocking read-back.
+    uint64_t invocationsCutShort() const;
+    // Takes over the counter of the scene this one replaces (an animated scene's previous state), so the count
+    // runs on over frames without a read-back.
+    void continueCountOf(GpuScene& replaced) { std::swap(loopBudget_, replaced.loopBudget_); }
     rhi::TextureHandle textureArray() const { return textures_; }
     rhi::SamplerHandle textureSampler() const { return sampler_; }
     static constexpr uint32_t kTextureSize = 256;  // every base-colour texture is resampled to this square
@@ -67,7 +76,7 @@ public:
 private:
     explicit GpuScene(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
-    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_, normals_;
+    rhi::BufferHandle triangleBuffer_, nodes_, materials_, lights_, pointLights_, vertices_, uvs_, normals_, loopBudget_;
     rhi::TextureHandle textures_;
     rhi::SamplerHandle sampler_;
     uint32_t pointLightCount_ = 0;

@@ -403,6 +403,7 @@ bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* e
         if (error) *error = "raster renderer: " + sceneError;
         return false;
     }
+    next->continueCountOf(*scene_);
     scene_ = std::move(next);
     giLights_ = giLightsOf(scene);
     setSun(scene);

@@ -179,6 +179,10 @@ public:
     void cameraCut() { cut_ = true; }
     Image readMotion();  // rg = UV motion (current - previous), b = 0
     uint32_t triangleCount() const { return scene_->triangleCount(); }
+    // Pixels and fragments of the frames so far whose ray-traced lighting (direct light, BVH shadows, glass,
+    // voxelization's light) a CPU driver's limit on loop iterations cut short, leaving it wrong: rays through
+    // thousands of overlapping triangles. Zero on GPUs. A blocking read-back (GpuScene::invocationsCutShort).
+    uint64_t invocationsCutShort() const { return scene_->invocationsCutShort(); }
     // The sun's shadow cascades of the latest frame (ShadowMode::ShadowMap or Hybrid; depth null otherwise).
     ShadowCascadesView shadowCascades() const;
     // The sun's visibility the direct lighting used in the latest frame (0..1 in every channel, 0 where the

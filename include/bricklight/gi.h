@@ -275,6 +275,12 @@ public:
     // storage buffer and include bricklight/alpha_cache.glsl): always a live buffer, whose header says whether the
     // context keeps a cache (a 16-byte stand-in without ContextFlags::AlphaCache). Owned by the context.
     virtual rhi::BufferHandle alphaCacheBuffer() const = 0;
+    // Rays through the alpha cache, since the context was created, that met their tracer's bound on cards passed
+    // and took the next alpha-tested hit as opaque without asking the cache (docs/gi.md, "Foliage": the GI's rays
+    // pass at most 6 cards, hybrid shadow rays 6 layers): where many do, foliage there shades too dark. Counted by
+    // every tracer bound to alphaCacheBuffer() (the GI's, the shadow classifier's, yours through
+    // blAlphaCacheCountBoundReached); 0 without ContextFlags::AlphaCache. A blocking read-back.
+    virtual uint64_t raysAtAlphaBound() = 0;
 };
 
 }  // namespace bricklight::gi

@@ -98,7 +98,10 @@ BlSdfHit traceThroughFoliage(BlSdfRay ray, ivec2 pixel, bool followThin, bool re
             bool crossedByThin = false;
             for (uint i = 0u; followThin && i < thinPassedCount; ++i)
                 crossedByThin = crossedByThin || (thinPassed[i] >= hit.t && thinPassed[i] <= shellEnd);
-            if (layer == SHADOW_FOLIAGE_MAX_LAYERS) break;
+            if (layer == SHADOW_FOLIAGE_MAX_LAYERS) {
+                blAlphaCacheCountBoundReached();  // its next card blocks, whatever the cache says
+                break;
+            }
             if (!crossedByThin && !blAlphaCacheTransparent(hit, foliageDraw(pixel, layer))) break;
             if (recordPassed) thinPassed[layer] = hit.t + toCard;
             ++layer;

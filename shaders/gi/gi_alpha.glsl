@@ -18,15 +18,18 @@ bool giBrickHoldsCards(uint brick) {
     return aabb != BL_SDF_AABB_NONE && (aabb & BL_SDF_AABB_ALPHA_TESTED) != 0u;
 }
 
-// blSdfTrace that goes on past transparent hits (at most GI_ALPHA_MAX_CONTINUES times).
+// blSdfTrace that goes on past transparent hits (at most GI_ALPHA_MAX_CONTINUES times; a ray whose next hit
+// is alpha-tested once they are spent is counted, blAlphaCacheCountBoundReached).
 BlSdfHit giTraceThroughAlpha(BlSdfRay ray, inout uint rng) {
     BlSdfHit hit = blSdfTrace(ray);
-    for (uint k = 0u; k < GI_ALPHA_MAX_CONTINUES && blAlphaCacheTransparent(hit, giRandom(rng)); ++k) {
+    uint k = 0u;
+    for (; k < GI_ALPHA_MAX_CONTINUES && blAlphaCacheTransparent(hit, giRandom(rng)); ++k) {
         uint iterations = hit.iterations;
         ray = blSdfContinueRay(ray, hit);
         hit = blSdfTrace(ray);
         hit.iterations += iterations;
     }
+    if (k == GI_ALPHA_MAX_CONTINUES && hit.hit && hit.alphaTested) blAlphaCacheCountBoundReached();
     return hit;
 }
 

@@ -34,17 +34,6 @@ BL_CONSTANTS(0) uniform Params {
 BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 7 AOVs x pixels: sums, w = samples
 #include "scene_trace.glsl"
 
-// CPU drivers (llvmpipe, lavapipe) end every loop of a shader invocation once all its loops together have run
-// 65,535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS): from then on each loop stops after one pass, silently.
-// A ray through thousands of overlapping triangles (a stack of coincident cut-out cards) needs that many. This
-// loop makes two passes unless the budget is spent (its bound is 2 at run time, which no compiler can fold into
-// an unrolled pair). GPUs have no such limit: there it always makes two.
-bool loopBudgetSpent() {
-    uint passes = 0u;
-    for (uint i = 0u; i < 2u + (params.size.x >> 31u); ++i) ++passes;
-    return passes < 2u;
-}
-
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(pixel, params.size.xy))) return;

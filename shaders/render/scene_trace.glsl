@@ -21,6 +21,9 @@ BL_READ_BUFFER(3) Lights { vec4 lights[]; };         // triangle (bits), area, c
 BL_READ_BUFFER(4) PointLights { vec4 pointLights[]; };  // 3 per light: position, cos outer; intensity; direction, cos inner
 BL_READ_BUFFER(5) TriangleUvs { vec4 triangleUvs[]; };  // 2 per triangle: uv0, uv1; uv2
 BL_READ_BUFFER(6) TriangleNormals { vec4 triangleNormals[]; };  // 3 per triangle: shading normals (zero: none)
+// Invocations whose rays a CPU driver's loop limit cut short (loopBudgetSpent), counted once each: the renderer
+// reports them (RasterRenderer::invocationsCutShort). GpuScene::bind binds it, with Access::Atomic.
+BL_STORAGE_BUFFER(4) TraceLoopBudget { uint invocationsCutShort; } traceLoopBudget;
 // Always declared (GpuScene::bind binds it): traceRay reads the alpha of alpha-tested materials, so every
 // pass that traces rays needs it, not only those that shade with the base colour.
 BL_TEXTURE(4) uniform sampler2DArray baseColorTextures;  // one layer per texture (GpuScene::kTextureSize square)
@@ -36,6 +39,26 @@ uint pcg(uint v) {
 float rand() {
     rngState = pcg(rngState);
     return float(rngState >> 8) * (1.0 / 16777216.0);
+}
+
+// CPU drivers (llvmpipe, lavapipe) end every loop of a shader invocation once all its loops together have run
+// 65,535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS): from then on each loop stops after one pass, silently,
+// and a ray comes back as a miss or a wrong hit. A ray through thousands of overlapping triangles (a stack of
+// coincident cut-out cards) needs that many. This loop makes two passes unless the budget is spent (its bound is 2
+// at run time, which no compiler can fold into an unrolled pair). GPUs have no such limit: there it always makes two.
+bool loopBudgetSpent() {
+    uint passes = 0u;
+    for (uint i = 0u; i < 2u + (sceneLight.counts.x >> 31u); ++i) ++passes;
+    return passes < 2u;
+}
+
+// traceRay notes an invocation whose budget ran out, once (later rays of it are as wrong, and one atomic is enough).
+bool traceLoopBudgetCounted = false;
+void countIfLoopBudgetSpent() {
+    if (!traceLoopBudgetCounted && loopBudgetSpent()) {
+        traceLoopBudgetCounted = true;
+        atomicAdd(traceLoopBudget.invocationsCutShort, 1u);
+    }
 }
 
 struct Hit {
@@ -61,8 +84,9 @@ bool alphaCutOut(uint tri, vec2 bary) {
 }
 
 // The BVH traversal of traceRay: the nearest triangle in (tMin, tMax), or with `anyHit` the first opaque one
-// found (an alpha-tested candidate, v1.w = 1, is kept as the nearest so far instead: traceRay tests it).
-bool traverseBvh(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
+// found. An alpha-tested candidate (v1.w = 1) is, without `testAlpha`, kept as the nearest so far (traceRay tests
+// it); with `testAlpha`, tested as it is met: a cut-out point is passed over, anything else is a hit.
+bool traverseBvh(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, bool testAlpha, out Hit hit) {
     vec3 inv = 1.0 / mix(d, vec3(1e-30), lessThan(abs(d), vec3(1e-30)));
     uint stack[48];
     uint top = 0u;
@@ -102,11 +126,12 @@ bool traverseBvh(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hi
                 if (v < -kEdge || u + v > 1.0 + kEdge) continue;
                 float t = dot(e2, q) * invDet;
                 if (t > tMin && t < hit.t) {
+                    if (testAlpha && v1.w != 0.0 && alphaCutOut(i, vec2(u, v))) continue;
                     hit.t = t;
                     hit.triangle = i;
                     hit.bary = vec2(u, v);
-                    // An alpha-tested triangle (v1.w = 1) is only a candidate, for traceRay to test.
-                    if (anyHit && v1.w == 0.0) return true;
+                    // Without testAlpha an alpha-tested triangle (v1.w = 1) is only a candidate, for traceRay to test.
+                    if (anyHit && (v1.w == 0.0 || testAlpha)) return true;
                 }
             }
         }
@@ -117,18 +142,20 @@ bool traverseBvh(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hi
 }
 
 // Nearest hit in (tMin, tMax), or any hit when `anyHit` (shadow rays). Cut-out points of alpha-tested
-// triangles are not hits, for every kind of ray: where the hit is one, the ray goes on beyond it (t > tMin is
-// strict, so every pass gets further). The test sits outside the traversal loop on purpose: inside it (per
-// candidate or per node), opaque scenes' path tracing took 1.5 x the CPU time on llvmpipe, which runs a
-// lane-varying branch's body masked for all lanes, texture fetch included; here it costs opaque scenes about
-// 10 % there (one masked fetch per ray; a scene-wide uniform flag did not reduce it).
+// triangles are not hits, for every kind of ray. The first traversal leaves the alpha test to its end: inside the
+// traversal (per candidate), opaque scenes' path tracing took 1.5 x the CPU time on llvmpipe, which runs a
+// lane-varying branch's body masked for all lanes, texture fetch included; here it costs opaque scenes one
+// masked fetch per ray. Where that hit is a cut-out point, one more traversal from beyond it tests candidates as
+// it meets them, so a ray through n cut-out layers costs two traversals, not n (and stays within a CPU driver's
+// loop budget far longer). That traversal sits in a loop of at most one pass, not a branch: CPU drivers skip a
+// loop no lane enters, while they would run a branch's body masked.
+// Where a CPU driver's loop limit cut the ray short, the invocation is counted (countIfLoopBudgetSpent).
 bool traceRay(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
-    while (true) {
-        if (!traverseBvh(o, d, tMin, tMax, anyHit, hit)) return false;
-        if (triangles[3u * hit.triangle + 1u].w == 0.0 || !alphaCutOut(hit.triangle, hit.bary)) return true;
-        tMin = hit.t;
-    }
-    return false;  // only where a CPU driver ended the loop (path_trace.comp's loopBudgetSpent)
+    bool found = traverseBvh(o, d, tMin, tMax, anyHit, false, hit);
+    bool cutOut = found && triangles[3u * hit.triangle + 1u].w != 0.0 && alphaCutOut(hit.triangle, hit.bary);
+    for (uint pass = 0u; pass < (cutOut ? 1u : 0u); ++pass) found = traverseBvh(o, d, hit.t, tMax, anyHit, true, hit);
+    countIfLoopBudgetSpent();
+    return found;
 }
 
 // Base colour at a hit: the material's factor, times its texture where it has one.

@@ -121,7 +121,7 @@ Fractions traceProbeRays(TestDevice& td, render::RasterRenderer& r, const std::v
     s.bindings.constants.push(rhi::constants(2, params));
     s.bindings.readBuffers.push({0, originBuffer, {}});
     s.bindings.storageBuffers.push({0, outcomeBuffer, {}, rhi::Access::Write});
-    s.bindings.storageBuffers.push({7, alphaCache, {}, rhi::Access::Read});
+    s.bindings.storageBuffers.push({7, alphaCache, {}, rhi::Access::Atomic});
     field.traceBindings(s.bindings, {});
     REQUIRE(dev.dispatch(s, (rays + 63) / 64, 1, 1));
     std::vector<uint32_t> outcomes(rays);

@@ -9,7 +9,8 @@
 #define BL_ALPHA_CACHE_SLOT 7
 #endif
 #define BL_ALPHA_CACHE_HEADER 4u  // [0]: 1 when the context keeps the cache (a 16-byte stand-in otherwise); [1]: 1 from
-                                  // an alpha pass to the next dispatch
+                                  // an alpha pass to the next dispatch; [2]: rays that met their tracer's bound on
+                                  // cards passed (blAlphaCacheCountBoundReached); [3]: unused
 
 // A storage buffer even where only read (readonly blocks are read buffers, whose slots the traces use up).
 BL_STORAGE_BUFFER(BL_ALPHA_CACHE_SLOT) BlAlphaCacheBlock { uint blAlphaCacheWords[]; };
@@ -38,5 +39,10 @@ bool blAlphaCacheTransparent(BlSdfHit hit, float u) {
     float coverage = blAlphaCacheCoverage(hit.brickId, hit.brickUvw);
     return coverage >= 0.0 && u >= coverage;
 }
+
+// A tracer that bounds how many cards a ray may pass (the GI's rays: 6) counts each ray whose next alpha-tested hit
+// it then takes as opaque without asking the cache: gi::GiContext::raysAtAlphaBound() reports them. Bind the cache
+// with rhi::Access::Atomic to call this.
+void blAlphaCacheCountBoundReached() { atomicAdd(blAlphaCacheWords[2], 1u); }
 
 #endif
