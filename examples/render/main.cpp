@@ -310,6 +310,11 @@ int main(int argc, char** argv) {
         }
         how = std::to_string(tracer->samples()) + " spp path-traced";
         warnCutShort(tracer->samplesCutShort(), uint64_t(tracer->samples()) * o.width * o.height, "samples");
+        if (const uint64_t nonFinite = tracer->samplesNonFinite())
+            std::fprintf(stderr,
+                         "bricklight-render: warning: %llu of %llu samples came out infinite or NaN and were left out of the image "
+                         "(a pixel's mean is over its finite samples)\n",
+                         (unsigned long long)nonFinite, (unsigned long long)tracer->samples() * o.width * o.height);
     } else {
         render::RasterOptions ro = render::rasterOptionsOf(o);
         ro.errorCallback = report;  // the SDF's and GI's messages count as the device's do

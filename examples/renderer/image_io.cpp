@@ -61,6 +61,16 @@ bool writeImage(const std::string& path, const Image& image, float exposure, std
         if (error) *error = "'" + path + "': no image to write";
         return false;
     }
+    // A pixel that is infinite or NaN would make every comparison against the file silently wrong.
+    size_t nonFinite = 0;
+    for (size_t i = 0; i < image.rgb.size(); i += 3)
+        nonFinite += !(std::isfinite(image.rgb[i]) && std::isfinite(image.rgb[i + 1]) && std::isfinite(image.rgb[i + 2]));
+    if (nonFinite) {
+        if (error)
+            *error = "'" + path + "': " + std::to_string(nonFinite) + " of " + std::to_string(size_t(image.width) * image.height) +
+                     " pixels are infinite or NaN; nothing was written";
+        return false;
+    }
     // The file is read back whole before it replaces the target: a write that failed silently (a full
     // disk some encoders do not report) is caught here.
     auto readsBack = [&](const std::string& temp, std::string* why) {

@@ -100,7 +100,7 @@ void PathTracer::addSamples(uint32_t samples) {
         rhi::DispatchState s;
         s.shader = shader_;
         s.label = "path trace";
-        s.bindings.constants.push(rhi::constants(0, p));
+        s.bindings.constants.push(rhi::constants(2, p));
         s.bindings.constants.push(rhi::constants(1, light));
         scene_->bind(s.bindings);
         s.bindings.storageBuffers.push({0, accumulation_, {}, rhi::Access::ReadWrite});
@@ -127,13 +127,17 @@ Image PathTracer::read(Aov aov) {
     return img;
 }
 
-uint64_t PathTracer::samplesCutShort() {
+// Row 7 of the accumulation: per pixel, x samples cut short, y samples left out as non-finite (path_trace.comp).
+glm::dvec2 PathTracer::samplesLeftOut() {
     const size_t pixels = size_t(options_.width) * options_.height;
     std::vector<glm::vec4> counts(pixels);
     device_.readBuffer(accumulation_, uint64_t(Aov::Count) * pixels * 16, pixels * 16, counts.data());
-    double total = 0.0;
-    for (const glm::vec4& c : counts) total += c.x;
-    return uint64_t(total);
+    glm::dvec2 total(0.0);
+    for (const glm::vec4& c : counts) total += glm::dvec2(c.x, c.y);
+    return total;
 }
+
+uint64_t PathTracer::samplesCutShort() { return uint64_t(samplesLeftOut().x); }
+uint64_t PathTracer::samplesNonFinite() { return uint64_t(samplesLeftOut().y); }
 
 }  // namespace bricklight::render

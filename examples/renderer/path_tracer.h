@@ -63,10 +63,14 @@ public:
     // finished are left out of the means; finished ones with a ray ended early are in them (the image is wrong
     // there). Callers report a count above 0 (bricklight-render warns with it).
     uint64_t samplesCutShort();
+    // Samples whose radiance came out infinite or NaN: left out of the means (and of the sample counts), so the
+    // image stays finite. A blocking read-back.
+    uint64_t samplesNonFinite();
     uint32_t triangleCount() const { return scene_->triangleCount(); }
     float aoRange() const { return aoRange_; }  // the ao AOV's range: options.aoRange or its default
 
 private:
+    glm::dvec2 samplesLeftOut();  // summed over pixels: x cut short, y non-finite
     PathTracer(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
     PathTracerOptions options_;

@@ -19,12 +19,15 @@
 // Where the camera ray's first hit takes the glass lobe, the pixel has no diffuse surface of its own: direct =
 // combined (all it shows comes through or off the glass), indirect = 0, albedo = 0; normal, depth and ao are
 // the glass surface's. Light that reaches an opaque primary hit through glass is indirect (it was refracted).
-// Row 7 of the accumulation counts, per pixel (x), the samples a CPU driver's loop limit cut short
-// (loopBudgetSpent): they are left out of the sums and of their count (w); PathTracer::samplesCutShort()
-// reports them.
+// Row 7 of the accumulation counts, per pixel, samples left out of the sums and of their count (w): x those a
+// CPU driver's loop limit cut short (loopBudgetSpent; PathTracer::samplesCutShort()), y those whose radiance
+// came out non-finite (PathTracer::samplesNonFinite()): one such sample would poison its pixel's whole mean.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-BL_CONSTANTS(0) uniform Params {
+// Slot 2, not 0: lavapipe (Mesa 22.3) specializes a compute shader on the values in its uniform block 0 that steer
+// control flow, and with this block there it compiled and kept a new variant per dispatch (2.6 MB and about 15 ms
+// each; 1,024 dispatches took 2.8 GB, even with the first sample index held constant). At slot 2 it compiles once.
+BL_CONSTANTS(2) uniform Params {
     vec4 eye;            // xyz; w: the ao AOV's range
     vec4 forward;        // xyz camera axis; w: tan(vertical fov / 2)
     vec4 right;          // xyz; w: aspect (width / height)
@@ -34,6 +37,12 @@ BL_CONSTANTS(0) uniform Params {
 BL_STORAGE_BUFFER(0) Accumulation { vec4 accumulated[]; };  // 7 AOVs x pixels: sums, w = samples
 #include "scene_trace.glsl"
 
+// By the bits, which no fast-math compilation folds away (isnan/isinf may be, as `x != x`): inf or NaN.
+bool allFinite(vec3 x) {
+    uvec3 exponent = floatBitsToUint(x) & 0x7F800000u;
+    return all(notEqual(exponent, uvec3(0x7F800000u)));
+}
+
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(pixel, params.size.xy))) return;
@@ -41,7 +50,7 @@ void main() {
     uint pixelCount = params.size.x * params.size.y;
     float eps = sceneLight.lightWeight.y;
     vec3 sums[7] = vec3[7](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
-    uint finished = 0u;
+    uint finished = 0u, nonFinite = 0u;
     for (uint s = 0u; s < params.size.w; ++s) {
         vec3 aovs[7] = vec3[7](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
         rngState = pcg(pixelIndex ^ pcg(params.size.z + s + pcg(sceneLight.counts.y)));
@@ -132,10 +141,14 @@ void main() {
         aovs[2] += glassPixel ? vec3(0.0) : indirect;
         // Spent now: this sample's loops (a traversal, its bounces) may have ended early, and so will every later one.
         if (loopBudgetSpent()) break;
+        if (!allFinite(aovs[0]) || !allFinite(aovs[1]) || !allFinite(aovs[2])) {
+            ++nonFinite;
+            continue;
+        }
         for (uint a = 0u; a < 7u; ++a) sums[a] += aovs[a];
         ++finished;
     }
-    // `finished`, not the samples asked for: samples a CPU driver's loop limit cut short must not dim the mean.
+    // `finished`, not the samples asked for: samples left out must not dim the mean.
     for (uint a = 0u; a < 7u; ++a) accumulated[a * pixelCount + pixelIndex] += vec4(sums[a], float(finished));
-    accumulated[7u * pixelCount + pixelIndex].x += float(params.size.w - finished);
+    accumulated[7u * pixelCount + pixelIndex].xy += vec2(float(params.size.w - finished - nonFinite), float(nonFinite));
 }
