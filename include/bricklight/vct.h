@@ -285,8 +285,8 @@ struct ConeTraceParams {
     float temporalWeight = 0.85f;   // 0..0.98: the reprojected history's share (0: off)
     float maxSpecularRoughness = 0.75f;  // roughness is clamped to this for the specular cone's width
     // 0..1: the specular cone narrows by half this and its axis wanders over the wide cone's width from frame to
-    // frame (tangent jitter; the temporal blend averages it). 0: off — the narrower cone takes twice the samples
-    // (H200, atrium, 1080p: specular 0.58 → 1.14 ms) for a small gain (glossy floor relMSE 0.0283 → 0.0280).
+    // frame (tangent jitter; the temporal blend averages it). 0: off — the narrower cone takes twice the samples,
+    // about twice the specular pass's time, for a small gain (glossy floor relMSE 0.0283 → 0.0280; docs/vct.md).
     float specularJitter = 0.0f;
 };
 // False with *error naming the field for parameters no trace can use.

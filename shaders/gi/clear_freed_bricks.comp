@@ -12,8 +12,7 @@
 // bricks freed by several SDF updates between two GI frames. (Before the owner entries carried the
 // generation, a brick handed back to its own voxel by the builder kept its cache, with the light of
 // geometry that may have moved away. How often that happens depends on the order of the builder's
-// atomics: a full rebuild of the Cornell box gave 1 of 10710 bricks back to its voxel on the CPU drivers
-// and 0–3 on an H100.)
+// atomics: a full rebuild of the Cornell box gave a few of its 10710 bricks back to their voxels.)
 // With relighting on, a brick whose albedo is known, that the camera has not seen for GI_RELIGHT_AFTER
 // frames and that is out of view (giBrickInView) — or that it has not seen for GI_RELIGHT_STALE frames —
 // is appended, every GI_RELIGHT_PERIOD-th frame, to this frame's relight list: words 0..2 are the

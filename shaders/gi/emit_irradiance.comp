@@ -10,8 +10,7 @@
 // It is recorded after the interpolation (the last reader of the cache this frame), beside the blur: as
 // the pass right after the projection it was a level of its own (128 groups at 1080p) on the frame's
 // critical path. (Emitting last frame's probes early in the next frame instead left the GI further from
-// the still renderer 104 frames after motion stopped on the H100: 6–7 of 16 runs above the dynamic
-// test's bound of the time, 0.008, against 2–3 of 16.)
+// the still renderer after motion stopped: the dynamic test's bound of 0.008 failed three times as often.)
 layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_READ_BUFFER(1) ProbeSH { vec4 probeSH[]; };

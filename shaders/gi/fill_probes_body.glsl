@@ -77,7 +77,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
 // reprojected, traces one texel of each block (rotating per frame, all four within four frames). A new
 // probe's other texels stay empty until their turn; the projection scales the traced ones up to the whole
 // hemisphere. (New probes tracing all 64 texels at once made their SIMD groups trace four rays in series,
-// and those groups set the pass's time: 0.28 instead of 0.17 ms at 1080p on an H100.)
+// and those groups set the pass's time.)
 void main() {
     uint probeIndex = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u + gl_LocalInvocationIndex / 16u;
     if (probeIndex >= giFrame.tiles.x * giFrame.tiles.y) return;

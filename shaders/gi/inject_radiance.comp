@@ -14,7 +14,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // internal width of 1440 on (core/gi/gi_constants.h: injectTileFor). The cache's texels are a fixed size
 // in the world, so at a higher resolution more pixels reach each of them; the wider tile keeps about as
 // many injections per texel and frame as 2×2 tiles at 1080p's internal 960×540, and the pass's cost with
-// it (at 4K / 50 % it was the largest pass of its level: 0.18 ms on an H100).
+// it (at 4K / 50 % with 2×2 tiles it was the largest pass of its level).
 BL_CONSTANTS(2) uniform Pass { uvec4 inject; } pass;  // x: the tile side
 #define GI_INJECT_TILE (pass.inject.x)
 BL_TEXTURE(0) uniform sampler2D depthNow;
@@ -41,7 +41,7 @@ ivec3 giInjectTexel(uint code) {
 // in this dispatch (this sample is dropped). The last giFrame.cache.x free slots go only to injections
 // that carry light: a brick whose first light is black (in the first frames everything not lit directly
 // is, since GI starts from nothing) waits for light. Otherwise a small or full cache could be taken by
-// dark bricks for good, and GI would stay black (on an H100 a 32-slot cache on the Cornell box did; slots
+// dark bricks for good, and GI would stay black (a 32-slot cache on the Cornell box did on a GPU; slots
 // return only when the SDF frees their bricks). The count is read before the pop: threads reading it
 // together may take a few of the kept slots, but a pop is never undone while other pops succeed.
 bool giCacheSlot(uint brick, bool carriesLight, out uint slot) {
@@ -129,9 +129,9 @@ void main() {
             imageStore(giRadianceCache, giInjectTexel(texels[k]), uvec4(giEncodeRgb9e5(value)));
             if (learn) {
                 // The brick's material: a running mean over one in four of the pixels that reach it (racing
-                // writers lose an update now and then, which a mean can afford). Every pixel writing the
-                // same two words cost the pass its same-address stores: 0.500–0.513 against 0.499 ms of
-                // GI at 1080p on an H100. Every pixel still marks the brick seen (relighting's view test).
+                // writers lose an update now and then, which a mean can afford): every pixel writing the
+                // same two words serializes their same-address stores. Every pixel still marks the brick seen
+                // (relighting's view test).
                 uint m = bricks[k] * GI_MATERIAL_WORDS;
                 if ((hash >> 8 & 3u) == 0u) {
                     vec4 known = unpackUnorm4x8(brickMaterial[m]);

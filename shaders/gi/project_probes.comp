@@ -10,8 +10,7 @@
 // the lanes. Hits of unknown radiance take the mean of their known neighbours in the probe's map, or of
 // the probe's known hits (a first reduction) where no neighbour is known (giUnknownHitStandIn); empty
 // texels are left out and the rest scaled up to cover the hemisphere. (One group of 64 threads per probe,
-// one texel each, spent its time in the six-step reductions and their barriers: 0.23 ms at 4K / 50 % on
-// an H100.)
+// one texel each, spent its time in the six-step reductions and their barriers.)
 // Output per probe: 9 vec4 (rgb coefficient; w of the first = the fraction of texels with data), twice:
 // the probe's own SH (`probeSH`, which emit_irradiance.comp blends into the world cache) and the SH the
 // pixels read (`probeIrradianceSH`), GI_WORLD_SHARE of which is the world cache at the probe
@@ -48,7 +47,7 @@ shared float knownPartial[4 * kRow];  // the first reduction's own rows: no barr
 shared vec4 ownRadiance[4];  // each probe's own surface (giSurfaceRadiance); w 1 where a cache knows it
 // Each probe's texels (rgb, alpha the kind): the unknown hits' neighbours, and the projection's input after
 // the barrier (read back here rather than kept in registers across it). Packed as the probe image's own
-// halves, so exactly; as vec4 (twice the bytes) the pass took 0.041 instead of 0.037 ms at 1080p on an H100.
+// halves, so exactly; as vec4 (twice the bytes of shared memory) the pass was slower.
 shared uvec2 probeTexels[4 * 64];
 vec4 giProbeTexel(uint i) {
     uvec2 v = probeTexels[i];

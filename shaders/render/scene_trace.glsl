@@ -209,6 +209,15 @@ Surface surfaceAt(uint material, uint tri, vec2 bary) {
     return s;
 }
 
+// Schlick's (1 − cos)⁵. The cosine comes from a dot product of unit vectors, which rounding takes a little above 1
+// for directions within about 3e-4 rad of each other (about one bounce in ten million): pow() of the negative base
+// is NaN (GLSL leaves it undefined), and one such sample poisoned its pixel's whole mean. Clamped, and a product.
+float schlickWeight(float cosine) {
+    float m = clamp(1.0 - cosine, 0.0, 1.0);
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
 vec3 specularF0(Surface s) { return mix(vec3(s.dielectricF0), s.baseColor, s.metalness); }
 bool hasSpecular(Surface s) { return any(greaterThan(specularF0(s), vec3(0.0))); }
 float ggxAlpha(Surface s) { return max(s.roughness * s.roughness, 1e-3); }
@@ -228,10 +237,10 @@ vec3 evalBrdf(Surface s, vec3 n, vec3 v, vec3 l) {
     float D = a2 / (PI * d * d);
     float V = 0.5 / (nl * sqrt(nv * nv * (1.0 - a2) + a2) + nv * sqrt(nl * nl * (1.0 - a2) + a2));
     vec3 f0 = specularF0(s);
-    vec3 F = f0 + (1.0 - f0) * pow(1.0 - vh, 5.0);
+    vec3 F = f0 + (1.0 - f0) * schlickWeight(vh);
     // The diffuse part gets what the coat transmits on the way in and out (Schlick at both angles),
     // which keeps diffuse + specular at or below 1 (the white furnace test).
-    vec3 inOut = (1.0 - (f0 + (1.0 - f0) * pow(1.0 - nl, 5.0))) * (1.0 - (f0 + (1.0 - f0) * pow(1.0 - nv, 5.0)));
+    vec3 inOut = (1.0 - (f0 + (1.0 - f0) * schlickWeight(nl))) * (1.0 - (f0 + (1.0 - f0) * schlickWeight(nv)));
     return diffuse * inOut + D * V * F;
 }
 
@@ -270,7 +279,7 @@ bool sampleBrdf(Surface s, vec3 n, vec3 v, out vec3 l, out vec3 weight) {
         l = cosineDirection(n);
     }
     float pdf = brdfPdf(s, n, v, l);
-    if (pdf <= 0.0) return false;
+    if (!(pdf > 0.0)) return false;  // NaN too
     weight = evalBrdf(s, n, v, l) * max(dot(n, l), 0.0) / pdf;
     return true;
 }

@@ -45,7 +45,7 @@ void main() {
             float t = -b - sqrt(disc);
             if (t <= 0.0 || t >= limit) continue;
             vec3 n = normalize(oc + dir * t);
-            float rim = pow(1.0 - abs(dot(n, dir)), 4.0);
+            float rim = pow(max(1.0 - abs(dot(n, dir)), 0.0), 4.0);
             float alpha = 0.08 + 0.6 * rim;
             float transmittance = record.coneSamples[base + 1u].w;
             bool surface = record.coneSamples[base + 2u].x > 254.5;
