@@ -1,5 +1,5 @@
 // What the classifiers, the denoisers and the depth pyramid share (internal to core/classify): the size limit,
-// the finiteness checks of their descriptions, and the creation of their passes' shaders.
+// the finiteness checks of their descriptions (core/finite_checks.h), and the creation of their passes' shaders.
 #pragma once
 
 #include <cmath>
@@ -12,19 +12,13 @@
 
 #include "bricklight/rhi.h"
 #include "../core_shaders.h"
+#include "../finite_checks.h"
 
 namespace bricklight::classify::detail {
 
 constexpr uint32_t kMaxSize = 16384;  // pixels per side
 
-inline bool finite(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-inline bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-inline bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+using bricklight::detail::finite;  // core/finite_checks.h
 
 // "" for a size of 1..kMaxSize on each side, else what is wrong with it.
 inline std::string sizeProblem(uint32_t width, uint32_t height) {

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "bricklight/vct.h"
-#include "../matrix_checks.h"
+#include "../finite_checks.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi::detail {
@@ -106,7 +106,7 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     if (uint32_t(d.environmentKind) > uint32_t(EnvironmentKind::Equirectangular)) return fail(ErrorCode::InvalidArgument, "dispatch: unknown environmentKind");
     for (const auto& [m, what] : {std::pair{&d.view, "view"}, std::pair{&d.projection, "projection"},
                                   std::pair{&d.previousView, "previousView"}, std::pair{&d.previousProjection, "previousProjection"}})
-        if (!bricklight::detail::finiteMatrix(*m) || !invertible(*m)) return fail(ErrorCode::InvalidArgument, std::string("dispatch: matrix '") + what + "' is not finite and invertible");
+        if (!bricklight::detail::finite(*m) || !invertible(*m)) return fail(ErrorCode::InvalidArgument, std::string("dispatch: matrix '") + what + "' is not finite and invertible");
     if (!std::isfinite(d.cameraPosition.x) || !std::isfinite(d.cameraPosition.y) || !std::isfinite(d.cameraPosition.z))
         return fail(ErrorCode::InvalidArgument, "dispatch: cameraPosition is not finite");
     for (float v : {d.normalsUnpackScale.x, d.normalsUnpackScale.y, d.normalsUnpackScale.z, d.normalsUnpackOffset.x,

@@ -1,6 +1,7 @@
 // The trace bindings a caller merges into its record, and the debug view pass (one traced ray per pixel).
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "../finite_checks.h"
 #include "sdf_scene_impl.h"
 
 namespace bricklight::sdf::detail {
@@ -22,9 +23,7 @@ bool SdfSceneImpl::debugView(const DebugViewDesc& d) {
     if (uint32_t(d.mode) > uint32_t(DebugMode::Uvw)) return fail(ErrorCode::InvalidArgument, "debugView: unknown mode " + std::to_string(uint32_t(d.mode)));
     const glm::mat4 viewProjection = d.projection * d.view;
     const glm::mat4 inverse = glm::inverse(viewProjection);
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(inverse[c][r])) return fail(ErrorCode::InvalidArgument, "debugView: view * projection is not invertible");
+    if (!bricklight::detail::finite(inverse)) return fail(ErrorCode::InvalidArgument, "debugView: view * projection is not invertible");
 
     // Overlay boxes: cascades (colour index = cascade), then instances.
     std::vector<glm::vec4> boxes;

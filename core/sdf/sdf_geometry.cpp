@@ -2,19 +2,18 @@
 // the dirty regions that adding, moving and removing static instances leave for the next update.
 #include <cmath>
 
+#include "../finite_checks.h"
 #include "sdf_scene_impl.h"
 
 namespace bricklight::sdf::detail {
 
 namespace {
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+using bricklight::detail::finite;  // core/finite_checks.h
 std::string quoted(const std::string& name) { return name.empty() ? std::string("(unnamed)") : "'" + name + "'"; }
 }  // namespace
 
 bool SdfSceneImpl::checkTransform(const glm::mat4& m, const std::string& what) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return fail(ErrorCode::InvalidArgument, what + ": transform has a non-finite element");
+    if (!finite(m)) return fail(ErrorCode::InvalidArgument, what + ": transform has a non-finite element");
     if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
         return fail(ErrorCode::InvalidArgument, what + ": transform is not affine (its last row must be 0, 0, 0, 1)");
     return true;

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "../core_shaders.h"
-#include "../matrix_checks.h"
+#include "../finite_checks.h"
 
 namespace bricklight::vct {
 
@@ -35,7 +35,7 @@ struct VoxelScene::Instance {
 namespace {
 
 bool usableTransform(const glm::mat4& m) {
-    if (!detail::finiteMatrix(m) || m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
+    if (!detail::finite(m) || m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
     const float det = glm::determinant(glm::mat3(m));
     return std::isfinite(det) && std::fabs(det) > 1e-12f;
 }
