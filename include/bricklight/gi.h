@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bricklight/reflection_rays.h"
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
@@ -186,13 +187,14 @@ struct DispatchDesc {
 //   input / output        holds
 //   rays                  uint per entry: display pixel x | y << 15, bits 29..31 copy flags (the pixel's horizontal,
 //                         vertical and diagonal quad neighbours take its result too); 0xFFFFFFFF: skipped
-//   arguments             dispatchIndirect arguments (groups of kReflectionRaysPerGroup entries) at argumentsOffset
+//   arguments             dispatchIndirect arguments (groups of kReflectionRaysPerGroup entries,
+//                         bricklight/reflection_rays.h) at argumentsOffset
 //   count                 the number of entries, a uint at countOffset (entries past it are skipped)
 //   output                RGBA16_FLOAT, display size, Storage: at each traced pixel rgb radiance and a = 1; a = 0
 //                         where the ray gave up (out of iterations) or hit a surface no light was cached for yet.
 //                         Other texels are left as they are.
 // The depth, normals and roughness are the last dispatch()'s (still live).
-constexpr uint32_t kReflectionRaysPerGroup = 64;
+using bricklight::kReflectionRaysPerGroup;  // the ray list contract (bricklight/reflection_rays.h)
 struct ReflectionRaysDesc {
     rhi::BufferHandle rays;
     rhi::BufferHandle arguments;

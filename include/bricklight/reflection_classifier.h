@@ -13,14 +13,17 @@
 
 #include <glm/glm.hpp>
 
+#include "bricklight/reflection_rays.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::classify {
 
 constexpr uint32_t kReflectionTileSize = 8;            // 8×8 pixels a tile, one 64-thread group each
 constexpr uint32_t kReflectionScreenGroupRays = 32;    // screen-space trace: 32 list entries a group, one tile each
-constexpr uint32_t kReflectionSdfGroupRays = 64;       // SDF trace: 64 SDF-list rays a group (1-D, 64 threads)
-constexpr uint32_t kReflectionHelperEntry = 0xFFFFFFFFu;  // padding in the screen-space list: no ray
+// The SDF list's group size is the ray list contract's (bricklight/reflection_rays.h); the old name stays for a
+// version.
+[[deprecated("use bricklight::kReflectionRaysPerGroup")]] constexpr uint32_t kReflectionSdfGroupRays = kReflectionRaysPerGroup;
+constexpr uint32_t kReflectionHelperEntry = kReflectionSkippedEntry;  // padding in the screen-space list: no ray
 constexpr size_t kReflectionParamsBytes = 512;         // the passes' parameter block (internal)
 
 // The arguments buffer (rayCounts()): dispatchIndirect arguments at these byte offsets, then the counts (the rest of
@@ -33,11 +36,9 @@ constexpr uint64_t kReflectionCountSdfRays = 44;        // uint: SDF list length
 constexpr uint64_t kReflectionCountDenoiseTiles = 48;   // uint: denoiser list length
 constexpr uint32_t kReflectionCountWords = 24;
 
-// Ray lists hold one uint per ray: pixel x in bits 0..14, y in 15..28; bits 29, 30, 31 ask the tracer to copy
-// the ray's result to the pixel's quad neighbour across x (x ^ 1), across y (y ^ 1) and across both, which are
-// glossy but have no ray of their own (samplesPerQuad < 4).
-inline uint32_t packReflectionRay(uint32_t x, uint32_t y, uint32_t copyFlags = 0) { return x | (y << 15) | (copyFlags << 29); }
-inline glm::uvec2 reflectionRayPixel(uint32_t packed) { return glm::uvec2(packed & 0x7FFFu, (packed >> 15) & 0x3FFFu); }
+// Ray lists hold one uint per ray (bricklight/reflection_rays.h: packReflectionRay, reflectionRayPixel).
+using bricklight::packReflectionRay;
+using bricklight::reflectionRayPixel;
 
 // A tile's class. The checkerboard is the transition between the two, used where this frame's decision and the
 // last frame's differ: rays of pixels with ((x ^ y) & 1) == 0 go screen-space first, the others to the SDF
