@@ -198,6 +198,8 @@ int runVct(const Options& o) {
             t.cameraPosition = now.eye;
             t.depth = gbuffer.depth;
             t.normals = gbuffer.normals;
+            t.normalsUnpackScale = glm::vec3(1.0f);  // float normals
+            t.normalsUnpackOffset = glm::vec3(0.0f);
             t.roughness = gbuffer.normals;
             t.roughnessChannel = 3;
             t.motionVectors = gbuffer.motion;

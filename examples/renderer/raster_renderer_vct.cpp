@@ -123,6 +123,8 @@ void RasterRenderer::traceVct() {
     t.cameraPosition = camera_.eye;
     t.depth = depth_;
     t.normals = normal_;
+    t.normalsUnpackScale = glm::vec3(1.0f);  // float normals
+    t.normalsUnpackOffset = glm::vec3(0.0f);
     t.roughness = albedo_;
     t.roughnessChannel = 3;
     t.motionVectors = motion_;

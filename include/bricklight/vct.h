@@ -299,7 +299,8 @@ struct TraceDesc {
     glm::mat4 view{1.0f}, projection{1.0f}, previousView{1.0f}, previousProjection{1.0f};
     glm::vec3 cameraPosition{0.0f};
     rhi::TextureHandle depth, normals, roughness, motionVectors;  // motionVectors optional
-    glm::vec3 normalsUnpackScale{1.0f}, normalsUnpackOffset{0.0f};
+    // The default unpacks an 8-bit UNORM normal, as every other technique's does; float normals take {1}, {0}.
+    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
     uint32_t roughnessChannel = 0;
     // RGBA16_FLOAT, display size, Storage. Diffuse: rgb irradiance / π (before albedo), a ambient (1 open);
     // specular (optional): rgb prefiltered radiance along the mirror direction.
