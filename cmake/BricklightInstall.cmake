@@ -4,13 +4,14 @@
 include(CMakePackageConfigHelpers)
 set(BRICKLIGHT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/bricklight)
 
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/bricklight DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(FILES ${PROJECT_BINARY_DIR}/include/bricklight/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bricklight)
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/include/bricklight DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  FILES_MATCHING PATTERN "*.glsl")
+# The one public include tree, C++ and GLSL side by side (the conformance kit's header only with the kit).
 if(TARGET bricklight_conformance)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/tests/conformance/include/bricklight DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/bricklight DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+else()
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/bricklight DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+    PATTERN conformance.h EXCLUDE)
 endif()
+install(FILES ${PROJECT_BINARY_DIR}/include/bricklight/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bricklight)
 
 get_property(bricklight_targets GLOBAL PROPERTY BRICKLIGHT_EXPORTED_TARGETS)
 install(TARGETS ${bricklight_targets} EXPORT BricklightTargets
@@ -42,7 +43,7 @@ install(FILES
 
 # pkg-config: one file for the libraries; the order of -l is the link order (core and the backends before
 # the RHI they use).
-set(BRICKLIGHT_PC_LIBS "-lbricklight_core")
+set(BRICKLIGHT_PC_LIBS "-lbricklight_gi -lbricklight_vct -lbricklight_shadows -lbricklight_reflections -lbricklight_gbuffer -lbricklight_sdf -lbricklight_core_common")
 set(BRICKLIGHT_PC_REQUIRES "glm")
 if(TARGET bricklight_vulkan)
   string(APPEND BRICKLIGHT_PC_LIBS " -lbricklight_vulkan")

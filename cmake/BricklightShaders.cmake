@@ -1,8 +1,9 @@
-# bricklight_add_shaders(<target> BASE_DIR <dir> SOURCES <file>... [INCLUDE_DIRS <dir>...])
+# bricklight_add_shaders(<target> BASE_DIR <dir> SOURCES <file>... [NAME_PREFIX <prefix>] [INCLUDE_DIRS <dir>...])
 #
 # Compiles each GLSL source at build time (bricklight::shaderc) into C++ that embeds SPIR-V, GL GLSL and
 # reflection, and registers the shader with rhi::findShader(). A shader's name is its path relative to
-# BASE_DIR (e.g. "rhi_tests/fill_buffer.comp"). Sources may include the public GLSL API
+# BASE_DIR, after NAME_PREFIX if given (e.g. "sdf/emit_distances.comp"; NAME_PREFIX "render/" names
+# <BASE_DIR>/composite.comp "render/composite.comp"). Sources may include the public GLSL API
 # ("bricklight/trace.glsl", "bricklight/bindings.glsl"): its folder is always on the include path.
 #
 # <target> that does not exist yet becomes an OBJECT library: every program that links it directly gets
@@ -21,11 +22,11 @@ include_guard(GLOBAL)
 # project does not see variables set inside our subdirectory). The package config sets it on load.
 get_property(_bricklight_glsl_dir_set GLOBAL PROPERTY BRICKLIGHT_GLSL_INCLUDE_DIR SET)
 if(NOT _bricklight_glsl_dir_set)
-  set_property(GLOBAL PROPERTY BRICKLIGHT_GLSL_INCLUDE_DIR "${CMAKE_CURRENT_LIST_DIR}/../shaders/include")
+  set_property(GLOBAL PROPERTY BRICKLIGHT_GLSL_INCLUDE_DIR "${CMAKE_CURRENT_LIST_DIR}/../include")
 endif()
 
 function(bricklight_add_shaders target)
-  cmake_parse_arguments(ARG "" "BASE_DIR" "SOURCES;INCLUDE_DIRS" ${ARGN})
+  cmake_parse_arguments(ARG "" "BASE_DIR;NAME_PREFIX" "SOURCES;INCLUDE_DIRS" ${ARGN})
   if(NOT ARG_BASE_DIR)
     message(FATAL_ERROR "bricklight_add_shaders(${target}): BASE_DIR is required")
   endif()
@@ -46,6 +47,7 @@ function(bricklight_add_shaders target)
   foreach(src ${ARG_SOURCES})
     get_filename_component(abs "${src}" ABSOLUTE BASE_DIR "${ARG_BASE_DIR}")
     file(RELATIVE_PATH name "${ARG_BASE_DIR}" "${abs}")
+    set(name "${ARG_NAME_PREFIX}${name}")
     string(MAKE_C_IDENTIFIER "${name}" ident)
     set(out "${gen_dir}/${ident}.cpp")
     add_custom_command(

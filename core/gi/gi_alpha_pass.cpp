@@ -1,4 +1,4 @@
-// The alpha pass (GiContext::alphaPassState, shaders/gi/alpha_pass.geom, shaders/include/bricklight/alpha_pass.glsl)
+// The alpha pass (GiContext::alphaPassState, shaders/gi/alpha_pass.geom, include/bricklight/alpha_pass.glsl)
 // and the read-back of the alpha cache for tests and tools.
 #include "gi_context_impl.h"
 

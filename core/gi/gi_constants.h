@@ -73,7 +73,7 @@ constexpr uint32_t kRelightBudget = 2048;    // bricks re-lit per frame at most 
 // writes the same into the next frame's list).
 constexpr uint32_t kEmptyRelightList[4] = {0, 1, 1, 0};
 
-// The alpha cache (shaders/gi/gi_alpha.glsl, shaders/include/bricklight/alpha_pass.glsl): a header, then one
+// The alpha cache (shaders/gi/gi_alpha.glsl, include/bricklight/alpha_pass.glsl): a header, then one
 // word per 4³ cell of every brick; the alpha pass rasterizes each cascade's 64 voxels at 2 pixels per cell.
 constexpr uint32_t kAlphaCacheHeaderWords = 4;
 constexpr uint32_t kAlphaCellsPerBrick = 64;

@@ -4,7 +4,7 @@
 #include <iterator>
 
 #include "bricklight/half.h"
-#include "../core_shaders.h"
+#include "../common/core_shaders.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi {
@@ -83,7 +83,7 @@ bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
     if (cacheDepth_ > caps.limits.maxTextureSize3D || 256 > caps.limits.maxTextureSize3D)
         return bad(ErrorCode::Unsupported, "the radiance cache (256x256x" + std::to_string(cacheDepth_) + ") exceeds the device's 3D texture limit");
 
-    shaders::link_bricklight_core();
+    shaders::link_bricklight_gi();
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
         sd.blob = rhi::findShader(name);

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "../diagnostic_log.h"
+#include "../common/diagnostic_log.h"
 #include "bricklight/gi.h"
 #include "gi_constants.h"
 

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "bricklight/vct.h"
-#include "../finite_checks.h"
+#include "../common/finite_checks.h"
 #include "gi_context_impl.h"
 
 namespace bricklight::gi::detail {

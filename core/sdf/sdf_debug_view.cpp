@@ -1,7 +1,7 @@
 // The trace bindings a caller merges into its record, and the debug view pass (one traced ray per pixel).
 #include <glm/gtc/matrix_inverse.hpp>
 
-#include "../finite_checks.h"
+#include "../common/finite_checks.h"
 #include "sdf_scene_impl.h"
 
 namespace bricklight::sdf::detail {

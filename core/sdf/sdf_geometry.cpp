@@ -2,13 +2,13 @@
 // the dirty regions that adding, moving and removing static instances leave for the next update.
 #include <cmath>
 
-#include "../finite_checks.h"
+#include "../common/finite_checks.h"
 #include "sdf_scene_impl.h"
 
 namespace bricklight::sdf::detail {
 
 namespace {
-using bricklight::detail::finite;  // core/finite_checks.h
+using bricklight::detail::finite;  // core/common/finite_checks.h
 std::string quoted(const std::string& name) { return name.empty() ? std::string("(unnamed)") : "'" + name + "'"; }
 }  // namespace
 

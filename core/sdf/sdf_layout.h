@@ -1,4 +1,4 @@
-// C++ mirror of shaders/include/bricklight/sdf_layout.glsl and shaders/sdf/build_common.glsl: the numbers
+// C++ mirror of include/bricklight/sdf_layout.glsl and shaders/sdf/build_common.glsl: the numbers
 // that the builder's records and the shaders must agree on.
 #pragma once
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "../core_shaders.h"
+#include "../common/core_shaders.h"
 #include "sdf_scene_impl.h"
 
 namespace bricklight::sdf {
@@ -137,7 +137,7 @@ bool SdfSceneImpl::init(std::string* error, ErrorCode* errorCode) {
         !fits("the touched-voxel list", std::min<uint64_t>(b.maxVoxelsPerUpdate, cascadeEntries) * 16, "budgets.maxVoxelsPerUpdate"))
         return false;
 
-    shaders::link_bricklight_core();
+    shaders::link_bricklight_sdf();
     auto shader = [&](const char* name, rhi::ShaderHandle* out) {
         const rhi::ShaderBlob* blob = rhi::findShader(name);
         if (!blob) return bad(ErrorCode::Unsupported, std::string("shader '") + name + "' is not linked into this program");

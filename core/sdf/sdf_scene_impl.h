@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "../diagnostic_log.h"
+#include "../common/diagnostic_log.h"
 #include "bricklight/sdf.h"
 #include "sdf_layout.h"
 

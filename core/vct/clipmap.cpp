@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "bricklight/vct.h"
-#include "../core_shaders.h"
+#include "../common/core_shaders.h"
 #include "clipmap_regions.h"
 
 namespace bricklight::vct {
@@ -48,7 +48,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     if (emittanceBytes > limits.maxStorageBufferRange)
         return fail("the emittance buffer (" + std::to_string(emittanceBytes >> 20) + " MiB) exceeds the device's storage buffer range of " +
                     std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: use isotropic emittance, fewer levels or a lower resolution");
-    shaders::link_bricklight_core();
+    shaders::link_bricklight_vct();
     std::unique_ptr<Clipmap> c(new Clipmap(device, *placement));
     c->clearBoxes_ = shaders::createCoreShader(device, "vct/clear_boxes.comp");
     c->clearEmittance_ = shaders::createCoreShader(device, "vct/clear_emittance_boxes.comp");

@@ -13,7 +13,7 @@ namespace bricklight::vct::detail {
 // At most this many boxes reach the draws per update; beyond it each level's boxes merge into one.
 constexpr size_t kMaxFrameBoxes = 64;
 
-// The frame buffer's layout (BL_VCT_FRAME_BLOCK in shaders/include/bricklight/vct_layout.glsl, std430).
+// The frame buffer's layout (BL_VCT_FRAME_BLOCK in include/bricklight/vct_layout.glsl, std430).
 struct FrameHeader {
     glm::ivec4 origin[kMaxLevels];
     glm::uvec4 params;  // resolution, levels, emittance words per voxel, boxes

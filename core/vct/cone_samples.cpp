@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "bricklight/vct.h"
-#include "../core_shaders.h"
+#include "../common/core_shaders.h"
 
 namespace bricklight::vct {
 

@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "bricklight/vct.h"
-#include "../core_shaders.h"
+#include "../common/core_shaders.h"
 
 namespace bricklight::vct {
 
@@ -67,7 +67,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     };
     if (width == 0 || height == 0 || width > device.capabilities().limits.maxTextureSize2D || height > device.capabilities().limits.maxTextureSize2D)
         return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is zero or exceeds the device's 2D texture size");
-    shaders::link_bricklight_core();
+    shaders::link_bricklight_vct();
     std::unique_ptr<ConeTracer> t(new ConeTracer(device, clipmap));
     t->width_ = width;
     t->height_ = height;

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../core_shaders.h"
-#include "../finite_checks.h"
+#include "../common/core_shaders.h"
+#include "../common/finite_checks.h"
 
 namespace bricklight::vct {
 
@@ -35,7 +35,7 @@ struct VoxelScene::Instance {
 namespace {
 
 bool usableTransform(const glm::mat4& m) {
-    if (!detail::finite(m) || m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
+    if (!bricklight::detail::finite(m) || m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
     const float det = glm::determinant(glm::mat3(m));
     return std::isfinite(det) && std::fabs(det) > 1e-12f;
 }
@@ -87,7 +87,7 @@ bool overlaps(const WorldBox& a, const WorldBox& b) {
 VoxelScene::VoxelScene(rhi::IDevice& device) : device_(device) {}
 
 std::unique_ptr<VoxelScene> VoxelScene::create(rhi::IDevice& device, std::string* error) {
-    shaders::link_bricklight_core();
+    shaders::link_bricklight_vct();
     std::unique_ptr<VoxelScene> s(new VoxelScene(device));
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;

@@ -1,6 +1,6 @@
-// bricklight-bench classify: the shadow classifier and hybrid shadows (include/bricklight/classify.h) at the
+// bricklight-bench classify: the shadow classifier and hybrid shadows (include/bricklight/shadows/classifier.h) at the
 // benchmark's resolution — the G-buffer and one sun shadow map traced through the scene's distance field
-// (shaders/bench/sdf_gbuffer.comp, sun_shadow_map.comp), then per frame: classify, the listed tiles' rays through
+// (examples/bench/shaders/sdf_gbuffer.comp, sun_shadow_map.comp), then per frame: classify, the listed tiles' rays through
 // the field, the resolve — with per-pass GPU times and the fraction of pixels that needed a ray; then soft shadows (a sun
 // of 0.5°, one ray a pixel to a point of its disc, a new point each frame) and the shadow denoiser in place of the resolve.
 #include <cstdio>
@@ -9,8 +9,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_common.h"
-#include "bricklight/classify.h"
-#include "bricklight/shadow_denoiser.h"
+#include "bricklight/shadows/classifier.h"
+#include "bricklight/shadows/denoiser.h"
 
 namespace bricklight::bench {
 
@@ -25,7 +25,7 @@ int runClassify(const Options& o) {
     for (int i = 0; i < 4; ++i) scene->update(geometry.camera.eye), device->endFrame();
     BenchGBuffer gbuffer;
     std::string error;
-    auto classifier = classify::ShadowClassifier::create(*device, o.width, o.height, &error);
+    auto classifier = shadows::ShadowClassifier::create(*device, o.width, o.height, &error);
     rhi::TextureDesc td;
     td.format = rhi::Format::R16_FLOAT;
     td.width = o.width;
@@ -73,7 +73,7 @@ int runClassify(const Options& o) {
     const float aspect = float(o.width) / float(o.height);
     const BenchCamera camera = cameraAt(geometry.camera, 0.0f, aspect, size);
     gbuffer.record(*device, *scene, camera, camera, o.width, o.height);
-    classify::ShadowClassifyDesc d;
+    shadows::ShadowClassifyDesc d;
     d.view = camera.view;
     d.projection = camera.projection;
     d.depth = gbuffer.depth;
@@ -87,7 +87,7 @@ int runClassify(const Options& o) {
     d.blockerOffset = 2.0f / float(mapSize);
     d.blockerTaps = o.classifyTaps;
     d.rayNormalOffset = scene->desc().finestVoxelSize;
-    classify::ShadowClassifyCounts counts;
+    shadows::ShadowClassifyCounts counts;
     auto frame = [&]() {
         device->beginMarker("shadow classify");
         bool ok = classifier->classify(d, &error);
@@ -122,12 +122,12 @@ int runClassify(const Options& o) {
     std::printf("pixels facing the sun %u of %u; needing a ray %u (%.1f %% of all pixels) in %u listed tiles of %u\n", counts.activePixels, pixels,
                 counts.rayPixels, 100.0 * counts.rayPixels / pixels, counts.listedTiles, classifier->tilesX() * classifier->tilesY());
     // Soft shadows and the denoiser (a still camera: the history accumulates as in a still frame of a game).
-    auto denoiser = classify::ShadowDenoiser::create(*device, o.width, o.height, &error);
+    auto denoiser = shadows::ShadowDenoiser::create(*device, o.width, o.height, &error);
     if (!denoiser) {
         std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
         return 1;
     }
-    classify::ShadowDenoiseDesc n;
+    shadows::ShadowDenoiseDesc n;
     n.view = n.previousView = camera.view;
     n.projection = n.previousProjection = camera.projection;
     n.depth = gbuffer.depth;
@@ -164,7 +164,7 @@ int runClassify(const Options& o) {
     collect(*device, 0);
     for (uint32_t f = 0; f < o.frames; ++f) softFrame_();
     const PhaseTimes soft = collect(*device, o.frames);
-    const classify::ShadowClassifyCounts softCounts = classifier->readCounts();
+    const shadows::ShadowClassifyCounts softCounts = classifier->readCounts();
     std::printf("soft shadows (sun 0.5 deg): classification %.3f ms, rays %.3f ms, denoise %.3f ms; soft trace + denoise %.3f ms (target 0.3 at "
                 "1080p on the GPU); %u ray pixels in %u listed tiles\n",
                 soft.perFrame("shadow classify"), soft.perFrame("soft shadow rays"), soft.perFrame("shadow denoise"),

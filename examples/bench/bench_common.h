@@ -71,7 +71,7 @@ struct BenchCamera {
 };
 BenchCamera cameraAt(const scenes::Camera& c, float yawDegrees, float aspect, float size);
 
-// The G-buffer both GI benchmarks trace through the scene's distance field (shaders/bench/sdf_gbuffer.comp):
+// The G-buffer both GI benchmarks trace through the scene's distance field (examples/bench/shaders/sdf_gbuffer.comp):
 // device depth (R32F), normal + roughness, UV motion, a lit image; recorded under the marker "bench gbuffer".
 struct BenchGBuffer {
     rhi::TextureHandle depth, normals, motion, lit;

@@ -1,5 +1,5 @@
 // bricklight-bench gi: GPU milliseconds per GI pass and GI's memory, on a G-buffer traced through the
-// scene's distance field (shaders/bench/sdf_gbuffer.comp; the G-buffer is timed apart from GI). The camera
+// scene's distance field (examples/bench/shaders/sdf_gbuffer.comp; the G-buffer is timed apart from GI). The camera
 // pans slowly so that reprojection and disocclusion do real work. In a scene with alpha-tested meshes (foliage)
 // it runs twice, cards built opaque and alpha-aware (with the GI's alpha pass, drawn from the renderer's
 // GpuScene with render/alpha_pass.vert and .frag), and prints what the alpha pass and the continued rays cost.

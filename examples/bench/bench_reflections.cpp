@@ -1,6 +1,6 @@
 // bricklight-bench classify, second half: the reflection classifier and hybrid reflections
-// (include/bricklight/reflection_classifier.h, reflection_denoiser.h, gi::GiContext::traceReflectionRays) at the
-// benchmark's resolution, on the G-buffer traced through the scene's distance field (shaders/bench/sdf_gbuffer.comp,
+// (include/bricklight/reflections/classifier.h, reflection_denoiser.h, gi::GiContext::traceReflectionRays) at the
+// benchmark's resolution, on the G-buffer traced through the scene's distance field (examples/bench/shaders/sdf_gbuffer.comp,
 // roughness 0.4 everywhere: with the threshold at 0.5 every surface pixel is glossy, the worst case). Per frame: the
 // depth pyramid, GI (for its radiance cache, not counted), the classification, the screen-space trace, the SDF rays,
 // the denoiser — with per-pass GPU times and the fractions of pixels traced in screen space and through the field.
@@ -9,10 +9,10 @@
 #include <cstdlib>
 
 #include "bench_common.h"
-#include "bricklight/depth_pyramid.h"
+#include "bricklight/gbuffer/depth_pyramid.h"
 #include "bricklight/gi.h"
-#include "bricklight/reflection_classifier.h"
-#include "bricklight/reflection_denoiser.h"
+#include "bricklight/reflections/classifier.h"
+#include "bricklight/reflections/denoiser.h"
 
 namespace bricklight::bench {
 
@@ -32,9 +32,9 @@ int runReflections(const Options& o) {
     cd.internalResolution = gi::InternalResolution::Percent50;
     std::string error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
-    auto pyramid = context ? classify::DepthPyramid::create(*device, o.width, o.height, &error) : nullptr;
-    auto classifier = pyramid ? classify::ReflectionClassifier::create(*device, o.width, o.height, &error) : nullptr;
-    auto denoiser = classifier ? classify::ReflectionDenoiser::create(*device, o.width, o.height, &error) : nullptr;
+    auto pyramid = context ? gbuffer::DepthPyramid::create(*device, o.width, o.height, &error) : nullptr;
+    auto classifier = pyramid ? reflections::ReflectionClassifier::create(*device, o.width, o.height, &error) : nullptr;
+    auto denoiser = classifier ? reflections::ReflectionDenoiser::create(*device, o.width, o.height, &error) : nullptr;
     BenchGBuffer gbuffer;
     rhi::TextureDesc td;
     td.format = rhi::Format::RGBA16_FLOAT;
@@ -82,7 +82,7 @@ int runReflections(const Options& o) {
         device->beginMarker("depth pyramid");
         bool ok = pyramid->build(gbuffer.depth, &why);
         device->endMarker();
-        classify::ReflectionClassifyDesc c;
+        reflections::ReflectionClassifyDesc c;
         c.view = now.view;
         c.projection = now.projection;
         c.previousView = previous.view;
@@ -99,7 +99,7 @@ int runReflections(const Options& o) {
         device->beginMarker("classify");
         ok = ok && classifier->classify(c, &why);
         device->endMarker();
-        classify::ReflectionTraceDesc t;
+        reflections::ReflectionTraceDesc t;
         t.depthPyramid = pyramid->texture();
         t.previousLit = gbuffer.lit;
         t.output = traced;
@@ -109,18 +109,18 @@ int runReflections(const Options& o) {
         gi::ReflectionRaysDesc r;
         r.rays = classifier->sdfRayList();
         r.arguments = r.count = classifier->rayCounts();
-        r.argumentsOffset = classify::kReflectionArgsSdfTrace;
-        r.countOffset = classify::kReflectionCountSdfRays;
+        r.argumentsOffset = reflections::kReflectionArgsSdfTrace;
+        r.countOffset = reflections::kReflectionCountSdfRays;
         r.frameIndex = f;
         r.output = traced;
         device->beginMarker("sdf rays");
         if (ok && !context->traceReflectionRays(r)) ok = false, why = context->lastError();
         device->endMarker();
-        classify::ReflectionDenoiseDesc d;
+        reflections::ReflectionDenoiseDesc d;
         d.tiles = classifier->denoiseTileList();
         d.arguments = d.count = classifier->rayCounts();
-        d.argumentsOffset = classify::kReflectionArgsDenoise;
-        d.countOffset = classify::kReflectionCountDenoiseTiles;
+        d.argumentsOffset = reflections::kReflectionArgsDenoise;
+        d.countOffset = reflections::kReflectionCountDenoiseTiles;
         d.radiance = traced;
         d.view = now.view;
         d.projection = now.projection;
@@ -153,7 +153,7 @@ int runReflections(const Options& o) {
         collect(*device, 0);
         for (uint32_t f = 0; f < o.frames; ++f) frame(16 + f);
         const PhaseTimes times = collect(*device, o.frames);
-        const classify::ReflectionClassifyCounts n = classifier->readCounts();
+        const reflections::ReflectionClassifyCounts n = classifier->readCounts();
         const double pixels = double(o.width) * o.height;
         std::printf("hybrid reflections, %s %ux%u, roughness 0.4 everywhere (threshold 0.5), %u ray(s) per 2x2 quad, %u frames:\n",
                     geometry.name.c_str(), o.width, o.height, perQuad, o.frames);

@@ -354,7 +354,7 @@ int bricklight::bench::runSdf(const Options& o) {
     rhi::BufferHandle depth = device->createBuffer({uint64_t(o.width) * o.height * 4, 0,
                                                     rhi::BufferUsage::ShaderRead | rhi::BufferUsage::ShaderWrite, "depth"});
     rhi::ShaderDesc sd;
-    sd.blob = rhi::findShader("sdf_tests/primary_rays.comp");
+    sd.blob = rhi::findShader("bench/primary_rays.comp");
     rhi::ShaderHandle tracer = device->createShader(sd);
     rhi::DispatchState s;
     s.shader = tracer;

@@ -5,7 +5,7 @@
 namespace bricklight::scenes {
 
 std::string raiseHint(const char* field) {
-    // bricklight-render's option for each limit (examples/render/main.cpp; examples/renderer/render_options.cpp); one table, so that every
+    // bricklight-render's option for each limit (examples/render/main.cpp; examples/demo_renderer/render_options.cpp); one table, so that every
     // message and the CLI agree.
     static const struct {
         const char* field;

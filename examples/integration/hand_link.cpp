@@ -1,6 +1,6 @@
 // Linking the installed static archives by hand, with no CMake: proves that the SDF builder's and GI's
-// shaders are inside libbricklight_core.a (nothing is looked up on disk, and no loose object files are
-// needed). scripts/test_package.sh builds and runs it:
+// shaders are inside their archives (libbricklight_sdf.a, libbricklight_gi.a; nothing is looked up on disk, and
+// no loose object files are needed). scripts/test_package.sh builds and runs it:
 //
 //   g++ -std=c++20 -DHAND_LINK_VULKAN -DHAND_LINK_GL hand_link.cpp \
 //       $(PKG_CONFIG_PATH=<prefix>/lib/pkgconfig pkg-config --cflags --libs bricklight)

@@ -30,7 +30,12 @@
 // Every shader a recording of ours may name, registered by the anchors of the libraries that embed them
 // (linking the object libraries of the example and test shaders registers those by themselves).
 namespace bricklight::shaders {
-void link_bricklight_core();
+void link_bricklight_sdf();
+void link_bricklight_gi();
+void link_bricklight_vct();
+void link_bricklight_shadows();
+void link_bricklight_reflections();
+void link_bricklight_gbuffer();
 void link_bricklight_rhi_test_shaders();
 }  // namespace bricklight::shaders
 
@@ -112,7 +117,12 @@ Options parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
-    shaders::link_bricklight_core();
+    shaders::link_bricklight_sdf();
+    shaders::link_bricklight_gi();
+    shaders::link_bricklight_vct();
+    shaders::link_bricklight_shadows();
+    shaders::link_bricklight_reflections();
+    shaders::link_bricklight_gbuffer();
     shaders::link_bricklight_rhi_test_shaders();
 
     // A regular file only: a device or a pipe (/dev/zero) would be read without end.

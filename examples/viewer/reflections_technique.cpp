@@ -24,9 +24,9 @@ void reflectionsPanel(ViewerApp& app) {
     static bool showCounts = false;
     ImGui::Checkbox("show the reflection classifier's counts (waits for the GPU)", &showCounts);
     render::RasterRenderer* renderer = app.renderer();
-    classify::ReflectionClassifier* classifier = renderer ? renderer->reflectionClassifier() : nullptr;
+    reflections::ReflectionClassifier* classifier = renderer ? renderer->reflectionClassifier() : nullptr;
     if (!showCounts || !classifier) return;
-    const classify::ReflectionClassifyCounts c = classifier->readCounts();
+    const reflections::ReflectionClassifyCounts c = classifier->readCounts();
     ImGui::Text("tiles: screen-space first %u, checkerboard %u, SDF only %u", c.screenSpaceFirstTiles, c.checkerboardTiles, c.sdfOnlyTiles);
     ImGui::Text("rays: screen-space %u (hits %u, misses %u), SDF %u", c.screenRays, c.screenHits, c.screenMisses, c.sdfRays);
     ImGui::Text("pixels with a ray %u of %u surface pixels (%.1f %%)", c.rayPixels, c.surfacePixels,

@@ -35,9 +35,9 @@ void shadowsPanel(ViewerApp& app) {
     static bool showCounts = false;
     ImGui::Checkbox("show the classifier's counts (waits for the GPU)", &showCounts);
     render::RasterRenderer* renderer = app.renderer();
-    classify::ShadowClassifier* classifier = renderer ? renderer->shadowClassifier() : nullptr;
+    shadows::ShadowClassifier* classifier = renderer ? renderer->shadowClassifier() : nullptr;
     if (!showCounts || !classifier) return;
-    const classify::ShadowClassifyCounts c = classifier->readCounts();
+    const shadows::ShadowClassifyCounts c = classifier->readCounts();
     const uint32_t tiles = classifier->tilesX() * classifier->tilesY();
     ImGui::Text("tiles listed %u of %u (cut off %u)", c.listedTiles, tiles, c.cutOffTiles);
     ImGui::Text("pixels traced %u of %u facing the sun (%.1f %%)", c.rayPixels, c.activePixels,

@@ -1,4 +1,4 @@
-// bricklight-viewer's application: the scene, the renderer (examples/renderer, the same one bricklight-render
+// bricklight-viewer's application: the scene, the renderer (examples/demo_renderer, the same one bricklight-render
 // drives, through the same options and frame loop), the camera, the panels and the frame loop on a
 // ViewerBackend's window.
 #pragma once

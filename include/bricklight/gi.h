@@ -13,7 +13,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bricklight/reflection_rays.h"
+#include "bricklight/reflections/ray_list.h"
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
@@ -182,19 +182,19 @@ struct DispatchDesc {
 // Hybrid reflections' distance-field half (docs/classify.md, "Hybrid reflections"): after this frame's dispatch(),
 // one reflection ray per listed display pixel, traced through the whole field (not only inside a pre-traced brick as
 // the GI's own specular rays are), reading the radiance cache where it hits and the environment where it leaves the
-// field. Each pixel's ray is blReflectionDirection's (shaders/include/bricklight/reflection_ray.glsl) for its
+// field. Each pixel's ray is blReflectionDirection's (include/bricklight/reflection_ray.glsl) for its
 // normal, roughness and `frameIndex`, so that a ray the screen-space trace gave up on continues as the same ray.
 //   input / output        holds
 //   rays                  uint per entry: display pixel x | y << 15, bits 29..31 copy flags (the pixel's horizontal,
 //                         vertical and diagonal quad neighbours take its result too); 0xFFFFFFFF: skipped
 //   arguments             dispatchIndirect arguments (groups of kReflectionRaysPerGroup entries,
-//                         bricklight/reflection_rays.h) at argumentsOffset
+//                         bricklight/reflections/ray_list.h) at argumentsOffset
 //   count                 the number of entries, a uint at countOffset (entries past it are skipped)
 //   output                RGBA16_FLOAT, display size, Storage: at each traced pixel rgb radiance and a = 1; a = 0
 //                         where the ray gave up (out of iterations) or hit a surface no light was cached for yet.
 //                         Other texels are left as they are.
 // The depth, normals and roughness are the last dispatch()'s (still live).
-using bricklight::kReflectionRaysPerGroup;  // the ray list contract (bricklight/reflection_rays.h)
+using bricklight::kReflectionRaysPerGroup;  // the ray list contract (bricklight/reflections/ray_list.h)
 struct ReflectionRaysDesc {
     rhi::BufferHandle rays;
     rhi::BufferHandle arguments;

@@ -183,7 +183,7 @@ struct BufferRange {
     uint64_t size = 0;
 };
 
-// Binding classes, one GLSL macro each (shaders/include/bricklight/bindings.glsl).
+// Binding classes, one GLSL macro each (include/bricklight/bindings.glsl).
 enum class BindingClass : uint8_t { Constants, Texture, ReadBuffer, StorageBuffer, StorageImage };
 const char* bindingClassName(BindingClass c);
 

@@ -137,3 +137,19 @@ TEST_CASE("update the committed references", "[.update-references]") {
 }
 
 BACKEND_TEST("the path tracer reproduces the committed references", "[render]", reproducesCommitted)
+
+// Traces the shared references that are stale or missing, before the comparisons that read them (a fixture:
+// tests/schedule/reference_fixtures.cmake).
+static void traceSharedReferences(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    for (const ReferenceRecipe& recipe : referenceRecipes()) {
+        INFO(recipe.name);
+        const Reference r = pathTraced(td, recipe.scene, recipe.options, recipe.spp);
+        REQUIRE(r.read(render::Aov::Combined).width == recipe.options.width);
+        CHECK(imageMean(r.read(render::Aov::Combined)) > 0.0);
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
+BACKEND_TEST("path-traced references the comparisons share", "[render]", traceSharedReferences)

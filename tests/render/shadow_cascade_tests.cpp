@@ -1,4 +1,4 @@
-// The sun's cascade fitting on the CPU (examples/renderer/shadow_cascades.cpp): the cascades cover the view
+// The sun's cascade fitting on the CPU (examples/demo_renderer/shadow_cascades.cpp): the cascades cover the view
 // frustum up to the shadow distance, a moving camera shifts each map by whole texels, a turning one keeps each
 // cascade's size.
 #include <catch2/catch.hpp>

@@ -72,22 +72,4 @@ Reference mirrorFloorReference(TestDevice& td, float roughness) {
 }
 Reference cornellGlassReference(TestDevice& td) { return traceRecipe(td, "cornell-glass"); }
 
-namespace {
-
-void traceSharedReferences(const std::string& backend) {
-    TestDevice td = makeDevice(backend);
-    REQUIRE(td.device);
-    for (const ReferenceRecipe& recipe : referenceRecipes()) {
-        INFO(recipe.name);
-        const Reference r = pathTraced(td, recipe.scene, recipe.options, recipe.spp);
-        REQUIRE(r.read(render::Aov::Combined).width == recipe.options.width);
-        CHECK(imageMean(r.read(render::Aov::Combined)) > 0.0);
-    }
-    REQUIRE_NO_MESSAGES(td);
-}
-
-}  // namespace
-
-BACKEND_TEST("path-traced references the comparisons share", "[render]", traceSharedReferences)
-
 }  // namespace bricklight::testing

@@ -1,4 +1,4 @@
-// Rays through the public trace API (shaders/sdf_tests/trace_rays.comp includes bricklight/trace.glsl)
+// Rays through the public trace API (tests/sdf/shaders/trace_rays.comp includes bricklight/trace.glsl)
 // against exact CPU ray-triangle intersection, for a large random ray set.
 //
 // Agreement: both miss, or both hit with |t_gpu - t_exact| <= 1 brixel / max(cos, 0.25) (brixel of the

@@ -1,6 +1,6 @@
 // vct::Clipmap on both backends: the clears of the voxels an update rewrites (what entered a level, what left the
 // finer level inside it) land where the CPU placement says (the GLSL addressing in
-// shaders/include/bricklight/vct_layout.glsl equals ClipmapPlacement::toroidalTexel), and nothing else is touched.
+// include/bricklight/vct_layout.glsl equals ClipmapPlacement::toroidalTexel), and nothing else is touched.
 #include <catch2/catch.hpp>
 
 #include <vector>

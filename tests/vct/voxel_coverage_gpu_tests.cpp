@@ -44,7 +44,7 @@ vct::VoxelMaterial thinMaterial() {
     return m;
 }
 
-// The hook's constants (shaders/vct_tests/coverage_hook.glsl).
+// The hook's constants (tests/vct/shaders/coverage_hook.glsl).
 struct Stripes {
     glm::vec4 shape{0.3f, 0.5f, 0.0f, 0.0f};  // period, covered share, axis (0 x, 1 y), 1: read user0
     glm::vec4 mode{0.0f};                     // 0 stripes, 1 NaN, 2 the constant mode.y

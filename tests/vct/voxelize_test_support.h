@@ -1,5 +1,5 @@
 // Voxelizing triangle lists in tests: a mesh on the device drawn through Clipmap::voxelizationState with the
-// test vertex shader (shaders/vct_tests/voxelize_mesh.vert), read-backs of the volumes, and scenes.
+// test vertex shader (tests/vct/shaders/voxelize_mesh.vert), read-backs of the volumes, and scenes.
 #pragma once
 
 #include <memory>
@@ -37,7 +37,7 @@ public:
     std::vector<uint32_t> emittance();  // the whole buffer
     uint32_t opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const;
     size_t texelIndex(uint32_t level, glm::ivec3 voxel) const;
-    // Where word `word` of a voxel lies in emittance() (word-major, shaders/include/bricklight/vct_layout.glsl).
+    // Where word `word` of a voxel lies in emittance() (word-major, include/bricklight/vct_layout.glsl).
     size_t wordIndex(uint32_t level, glm::ivec3 voxel, uint32_t word) const;
     rhi::ShaderHandle emissiveShader() const { return emissive_; }
 

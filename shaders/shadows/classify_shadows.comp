@@ -1,0 +1,156 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "bricklight/bindings.glsl"
+// The shadow classifier (shadows::ShadowClassifier): one 32-thread warp-sized slice per 8×4 tile, eight tiles (2 × 4,
+// 16 × 16 pixels) per 256-thread group — a group per tile left the GPU launching groups rather than working.
+// Per pixel: off screen, sky or facing away from the sun needs no ray (facing away: shadowed); in Normals mode the
+// rest need one; in Cascades mode a blocker search in the first cascade that holds the pixel decides — every tap
+// nearer the sun than the receiver: shadowed; none (with rejectLit): lit; a mix: a ray, bounded by the nearest and
+// the farthest blocker the taps saw. The tile's masks and interval are reduced through shared memory (never
+// subgroup operations: lavapipe's subgroups are 8 wide, the tile 32), then one thread appends the tile to the list
+// and writes its hit-mask texel.
+layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
+
+#include "shadow_params.glsl"
+BL_TEXTURE(0) uniform sampler2D depthTexture;
+BL_TEXTURE(1) uniform sampler2D normalTexture;
+BL_TEXTURE(2) uniform sampler2D shadowMap;
+BL_STORAGE_BUFFER(0) Tiles { uvec4 tiles[]; } list;
+// Groups of 8 listed tiles (the trace's dispatchIndirect x), 1, 1, cut-off tiles, ray pixels, cut-off pixels, active pixels,
+// listed tiles.
+BL_STORAGE_BUFFER(1) Counts { uint counts[8]; } count;
+BL_IMAGE(0, r32ui) uniform writeonly uimage2D hitMask;
+BL_IMAGE(1, r32ui) uniform writeonly uimage2D sureMask;  // bit set: the answer is sure (no ray, or a sure ray later)
+
+const float kNoEnd = 3.0e38;  // a ray interval without an end
+shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
+// The group's sums: its tiles go to the list and the counts with one global atomic per word and group, not per tile
+// (same-address atomics from every tile bounded the pass).
+shared uint listIndex[8], groupListed, groupBase, groupRays, groupCutTiles, groupCutPixels, groupActive;
+
+void main() {
+    uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
+    uvec2 tile = uvec2(gl_WorkGroupID.xy) * uvec2(2u, 4u) + uvec2(slot & 1u, slot >> 1u);
+    bool tileOnScreen = all(lessThan(tile, (params.size.xy + uvec2(7u, 3u)) / uvec2(8u, 4u)));
+    ivec2 pixel = ivec2(tile * uvec2(8u, 4u) + uvec2(lane & 7u, lane >> 3u));
+    uint bit = 1u << lane;  // y · 8 + x
+    if (lane == 0u) {
+        rayMask[slot] = 0u;
+        answerMask[slot] = 0u;
+        activeMask[slot] = 0u;
+        minT[slot] = floatBitsToUint(kNoEnd);
+        maxT[slot] = 0u;
+    }
+    if (gl_LocalInvocationID.x == 0u) {
+        groupListed = 0u;
+        groupRays = 0u;
+        groupCutTiles = 0u;
+        groupCutPixels = 0u;
+        groupActive = 0u;
+    }
+    barrier();
+
+    bool onScreen = all(lessThan(uvec2(pixel), params.size.xy));
+    float depth = onScreen ? texelFetch(depthTexture, min(pixel, ivec2(params.size.xy) - 1), 0).r : 1.0;
+    bool reversed = params.options2.y != 0u;
+    bool surface = onScreen && (reversed ? depth > 0.0 : depth < 1.0);  // NaN: sky
+    vec3 n = texelFetch(normalTexture, min(pixel, ivec2(params.size.xy) - 1), 0).xyz * params.normalScale.xyz + params.normalBias.xyz;
+    bool facing = dot(n, params.sun.xyz) > 0.0;
+    bool isActive = surface && facing;
+    bool needsRay = isActive, answer = surface && !facing;  // facing away: shadowed, no ray
+    float t0 = params.normalBias.w, t1 = kNoEnd;
+    bool cascadesMode = (params.size.w & 1u) == 1u && isActive;
+    if (cascadesMode) {
+        vec3 world = blShadowWorldPosition(pixel, depth);
+        uint cascade = params.options.x;
+        vec3 s = vec3(0.0);
+        for (uint c = 0u; c < params.options.x; ++c) {
+            vec3 sc = (params.worldToShadow[c] * vec4(world, 1.0)).xyz;
+            vec4 r = params.uvRect[c];
+            if (cascade == params.options.x && all(greaterThan(sc.xy, r.xy)) && all(lessThan(sc.xy, r.zw))) {
+                cascade = c;
+                s = sc;
+            }
+        }
+        answer = false;  // beyond every cascade: lit as far as the maps know (the ray decides)
+        if (cascade < params.options.x) {
+            mat4 m = params.worldToShadow[cascade];
+            vec2 mapSize = vec2(params.options2.zw);
+            float range = params.depthRange[cascade];
+            // The penumbra a blocker can cast on the receiver grows with its distance: at most the receiver's
+            // distance from the depth-0 plane on the sun's side.
+            float radiusWorld = params.sun.w * max(s.z, 0.0) * range;
+            vec2 texelsPerWorld = vec2(length(vec3(m[0][0], m[1][0], m[2][0])), length(vec3(m[0][1], m[1][1], m[2][1]))) * mapSize;
+            vec2 radius = radiusWorld * texelsPerWorld + 1.0;
+            vec4 rect = params.uvRect[cascade] * vec4(mapSize, mapSize);
+            float receiver = s.z - params.normalScale.w;
+            uint taps = params.options.y, valid = 0u, blocking = 0u;
+            float nearestSun = 1.0e30, nearestReceiver = -1.0e30;
+            for (uint k = 0u; k < taps; ++k) {
+                // A sunflower spiral over the disc: even coverage with a fixed pattern.
+                float a = float(k) * 2.39996323, rr = sqrt((float(k) + 0.5) / float(taps));
+                vec2 at = floor(s.xy * mapSize + rr * vec2(cos(a), sin(a)) * radius);
+                if (any(lessThan(at, rect.xy)) || any(greaterThanEqual(at, rect.zw))) continue;
+                float d = texelFetch(shadowMap, ivec2(at), 0).r;
+                ++valid;
+                nearestSun = min(nearestSun, d);
+                if (d < receiver) {
+                    ++blocking;
+                    nearestReceiver = max(nearestReceiver, d);
+                }
+            }
+            bool allBlock = valid > 0u && blocking == valid, noneBlock = blocking == 0u;
+            needsRay = !allBlock && !(noneBlock && valid > 0u && params.options.z != 0u);
+            answer = allBlock || (valid > 0u && 2u * blocking > valid);
+            // The ray's interval: from the blocker the taps saw nearest the receiver to the one nearest the sun,
+            // widened by the depth offset and a texel, and by the search radius sideways.
+            if (params.options.w != 0u && blocking > 0u) {
+                float slack = params.normalScale.w * range + 2.0 / max(min(texelsPerWorld.x, texelsPerWorld.y), 1.0e-20);
+                t0 = max((s.z - nearestReceiver) * range - slack, params.normalBias.w);
+                t1 = (s.z - nearestSun) * range + slack + radiusWorld;
+            }
+        }
+    }
+    if (needsRay) {
+        atomicOr(rayMask[slot], bit);
+        atomicMin(minT[slot], floatBitsToUint(max(t0, 0.0)));  // non-negative floats order as their bits
+        atomicMax(maxT[slot], floatBitsToUint(max(t1, 0.0)));
+    }
+    if (answer) atomicOr(answerMask[slot], bit);
+    if (isActive) atomicOr(activeMask[slot], bit);
+    barrier();
+
+    uint rays = bitCount(rayMask[slot]);
+    bool tileLead = lane == 0u && tileOnScreen;
+    bool listTile = tileLead && rays > params.options2.x;
+    if (tileLead) {
+        if (listTile) {
+            listIndex[slot] = atomicAdd(groupListed, 1u);
+            atomicAdd(groupRays, rays);
+        } else if (rays > 0u) {
+            atomicAdd(groupCutTiles, 1u);
+            atomicAdd(groupCutPixels, rays);
+        }
+        atomicAdd(groupActive, bitCount(activeMask[slot]));
+        imageStore(hitMask, ivec2(tile), uvec4(answerMask[slot]));
+        // Every pixel without a ray was decided (sky, facing away, all or no taps blocking); cut-off tiles' ray pixels
+        // keep the taps' majority, unsure.
+        imageStore(sureMask, ivec2(tile), uvec4(~rayMask[slot]));
+    }
+    barrier();
+    if (gl_LocalInvocationID.x == 0u) {
+        if (groupListed > 0u) {
+            groupBase = atomicAdd(count.counts[7], groupListed);
+            // Groups of 8 listed tiles for the trace: the group that ends the list sets the largest value.
+            atomicMax(count.counts[0], (groupBase + groupListed + 7u) / 8u);
+            atomicAdd(count.counts[4], groupRays);
+        }
+        if (groupCutTiles > 0u) {
+            atomicAdd(count.counts[3], groupCutTiles);
+            atomicAdd(count.counts[5], groupCutPixels);
+        }
+        if (groupActive > 0u) atomicAdd(count.counts[6], groupActive);
+    }
+    barrier();
+    if (listTile) list.tiles[groupBase + listIndex[slot]] = uvec4(tile.x | (tile.y << 16u), rayMask[slot], minT[slot], maxT[slot]);
+}
