@@ -32,8 +32,7 @@ const std::string& DiagnosticLog::report(const rhi::ErrorCallback& callback, rhi
                                          const std::string& message) {
     std::string text = prefix_ + message;
     if (severity == rhi::Severity::Error) {
-        lastError_ = text;
-        lastErrorCode_ = code;
+        lastError_ = {code, text};
     }
     auto found = index_.find(text);
     if (found != index_.end()) {
@@ -44,7 +43,7 @@ const std::string& DiagnosticLog::report(const rhi::ErrorCallback& callback, rhi
         if (entries_.size() == kMaxDistinct)
             entries_.push_back({ErrorCode::None, rhi::Severity::Warning, prefix_ + "further distinct messages (not kept)", 0});
         ++entries_.back().count;
-        return severity == rhi::Severity::Error ? lastError_ : entries_.back().message;
+        return severity == rhi::Severity::Error ? lastError_.message : entries_.back().message;
     }
     index_.emplace(text, entries_.size());
     entries_.push_back({code, severity, text, 1});

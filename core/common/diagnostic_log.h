@@ -20,8 +20,7 @@ public:
     // text. Errors also become the last error.
     const std::string& report(const rhi::ErrorCallback& callback, rhi::Severity severity, ErrorCode code,
                               const std::string& message);
-    const std::string& lastError() const { return lastError_; }
-    ErrorCode lastErrorCode() const { return lastErrorCode_; }
+    const Error& lastError() const { return lastError_; }
     const std::vector<Diagnostic>& diagnostics() const { return entries_; }
 
 private:
@@ -31,8 +30,7 @@ private:
     std::string prefix_;
     std::vector<Diagnostic> entries_;
     std::unordered_map<std::string, size_t> index_;
-    std::string lastError_;
-    ErrorCode lastErrorCode_ = ErrorCode::None;
+    Error lastError_;
 };
 
 }  // namespace bricklight::detail

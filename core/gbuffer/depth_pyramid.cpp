@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
 
 namespace bricklight::gbuffer {
@@ -25,17 +26,18 @@ uint32_t depthPyramidMipCount(uint32_t width, uint32_t height) {
     return count;
 }
 
-std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "depth pyramid: " + why;
+std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, const DepthPyramidDesc& desc, Error* error) {
+    const uint32_t width = desc.width, height = desc.height;
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "depth pyramid: " + why};
         return nullptr;
     };
     const uint32_t limit = std::min(detail::kMaxSize, device.capabilities().limits.maxTextureSize2D);
     if (width == 0 || height == 0 || width > limit || height > limit)
         return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(limit) +
-                    " on each side");
+                    " on each side", ErrorCode::WrongSize);
     if (!device.capabilities().supports(rhi::Format::RG32_FLOAT, rhi::FormatSupport::Storage | rhi::FormatSupport::Sampled))
-        return fail("the device cannot use RG32_FLOAT as a storage image");
+        return fail("the device cannot use RG32_FLOAT as a storage image", ErrorCode::Unsupported);
     std::unique_ptr<DepthPyramid> p(new DepthPyramid(device));
     p->width_ = width;
     p->height_ = height;
@@ -54,7 +56,7 @@ std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, uint32_
     sd.debugName = "depth pyramid point";
     p->point_ = device.createSampler(sd);
     if (!p->copy_ || !p->reduce_ || !p->texture_ || !p->point_)
-        return fail("the device could not create the pyramid's texture, sampler or shaders (see its messages)");
+        return fail("the device could not create the pyramid's texture, sampler or shaders (see its messages)", ErrorCode::DeviceFailure);
     return p;
 }
 
@@ -65,25 +67,19 @@ DepthPyramid::~DepthPyramid() {
         if (s) device_.destroy(s);
 }
 
-uint64_t DepthPyramid::memoryBytes() const {
-    uint64_t bytes = 0;
-    for (uint32_t m = 0; m < mipCount_; ++m) bytes += uint64_t(rhi::mipExtent(width_, m)) * rhi::mipExtent(height_, m) * 8;
-    return bytes;
-}
-
-bool DepthPyramid::build(rhi::TextureHandle depth, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "depth pyramid: " + why;
+bool DepthPyramid::build(rhi::TextureHandle depth, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "depth pyramid: " + why};
         return false;
     };
     const rhi::TextureDesc* d = depth ? device_.describe(depth) : nullptr;
-    if (!d) return fail("the depth texture is null or destroyed");
+    if (!d) return fail("the depth texture is null or destroyed", ErrorCode::InvalidHandle);
     const std::string name = d->debugName.empty() ? std::string("the depth texture") : "depth texture '" + d->debugName + "'";
     if (d->dimension != rhi::TextureDimension::Texture2D)
-        return fail(name + " is a " + rhi::textureDimensionName(d->dimension) + ", not a 2D texture");
+        return fail(name + " is a " + rhi::textureDimensionName(d->dimension) + ", not a 2D texture", ErrorCode::WrongFormat);
     if (d->format != rhi::Format::D32_FLOAT && d->format != rhi::Format::R32_FLOAT)
-        return fail(name + " has format " + rhi::formatName(d->format) + " (expected D32_FLOAT or R32_FLOAT)");
-    if (!(d->usage & rhi::TextureUsage::Sampled)) return fail(name + " lacks Sampled usage");
+        return fail(name + " has format " + rhi::formatName(d->format) + " (expected D32_FLOAT or R32_FLOAT)", ErrorCode::WrongFormat);
+    if (!(d->usage & rhi::TextureUsage::Sampled)) return fail(name + " lacks Sampled usage", ErrorCode::WrongFormat);
     if (d->width != width_ || d->height != height_)
         return fail(name + " is " + std::to_string(d->width) + "x" + std::to_string(d->height) + ", the pyramid " +
                     std::to_string(width_) + "x" + std::to_string(height_));
@@ -113,5 +109,7 @@ bool DepthPyramid::build(rhi::TextureHandle depth, std::string* error) {
     device_.endMarker();
     return true;
 }
+
+MemoryUse DepthPyramid::memoryUse() const { return detail::MemoryTally(device_).add(texture_).use(); }
 
 }  // namespace bricklight::gbuffer

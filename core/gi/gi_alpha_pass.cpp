@@ -4,7 +4,7 @@
 
 namespace bricklight::gi::detail {
 
-std::optional<rhi::DrawCallState> GiContextImpl::alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) {
+std::optional<rhi::DrawCallState> GiContextImpl::alphaPassState(rhi::ShaderHandle fragmentShader, Error* error) {
     auto refuse = [&](ErrorCode code, const std::string& message) -> std::optional<rhi::DrawCallState> {
         fail(code, "alphaPassState: " + message);
         if (error) *error = lastError();

@@ -20,9 +20,9 @@ float internalScale(InternalResolution r) {
 }
 
 std::unique_ptr<GiContext> GiContext::create(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc,
-                                             std::string* error, ErrorCode* errorCode) {
+                                             Error* error) {
     auto context = std::make_unique<detail::GiContextImpl>(device, scene, desc);
-    if (!context->init(error, errorCode)) return nullptr;
+    if (!context->init(error)) return nullptr;
     return context;
 }
 
@@ -43,11 +43,10 @@ bool GiContextImpl::sceneAlive() {
                 "the sdf::SdfScene this context follows was destroyed; destroy the GiContext first (or create a new one)");
 }
 
-bool GiContextImpl::init(std::string* error, ErrorCode* errorCode) {
+bool GiContextImpl::init(Error* error) {
     auto bad = [&](ErrorCode code, const std::string& m) {
         fail(code, m);
         if (error) *error = lastError();
-        if (errorCode) *errorCode = code;
         return false;
     };
     if (desc_.displayWidth == 0 || desc_.displayHeight == 0 || desc_.displayWidth > 16384 || desc_.displayHeight > 16384)

@@ -37,7 +37,7 @@ public:
     GiContextImpl(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc)
         : device_(device), scene_(scene), sceneToken_(scene.lifetimeToken()), desc_(desc), log_(desc.debugName + ": ") {}
     ~GiContextImpl() override;
-    bool init(std::string* error, ErrorCode* errorCode);
+    bool init(Error* error);
 
     bool dispatch(const DispatchDesc& desc) override;
     bool debugView(const DebugViewDesc& desc) override;
@@ -47,14 +47,13 @@ public:
     uint32_t internalWidth() const override { return width_; }
     uint32_t internalHeight() const override { return height_; }
     uint32_t probeTile() const override { return probeTile_; }
-    const std::string& lastError() const override { return log_.lastError(); }
-    ErrorCode lastErrorCode() const override { return log_.lastErrorCode(); }
+    const Error& lastError() const override { return log_.lastError(); }
     std::vector<Diagnostic> diagnostics() const override { return log_.diagnostics(); }
     void readCaches(std::vector<float>* radiance, std::vector<float>* brickSH) override;
     uint32_t radianceCacheBricksInUse() override;
     bool traceReflectionRays(const ReflectionRaysDesc& desc) override;  // gi_reflections.cpp
     // gi_alpha_pass.cpp
-    std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) override;
+    std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, Error* error) override;
     std::vector<float> readAlphaCoverage(std::vector<uint32_t>* fragments) override;
     rhi::BufferHandle alphaCacheBuffer() const override { return alphaCache_; }
     uint64_t raysAtAlphaBound() override;

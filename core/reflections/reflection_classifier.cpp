@@ -7,6 +7,7 @@
 
 #include "bricklight/reflections/classifier.h"
 #include "reflection_params.h"
+#include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
 
 namespace bricklight::reflections {
@@ -19,9 +20,10 @@ bool invertible(const glm::mat4& m) {
 
 }  // namespace
 
-std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "reflection classifier: " + why;
+std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice& device, const ReflectionClassifierDesc& desc, Error* error) {
+    const uint32_t width = desc.width, height = desc.height;
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "reflection classifier: " + why};
         return nullptr;
     };
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
@@ -73,7 +75,7 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
     c->linear_ = device.createSampler(sampler);
     if (!c->classify_ || !c->args_ || !c->trace_ || !c->debug_ || !c->clear_ || !c->screenList_ || !c->sdfList_ || !c->denoiseList_ || !c->counts_ || !c->params_ ||
         !c->hitCounters_[0] || !c->hitCounters_[1] || !c->tileInfo_ || !c->tileStats_ || !c->noMotion_ || !c->point_ || !c->linear_)
-        return fail("the device could not create the classifier's buffers, textures or passes (see its messages)");
+        return fail("the device could not create the classifier's buffers, textures or passes (see its messages)", ErrorCode::DeviceFailure);
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {c->hitCounters_[0], c->hitCounters_[1], c->tileInfo_, c->tileStats_}) device.clearTexture(t, 0, 1, zero);
     return c;
@@ -101,19 +103,19 @@ bool ReflectionClassifier::writeParams(const void* bytes, size_t offset, size_t 
     return device_.writeBuffer(params_, offset, bytes, size);
 }
 
-bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "reflection classifier: " + why;
+bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "reflection classifier: " + why};
         return false;
     };
     using Kind = rhi::FormatInfo::Kind;
     // A live, sampled 2D texture of the classifier's size with a readable kind and enough channels.
     auto check = [&](rhi::TextureHandle t, const char* name, uint32_t channels, bool depth, bool signedFloat) -> bool {
         const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;
-        if (!td) return fail(std::string(name) + " is missing or not a live texture");
+        if (!td) return fail(std::string(name) + " is missing or not a live texture", ErrorCode::MissingInput);
         const std::string named = std::string(name) + " '" + td->debugName + "'";
         if (td->dimension != rhi::TextureDimension::Texture2D || !(td->usage & rhi::TextureUsage::Sampled))
-            return fail(named + " must be a sampled 2D texture");
+            return fail(named + " must be a sampled 2D texture", ErrorCode::WrongFormat);
         if (td->width != width_ || td->height != height_)
             return fail(named + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", the classifier " + std::to_string(width_) +
                         "x" + std::to_string(height_));
@@ -123,7 +125,7 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string
         if (!depth && (f.channels < channels || td->format == rhi::Format::D32_FLOAT ||
                        (signedFloat ? f.kind != Kind::Float : (f.kind != Kind::Float && f.kind != Kind::Unorm && f.kind != Kind::Srgb && f.kind != Kind::PackedFloat))))
             return fail(named + " has format " + f.name + ": it needs " + std::to_string(channels) + (signedFloat ? " float" : " float or unorm") +
-                        " channel(s)");
+                        " channel(s)", ErrorCode::WrongFormat);
         return true;
     };
     if (!check(d.depth, "depth", 1, true, false) || !check(d.normals, "normals", 3, false, false)) return false;
@@ -162,7 +164,7 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string
     const bool paramsOk = writeParams(&p, 0, offsetof(ReflectionParams, trace));
     if (paramsOk) device_.clearBuffer(counts_, {}, 0u);
     device_.endMarker();
-    if (!paramsOk) return fail("the device refused the parameters (see its messages)");
+    if (!paramsOk) return fail("the device refused the parameters (see its messages)", ErrorCode::DeviceFailure);
 
     const rhi::TextureHandle history = hitCounters_[current_], written = hitCounters_[current_ ^ 1u];
     rhi::DispatchState s;
@@ -181,8 +183,8 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, std::string
     s.bindings.storageImages.push(rhi::storageImage(1, written, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(2, tileInfo_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(3, tileStats_, rhi::Access::Write));
-    if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)");
-    if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)");
+    if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);
+    if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)", ErrorCode::DeviceFailure);
     current_ ^= 1u;
     depth_ = d.depth;
     normals_ = d.normals;
@@ -227,5 +229,7 @@ ReflectionClassifyCounts ReflectionClassifier::readCounts() {
     c.screenMisses = sdfAfterTrace - classifiedSdf;  // what the trace appended
     return c;
 }
+
+MemoryUse ReflectionClassifier::memoryUse() const { return detail::MemoryTally(device_).add(screenList_).add(sdfList_).add(denoiseList_).add(counts_).add(params_).add(hitCounters_[0]).add(hitCounters_[1]).add(tileInfo_).add(tileStats_).add(noMotion_).use(); }
 
 }  // namespace bricklight::reflections

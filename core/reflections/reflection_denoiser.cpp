@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "bricklight/reflections/denoiser.h"
+#include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
 
 namespace bricklight::reflections {
@@ -20,9 +21,10 @@ static_assert(sizeof(ReflectionDenoiseParams) == 64 * 3 + 16 * 5);
 
 }  // namespace
 
-std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "reflection denoiser: " + why;
+std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& device, const ReflectionDenoiserDesc& desc, Error* error) {
+    const uint32_t width = desc.width, height = desc.height;
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "reflection denoiser: " + why};
         return nullptr;
     };
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
@@ -54,7 +56,7 @@ std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& dev
     sampler.debugName = "reflection denoiser point";
     d->point_ = device.createSampler(sampler);
     if (!d->temporal_ || !d->spatial_ || !d->clear_ || !d->history_[0] || !d->history_[1] || !d->historyDepth_[0] || !d->historyDepth_[1] || !d->params_ || !d->point_)
-        return fail("the device could not create the denoiser's histories, parameters or passes (see its messages)");
+        return fail("the device could not create the denoiser's histories, parameters or passes (see its messages)", ErrorCode::DeviceFailure);
     return d;
 }
 
@@ -67,19 +69,17 @@ ReflectionDenoiser::~ReflectionDenoiser() {
         if (s) device_.destroy(s);
 }
 
-uint64_t ReflectionDenoiser::memoryBytes() const { return uint64_t(width_) * height_ * (8 + 4) * 2; }
-
-bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "reflection denoiser: " + why;
+bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "reflection denoiser: " + why};
         return false;
     };
     // A sampled 2D input of the denoiser's size.
     auto input = [&](rhi::TextureHandle t, const char* name) -> bool {
         const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;
-        if (!td) return fail(std::string(name) + " is missing or not a live texture");
+        if (!td) return fail(std::string(name) + " is missing or not a live texture", ErrorCode::MissingInput);
         if (td->dimension != rhi::TextureDimension::Texture2D || !(td->usage & rhi::TextureUsage::Sampled))
-            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture");
+            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture", ErrorCode::WrongFormat);
         if (td->width != width_ || td->height != height_)
             return fail(std::string(name) + " '" + td->debugName + "' is " + std::to_string(td->width) + "x" + std::to_string(td->height) +
                         ", the denoiser " + std::to_string(width_) + "x" + std::to_string(height_));
@@ -87,8 +87,8 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
     };
     auto buffer = [&](rhi::BufferHandle b, const char* name, uint32_t usage, uint64_t offset, uint64_t bytes) -> bool {
         const rhi::BufferDesc* bd = b ? device_.describe(b) : nullptr;
-        if (!bd) return fail(std::string(name) + " is missing or not a live buffer");
-        if (!(bd->usage & usage)) return fail(std::string(name) + " '" + bd->debugName + "' lacks the usage it is bound with");
+        if (!bd) return fail(std::string(name) + " is missing or not a live buffer", ErrorCode::MissingInput);
+        if (!(bd->usage & usage)) return fail(std::string(name) + " '" + bd->debugName + "' lacks the usage it is bound with", ErrorCode::WrongFormat);
         if (offset % 4 != 0 || offset > bd->size || bd->size - offset < bytes)
             return fail(std::string(name) + " '" + bd->debugName + "' (" + std::to_string(bd->size) + " bytes) does not hold " +
                         std::to_string(bytes) + " bytes at offset " + std::to_string(offset));
@@ -105,14 +105,14 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
     if (d.roughnessChannel >= rhi::formatInfo(device_.describe(d.roughness)->format).channels)
         return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture");
     const rhi::TextureDesc* out = d.output ? device_.describe(d.output) : nullptr;
-    if (!out) return fail("output is missing or not a live texture");
+    if (!out) return fail("output is missing or not a live texture", ErrorCode::MissingInput);
     if (out->dimension != rhi::TextureDimension::Texture2D || out->format != rhi::Format::RGBA16_FLOAT || !(out->usage & rhi::TextureUsage::Storage))
-        return fail("output '" + out->debugName + "' must be a 2D RGBA16_FLOAT texture with Storage usage");
+        return fail("output '" + out->debugName + "' must be a 2D RGBA16_FLOAT texture with Storage usage", ErrorCode::WrongFormat);
     if (out->width != width_ || out->height != height_)
         return fail("output '" + out->debugName + "' is " + std::to_string(out->width) + "x" + std::to_string(out->height) + ", the denoiser " +
                     std::to_string(width_) + "x" + std::to_string(height_));
     for (rhi::TextureHandle in : {d.radiance, d.depth, d.normals, d.roughness})
-        if (in == d.output) return fail("output '" + out->debugName + "' is also an input");
+        if (in == d.output) return fail("output '" + out->debugName + "' is also an input", ErrorCode::Aliasing);
     if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection) || !detail::finite(d.normalsUnpackScale) ||
         !detail::finite(d.normalsUnpackOffset))
         return fail("the camera matrices and the normals' unpacking must be finite");
@@ -186,5 +186,7 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, std::string* er
     historyValid_ = true;
     return true;
 }
+
+MemoryUse ReflectionDenoiser::memoryUse() const { return detail::MemoryTally(device_).add(params_).add(history_[0]).add(history_[1]).add(historyDepth_[0]).add(historyDepth_[1]).use(); }
 
 }  // namespace bricklight::reflections

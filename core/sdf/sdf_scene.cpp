@@ -16,10 +16,9 @@ float suggestVoxelSize(float extent, uint32_t cascadeCount) {
     return 2.0f * extent / (float(kCascadeResolution) * float(1u << (n - 1)));
 }
 
-std::unique_ptr<SdfScene> SdfScene::create(rhi::IDevice& device, const SceneDesc& desc, std::string* error,
-                                           ErrorCode* errorCode) {
+std::unique_ptr<SdfScene> SdfScene::create(rhi::IDevice& device, const SceneDesc& desc, Error* error) {
     auto scene = std::make_unique<detail::SdfSceneImpl>(device, desc);
-    if (!scene->init(error, errorCode)) return nullptr;
+    if (!scene->init(error)) return nullptr;
     return scene;
 }
 
@@ -88,11 +87,10 @@ rhi::BufferHandle SdfSceneImpl::makeBuffer(const char* name, uint64_t size, uint
     return device_.createBuffer(d, data);
 }
 
-bool SdfSceneImpl::init(std::string* error, ErrorCode* errorCode) {
+bool SdfSceneImpl::init(Error* error) {
     auto bad = [&](ErrorCode code, const std::string& m) {
         fail(code, m);
         if (error) *error = lastError();
-        if (errorCode) *errorCode = code;
         return false;
     };
     const SceneDesc& d = desc_;

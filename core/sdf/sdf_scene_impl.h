@@ -80,7 +80,7 @@ public:
     SdfSceneImpl(rhi::IDevice& device, const SceneDesc& desc)
         : device_(device), desc_(desc), log_("sdf '" + desc.debugName + "': ") {}
     ~SdfSceneImpl() override;
-    bool init(std::string* error, ErrorCode* errorCode);
+    bool init(Error* error);
 
     MeshHandle createMesh(const MeshArrays& mesh) override;
     MeshHandle createMesh(const MeshBuffers& mesh) override;
@@ -103,8 +103,7 @@ public:
     glm::ivec3 cascadeOrigin(uint32_t cascade) const override;
     float cascadeVoxelSize(uint32_t cascade) const override;
     FieldSnapshot readField() override;
-    const std::string& lastError() const override { return log_.lastError(); }
-    ErrorCode lastErrorCode() const override { return log_.lastErrorCode(); }
+    const Error& lastError() const override { return log_.lastError(); }
     std::vector<Diagnostic> diagnostics() const override { return log_.diagnostics(); }
     std::weak_ptr<const void> lifetimeToken() const override { return alive_; }
     uint64_t updateCount() const override { return updateIndex_; }

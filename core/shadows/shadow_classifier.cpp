@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "bricklight/shadows/classifier.h"
+#include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
 
 namespace bricklight::shadows {
@@ -27,9 +28,10 @@ static_assert(sizeof(ShadowClassifyParams) == kShadowParamsBytes);
 
 }  // namespace
 
-std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "shadow classifier: " + why;
+std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device, const ShadowClassifierDesc& desc, Error* error) {
+    const uint32_t width = desc.width, height = desc.height;
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "shadow classifier: " + why};
         return nullptr;
     };
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
@@ -72,7 +74,7 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     c->alphaCacheNone_ = device.createBuffer(bd, noAlphaCache);
     if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->sureMask_ || !c->point_ ||
         !c->alphaCacheNone_)
-        return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)");
+        return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)", ErrorCode::DeviceFailure);
     const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
     device.writeBuffer(c->count_, 0, counts, sizeof(counts));
     return c;
@@ -88,16 +90,16 @@ ShadowClassifier::~ShadowClassifier() {
         if (s) device_.destroy(s);
 }
 
-bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "shadow classifier: " + why;
+bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "shadow classifier: " + why};
         return false;
     };
     auto sized = [&](rhi::TextureHandle t, const char* name, bool depth) -> bool {
         const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;
-        if (!td) return fail(std::string(name) + " is missing or not a live texture");
+        if (!td) return fail(std::string(name) + " is missing or not a live texture", ErrorCode::MissingInput);
         if (td->dimension != rhi::TextureDimension::Texture2D || !(td->usage & rhi::TextureUsage::Sampled))
-            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture");
+            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture", ErrorCode::WrongFormat);
         if (depth && td->format != rhi::Format::D32_FLOAT && td->format != rhi::Format::R32_FLOAT)
             return fail(std::string(name) + " '" + td->debugName + "' must be D32_FLOAT or R32_FLOAT");
         return true;
@@ -130,9 +132,9 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     if (d.alphaCache) {
         // trace_shadows.comp reads it as a storage buffer (bricklight/alpha_cache.glsl): its header, then the cells.
         const rhi::BufferDesc* ad = device_.describe(d.alphaCache);
-        if (!ad) return fail("alphaCache is not a live buffer (gi::GiContext::alphaCacheBuffer() of a living context)");
+        if (!ad) return fail("alphaCache is not a live buffer (gi::GiContext::alphaCacheBuffer() of a living context)", ErrorCode::InvalidHandle);
         if (!(ad->usage & rhi::BufferUsage::ShaderWrite))
-            return fail("alphaCache '" + ad->debugName + "' was not created with BufferUsage::ShaderWrite (it is bound as a storage buffer)");
+            return fail("alphaCache '" + ad->debugName + "' was not created with BufferUsage::ShaderWrite (it is bound as a storage buffer)", ErrorCode::WrongFormat);
         if (ad->size < kAlphaCacheHeaderWords * 4)
             return fail("alphaCache '" + ad->debugName + "' holds " + std::to_string(ad->size) + " bytes, less than the cache's 16-byte header");
     }
@@ -197,7 +199,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::Write));
-    if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)");  // 2 × 4 tiles a group
+    if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);  // 2 × 4 tiles a group
     depth_ = d.depth;
     normals_ = d.normals;
     alphaCache_ = d.alphaCache;
@@ -205,13 +207,13 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, std::string* error)
     return true;
 }
 
-bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
+bool ShadowClassifier::trace(const sdf::SdfScene& field, Error* error) {
     if (!classified_ || !device_.describe(depth_) || !device_.describe(normals_)) {
-        if (error) *error = "shadow classifier: trace() needs a classify() whose depth and normals are still live";
+        if (error) *error = {ErrorCode::InvalidState, "shadow classifier: trace() needs a classify() whose depth and normals are still live"};
         return false;
     }
     if (alphaCache_ && !device_.describe(alphaCache_)) {
-        if (error) *error = "shadow classifier: trace() needs the classify()'s alphaCache still live";
+        if (error) *error = {ErrorCode::InvalidState, "shadow classifier: trace() needs the classify()'s alphaCache still live"};
         return false;
     }
     rhi::DispatchState s;
@@ -228,23 +230,23 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, std::string* error) {
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{7, alphaCache_ ? alphaCache_ : alphaCacheNone_, {}, rhi::Access::Atomic});
     field.traceBindings(s.bindings);
     if (!device_.dispatchIndirect(s, count_, 0)) {
-        if (error) *error = "shadow classifier: the device refused the trace (see its messages)";
+        if (error) *error = {ErrorCode::DeviceFailure, "shadow classifier: the device refused the trace (see its messages)"};
         return false;
     }
     return true;
 }
 
-bool ShadowClassifier::resolve(rhi::TextureHandle output, std::string* error) {
+bool ShadowClassifier::resolve(rhi::TextureHandle output, Error* error) {
     const rhi::TextureDesc* d = output ? device_.describe(output) : nullptr;
     if (!d || d->format != rhi::Format::R16_FLOAT || !(d->usage & rhi::TextureUsage::Storage) || d->width != width_ || d->height != height_ ||
         d->dimension != rhi::TextureDimension::Texture2D) {
         if (error)
-            *error = "shadow classifier: the shadow mask must be a live 2D R16_FLOAT texture with Storage usage of " + std::to_string(width_) + "x" +
-                     std::to_string(height_);
+            *error = {ErrorCode::WrongFormat, "shadow classifier: the shadow mask must be a live 2D R16_FLOAT texture with Storage usage of " + std::to_string(width_) + "x" +
+                     std::to_string(height_)};
         return false;
     }
     if (!classified_) {
-        if (error) *error = "shadow classifier: resolve() needs a classify() first";
+        if (error) *error = {ErrorCode::InvalidState, "shadow classifier: resolve() needs a classify() first"};
         return false;
     }
     rhi::DispatchState s;
@@ -268,5 +270,7 @@ ShadowClassifyCounts ShadowClassifier::readCounts() {
     c.activePixels = w[6];
     return c;
 }
+
+MemoryUse ShadowClassifier::memoryUse() const { return detail::MemoryTally(device_).add(tiles_).add(count_).add(params_).add(alphaCacheNone_).add(hitMask_).add(sureMask_).use(); }
 
 }  // namespace bricklight::shadows

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "bricklight/shadows/denoiser.h"
+#include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
 
 namespace bricklight::shadows {
@@ -21,9 +22,10 @@ static_assert(sizeof(ShadowDenoiseParams) == 272);
 
 }  // namespace
 
-std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "shadow denoiser: " + why;
+std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, const ShadowDenoiserDesc& desc, Error* error) {
+    const uint32_t width = desc.width, height = desc.height;
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "shadow denoiser: " + why};
         return nullptr;
     };
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
@@ -67,7 +69,7 @@ std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, uin
     d->point_ = device.createSampler(sampler);
     bool ok = d->temporal_ && d->decided_ && d->filter_ && d->listed_ && d->params_ && d->point_;
     for (int i = 0; i < 2; ++i) ok = ok && d->history_[i] && d->geometry_[i] && d->filtered_[i];
-    if (!ok) return fail("the device could not create the denoiser's textures, buffer or passes (see its messages)");
+    if (!ok) return fail("the device could not create the denoiser's textures, buffer or passes (see its messages)", ErrorCode::DeviceFailure);
     return d;
 }
 
@@ -82,9 +84,9 @@ ShadowDenoiser::~ShadowDenoiser() {
         if (s) device_.destroy(s);
 }
 
-bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDenoiseDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "shadow denoiser: " + why;
+bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDenoiseDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "shadow denoiser: " + why};
         return false;
     };
     const std::string size = std::to_string(width_) + "x" + std::to_string(height_);
@@ -92,9 +94,9 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
         return fail("the shadow classifier is " + std::to_string(classifier.width()) + "x" + std::to_string(classifier.height()) + ", the denoiser " + size);
     auto check = [&](rhi::TextureHandle t, const char* name, bool depth) -> bool {
         const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;
-        if (!td) return fail(std::string(name) + " is missing or not a live texture");
+        if (!td) return fail(std::string(name) + " is missing or not a live texture", ErrorCode::MissingInput);
         if (td->dimension != rhi::TextureDimension::Texture2D || !(td->usage & rhi::TextureUsage::Sampled))
-            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture");
+            return fail(std::string(name) + " '" + td->debugName + "' must be a sampled 2D texture", ErrorCode::WrongFormat);
         if (depth && td->format != rhi::Format::D32_FLOAT && td->format != rhi::Format::R32_FLOAT)
             return fail(std::string(name) + " '" + td->debugName + "' must be D32_FLOAT or R32_FLOAT");
         if (td->width != width_ || td->height != height_)
@@ -103,12 +105,12 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     };
     if (!check(d.depth, "depth", true) || !check(d.normals, "normals", false)) return false;
     const rhi::TextureDesc* out = d.output ? device_.describe(d.output) : nullptr;
-    if (!out) return fail("output is missing or not a live texture");
+    if (!out) return fail("output is missing or not a live texture", ErrorCode::MissingInput);
     if (out->dimension != rhi::TextureDimension::Texture2D || out->format != rhi::Format::R16_FLOAT || !(out->usage & rhi::TextureUsage::Storage))
-        return fail("output '" + out->debugName + "' must be a 2D R16_FLOAT texture with Storage usage");
+        return fail("output '" + out->debugName + "' must be a 2D R16_FLOAT texture with Storage usage", ErrorCode::WrongFormat);
     if (out->width != width_ || out->height != height_)
         return fail("output '" + out->debugName + "' is " + std::to_string(out->width) + "x" + std::to_string(out->height) + ", the denoiser " + size);
-    if (!d.resetHistory && !hasHistory_) return fail("there is no history to reproject yet: the first denoise() after create() must set resetHistory");
+    if (!d.resetHistory && !hasHistory_) return fail("there is no history to reproject yet: the first denoise() after create() must set resetHistory", ErrorCode::InvalidState);
     if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection) || !detail::finite(d.normalsUnpackScale) ||
         !detail::finite(d.normalsUnpackOffset))
         return fail("the cameras and the normals' unpacking must be finite");
@@ -194,10 +196,12 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
         ok = device_.dispatchIndirect(f, classifier.tileCount(), 0);
         in = target;
     }
-    if (!ok) return fail("the device refused a pass (see its messages)");
+    if (!ok) return fail("the device refused a pass (see its messages)", ErrorCode::DeviceFailure);
     current_ = cur;
     hasHistory_ = true;
     return true;
 }
+
+MemoryUse ShadowDenoiser::memoryUse() const { return detail::MemoryTally(device_).add(params_).add(history_[0]).add(history_[1]).add(geometry_[0]).add(geometry_[1]).add(filtered_[0]).add(filtered_[1]).add(listed_).use(); }
 
 }  // namespace bricklight::shadows

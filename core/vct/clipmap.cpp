@@ -10,9 +10,9 @@
 
 namespace bricklight::vct {
 
-bool checkVoxelMaterial(const VoxelMaterial& m, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "voxel material: " + why;
+bool checkVoxelMaterial(const VoxelMaterial& m, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "voxel material: " + why};
         return false;
     };
     if (!(m.thickness >= 0.0f && m.thickness <= 2.0f))
@@ -31,9 +31,9 @@ struct BoxConstants {
 
 }  // namespace
 
-std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc& desc, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "clip-map: " + why;
+std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc& desc, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "clip-map: " + why};
         return nullptr;
     };
     std::optional<ClipmapPlacement> placement = ClipmapPlacement::create(desc, error);
@@ -42,12 +42,12 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     const uint64_t depth = uint64_t(desc.resolution) * desc.levels;
     if (desc.resolution > limits.maxTextureSize3D || depth > limits.maxTextureSize3D)
         return fail("the opacity volume (" + std::to_string(desc.resolution) + "² × " + std::to_string(depth) +
-                    ") exceeds the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution");
+                    ") exceeds the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution", ErrorCode::OverBudget);
     const uint64_t voxels = uint64_t(desc.resolution) * desc.resolution * depth;
     const uint64_t emittanceBytes = std::max<uint64_t>(voxels * emittanceWordsPerVoxel(desc.emittance) * 4, 16);
     if (emittanceBytes > limits.maxStorageBufferRange)
         return fail("the emittance buffer (" + std::to_string(emittanceBytes >> 20) + " MiB) exceeds the device's storage buffer range of " +
-                    std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: use isotropic emittance, fewer levels or a lower resolution");
+                    std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: use isotropic emittance, fewer levels or a lower resolution", ErrorCode::OverBudget);
     shaders::link_bricklight_vct();
     std::unique_ptr<Clipmap> c(new Clipmap(device, *placement));
     c->clearBoxes_ = shaders::createCoreShader(device, "vct/clear_boxes.comp");
@@ -78,7 +78,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     const uint64_t tracedDepth = detail::tracedSlices(desc.levels, desc.resolution);
     if (tracedDepth > limits.maxTextureSize3D)
         return fail("the traced volumes (" + std::to_string(desc.resolution) + "² × " + std::to_string(tracedDepth) +
-                    ") exceed the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution");
+                    ") exceed the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution", ErrorCode::OverBudget);
     td.depthOrLayers = uint32_t(tracedDepth);
     td.format = rhi::Format::RGBA8_UNORM;  // opacity along x, y, z
     td.debugName = "vct traced opacity";
@@ -119,7 +119,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     for (rhi::TextureHandle t : c->tracedEmittance_) traced = traced && t;
     if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->mipBuild_ || !c->debugView_ || !c->opacity_ || !c->rasterSize_ ||
         !c->emittance_ || !c->frame_ || !c->counters_ || !traced)
-        return fail("the device could not create the clip-map's volumes, buffers or passes");
+        return fail("the device could not create the clip-map's volumes, buffers or passes", ErrorCode::DeviceFailure);
     return c;
 }
 
@@ -135,14 +135,14 @@ Clipmap::~Clipmap() {
         if (s) device_.destroy(s);
 }
 
-std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor, std::string* error,
+std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor, Error* error,
                                                         const std::vector<WorldBox>& invalidated) {
     for (size_t i = 0; i < invalidated.size(); ++i) {
         const WorldBox& w = invalidated[i];
         bool finite = true;
         for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(w.min[a]) && std::isfinite(w.max[a]);
         if (!finite) {
-            if (error) *error = "clip-map: invalidated box " + std::to_string(i) + " is not finite";
+            if (error) *error = {ErrorCode::InvalidArgument, "clip-map: invalidated box " + std::to_string(i) + " is not finite"};
             return std::nullopt;
         }
     }
@@ -221,10 +221,10 @@ void Clipmap::writeFrame() {
     device_.writeBuffer(frame_, 0, bytes.data(), bytes.size());
 }
 
-std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial& material, std::string* error) {
+std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial& material, Error* error) {
     if (!checkVoxelMaterial(material, error)) return std::nullopt;
     if (!voxelizeGeometry_ || !voxelizeOpacity_) {
-        if (error) *error = "clip-map: voxelization needs geometry shaders, which the device does not offer";
+        if (error) *error = {ErrorCode::Unsupported, "clip-map: voxelization needs geometry shaders, which the device does not offer"};
         return std::nullopt;
     }
     const MaterialBlock block{{material.thickness, material.opacity, material.twoSided ? 1.0f : 0.0f, 0.0f}};
@@ -234,7 +234,7 @@ std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial
     if (!constants) {
         constexpr size_t kMaxMaterials = 4096;
         if (materials_.size() >= kMaxMaterials) {
-            if (error) *error = "clip-map: more than " + std::to_string(kMaxMaterials) + " distinct voxel materials";
+            if (error) *error = {ErrorCode::OverBudget, "clip-map: more than " + std::to_string(kMaxMaterials) + " distinct voxel materials"};
             return std::nullopt;
         }
         materials_.push_back(std::make_unique<MaterialBlock>(block));
@@ -359,9 +359,9 @@ void Clipmap::buildMips() {
     device_.endMarker();
 }
 
-bool Clipmap::debugView(const DebugViewDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "clip-map debug view: " + why;
+bool Clipmap::debugView(const DebugViewDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "clip-map debug view: " + why};
         return false;
     };
     if (uint32_t(d.mode) > uint32_t(DebugMode::Rewritten)) return fail("mode " + std::to_string(uint32_t(d.mode)) + " is not a DebugMode");
@@ -372,8 +372,8 @@ bool Clipmap::debugView(const DebugViewDesc& d, std::string* error) {
     if (!(d.exposure > 0.0f) || !std::isfinite(d.exposure)) return fail("exposure must be a positive finite number");
     const rhi::TextureDesc* out = device_.describe(d.output);
     if (!out || out->format != rhi::Format::RGBA8_UNORM || !(out->usage & rhi::TextureUsage::Storage))
-        return fail("the output must be a live RGBA8_UNORM texture with Storage usage");
-    if (!placement_.placed()) return fail("the clip-map has not been placed yet (update() first)");
+        return fail("the output must be a live RGBA8_UNORM texture with Storage usage", ErrorCode::WrongFormat);
+    if (!placement_.placed()) return fail("the clip-map has not been placed yet (update() first)", ErrorCode::InvalidState);
     struct {
         glm::mat4 inverseViewProjection;
         glm::vec4 eye;

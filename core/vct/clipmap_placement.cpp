@@ -23,9 +23,9 @@ uint64_t VoxelBox::voxelCount() const {
     return e.x <= 0 || e.y <= 0 || e.z <= 0 ? 0 : uint64_t(e.x) * uint64_t(e.y) * uint64_t(e.z);
 }
 
-bool checkClipmapDesc(const ClipmapDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "clip-map: " + why;
+bool checkClipmapDesc(const ClipmapDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "clip-map: " + why};
         return false;
     };
     if (d.levels < kMinLevels || d.levels > kMaxLevels)
@@ -39,7 +39,7 @@ bool checkClipmapDesc(const ClipmapDesc& d, std::string* error) {
     const uint32_t fullChain = uint32_t(std::log2(double(d.resolution)));  // down to 1³
     if (d.mipLevels > fullChain)
         return fail("mipLevels " + std::to_string(d.mipLevels) + " is more than the " + std::to_string(fullChain) +
-                    " mips a level of " + std::to_string(d.resolution) + "³ has");
+                    " mips a level of " + std::to_string(d.resolution) + "³ has", ErrorCode::OverBudget);
     if (d.emittance != EmittanceMode::None && d.emittance != EmittanceMode::Isotropic &&
         d.emittance != EmittanceMode::Anisotropic)
         return fail("emittance mode " + std::to_string(int(d.emittance)) + " is not None, Isotropic or Anisotropic");
@@ -67,7 +67,7 @@ uint32_t clipmapMipLevels(const ClipmapDesc& d) {
     return d.mipLevels ? d.mipLevels : uint32_t(std::log2(double(d.resolution))) - 2;
 }
 
-std::optional<ClipmapPlacement> ClipmapPlacement::create(const ClipmapDesc& desc, std::string* error) {
+std::optional<ClipmapPlacement> ClipmapPlacement::create(const ClipmapDesc& desc, Error* error) {
     if (!checkClipmapDesc(desc, error)) return std::nullopt;
     ClipmapPlacement p(desc);
     p.origins_.assign(desc.levels, glm::ivec3(0));
@@ -93,13 +93,13 @@ glm::ivec3 ClipmapPlacement::toroidalTexel(const glm::ivec3& voxel) const {
     return {voxel.x & mask, voxel.y & mask, voxel.z & mask};
 }
 
-std::optional<std::vector<LevelUpdate>> ClipmapPlacement::moveAnchor(const glm::vec3& anchor, std::string* error) {
+std::optional<std::vector<LevelUpdate>> ClipmapPlacement::moveAnchor(const glm::vec3& anchor, Error* error) {
     const glm::dvec3 inFinest = glm::dvec3(anchor) / double(desc_.finestVoxelSize);
     if (!std::isfinite(anchor.x) || !std::isfinite(anchor.y) || !std::isfinite(anchor.z) ||
         glm::any(glm::greaterThan(glm::abs(inFinest), glm::dvec3(kMaxAnchorVoxels)))) {
         if (error)
-            *error = "clip-map: the anchor (" + std::to_string(anchor.x) + ", " + std::to_string(anchor.y) + ", " +
-                     std::to_string(anchor.z) + ") is not finite or lies more than 2^28 finest voxels from the origin";
+            *error = {ErrorCode::InvalidArgument, "clip-map: the anchor (" + std::to_string(anchor.x) + ", " + std::to_string(anchor.y) + ", " +
+                     std::to_string(anchor.z) + ") is not finite or lies more than 2^28 finest voxels from the origin"};
         return std::nullopt;
     }
     const int r = int(desc_.resolution);

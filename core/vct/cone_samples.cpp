@@ -16,19 +16,19 @@ constexpr uint64_t kRecordBytes = kHeaderBytes + uint64_t(kRecordedCones) * kMax
 
 }  // namespace
 
-bool ConeTracer::debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "cone tracer: cone samples: " + why;
+bool ConeTracer::debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "cone tracer: cone samples: " + why};
         return false;
     };
-    if (!latest_) return fail("nothing traced yet (call dispatch first)");
+    if (!latest_) return fail("nothing traced yet (call dispatch first)", ErrorCode::InvalidState);
     if (x >= width_ || y >= height_)
         return fail("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the tracer's " + std::to_string(width_) + "x" +
                     std::to_string(height_));
     const rhi::TextureDesc* od = device_.describe(output);
     if (!od || od->format != rhi::Format::RGBA8_UNORM || !(od->usage & rhi::TextureUsage::Storage) || od->width != width_ ||
         od->height != height_)
-        return fail("the output must be a live RGBA8_UNORM texture with Storage usage of the tracer's size");
+        return fail("the output must be a live RGBA8_UNORM texture with Storage usage of the tracer's size", ErrorCode::WrongFormat);
     const TraceDesc& d = *latest_;
     for (rhi::TextureHandle t : {d.depth, d.normals, d.roughness})
         if (!device_.describe(t)) return fail("an input of the latest dispatch is no longer live");
@@ -43,7 +43,7 @@ bool ConeTracer::debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle out
         bd.debugName = "vct cone samples";
         coneSampleRecord_ = device_.createBuffer(bd);
         if (!coneSamples_ || !coneSamplesSdf_ || !coneSamplesView_ || !coneSampleRecord_)
-            return fail("the device could not create the recording passes");
+            return fail("the device could not create the recording passes", ErrorCode::DeviceFailure);
     }
     struct {
         int32_t pixel[4];

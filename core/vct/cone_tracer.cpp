@@ -9,9 +9,9 @@
 
 namespace bricklight::vct {
 
-bool checkConeTraceParams(const ConeTraceParams& p, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "cone trace parameters: " + why;
+bool checkConeTraceParams(const ConeTraceParams& p, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "cone trace parameters: " + why};
         return false;
     };
     auto within = [](float v, float lo, float hi) { return v >= lo && v <= hi; };  // false for NaN
@@ -59,14 +59,15 @@ const uint32_t kNoGuide = 0x7FC00000u;  // NO_GUIDE in trace_common.glsl
 
 }  // namespace
 
-std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipmap& clipmap, uint32_t width, uint32_t height,
-                                               std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "cone tracer: " + why;
+std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipmap& clipmap, const ConeTracerDesc& desc,
+                                               Error* error) {
+    const uint32_t width = desc.width, height = desc.height;
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "cone tracer: " + why};
         return nullptr;
     };
     if (width == 0 || height == 0 || width > device.capabilities().limits.maxTextureSize2D || height > device.capabilities().limits.maxTextureSize2D)
-        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is zero or exceeds the device's 2D texture size");
+        return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is zero or exceeds the device's 2D texture size", ErrorCode::WrongSize);
     shaders::link_bricklight_vct();
     std::unique_ptr<ConeTracer> t(new ConeTracer(device, clipmap));
     t->width_ = width;
@@ -96,7 +97,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->params_ &&
               t->point_;
     for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
-    if (!ok) return fail("the device could not create the tracing passes or their history");
+    if (!ok) return fail("the device could not create the tracing passes or their history", ErrorCode::DeviceFailure);
     rhi::ClearValue none{};
     none.u[0] = kNoGuide;
     for (int i = 0; i < 2; ++i) device.clearTexture(t->guide_[i], 0, 1, none);
@@ -115,7 +116,7 @@ ConeTracer::~ConeTracer() {
     if (point_) device_.destroy(point_);
 }
 
-bool ConeTracer::bindLowResolution(uint32_t sparsity, std::string* error) {
+bool ConeTracer::bindLowResolution(uint32_t sparsity, Error* error) {
     if (sparsity == sparsity_ && lowDiffuse_) return true;
     for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_})
         if (t) device_.destroy(t);
@@ -124,16 +125,16 @@ bool ConeTracer::bindLowResolution(uint32_t sparsity, std::string* error) {
     lowGuide_ = makeTexture(device_, w, h, rhi::Format::RGBA32_UINT, "vct sparse guide");
     sparsity_ = sparsity;
     if (!lowDiffuse_ || !lowGuide_) {
-        if (error) *error = "cone tracer: the device could not create the sparse tracing targets";
+        if (error) *error = {ErrorCode::DeviceFailure, "cone tracer: the device could not create the sparse tracing targets"};
         sparsity_ = 0;
         return false;
     }
     return true;
 }
 
-bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "cone tracer: " + why;
+bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "cone tracer: " + why};
         return false;
     };
     if (!checkConeTraceParams(d.params, error)) return false;
@@ -147,16 +148,16 @@ bool ConeTracer::dispatch(const TraceDesc& d, std::string* error) {
                             {"outputDiffuse", d.outputDiffuse, true, true}, {"outputSpecular", d.outputSpecular, false, true}};
     for (const Input& in : inputs) {
         if (!in.texture) {
-            if (in.required) return fail(std::string(in.name) + " is missing");
+            if (in.required) return fail(std::string(in.name) + " is missing", ErrorCode::MissingInput);
             continue;
         }
         const rhi::TextureDesc* td = device_.describe(in.texture);
-        if (!td) return fail(std::string(in.name) + " is not a live texture");
+        if (!td) return fail(std::string(in.name) + " is not a live texture", ErrorCode::InvalidHandle);
         if (td->width != width_ || td->height != height_)
             return fail(std::string(in.name) + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", not the tracer's " +
                         std::to_string(width_) + "x" + std::to_string(height_));
         if (in.output && (td->format != rhi::Format::RGBA16_FLOAT || !(td->usage & rhi::TextureUsage::Storage)))
-            return fail(std::string(in.name) + " must be RGBA16_FLOAT with Storage usage");
+            return fail(std::string(in.name) + " must be RGBA16_FLOAT with Storage usage", ErrorCode::WrongFormat);
     }
     if (d.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is outside 0..3");
     if (!bindLowResolution(d.params.tracingSparsity, error)) return false;

@@ -86,7 +86,7 @@ bool overlaps(const WorldBox& a, const WorldBox& b) {
 
 VoxelScene::VoxelScene(rhi::IDevice& device) : device_(device) {}
 
-std::unique_ptr<VoxelScene> VoxelScene::create(rhi::IDevice& device, std::string* error) {
+std::unique_ptr<VoxelScene> VoxelScene::create(rhi::IDevice& device, Error* error) {
     shaders::link_bricklight_vct();
     std::unique_ptr<VoxelScene> s(new VoxelScene(device));
     auto shader = [&](const char* name) {
@@ -98,7 +98,7 @@ std::unique_ptr<VoxelScene> VoxelScene::create(rhi::IDevice& device, std::string
     s->vertexFlat_ = shader("vct/voxelize_mesh_flat.vert");
     s->compute_ = shader("vct/voxelize_mesh.comp");
     if (!s->vertex_ || !s->vertexFlat_ || !s->compute_) {
-        if (error) *error = "voxel scene: the device could not create the voxelization vertex and compute shaders";
+        if (error) *error = {ErrorCode::DeviceFailure, "voxel scene: the device could not create the voxelization vertex and compute shaders"};
         return nullptr;
     }
     return s;
@@ -114,9 +114,9 @@ VoxelScene::~VoxelScene() {
     if (drawn_) device_.destroy(drawn_);
 }
 
-VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshArrays& a, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "voxel scene: mesh '" + a.name + "': " + why;
+VoxelMeshHandle VoxelScene::createMesh(const VoxelMeshArrays& a, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "voxel scene: mesh '" + a.name + "': " + why};
         return VoxelMeshHandle{};
     };
     if (!a.positions || a.vertexCount == 0) return fail("no positions");
@@ -154,7 +154,7 @@ VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshArrays& a, std::string* error
     if (!mesh->positions || !mesh->indices || (a.normals && !mesh->normals)) {
         for (rhi::BufferHandle b : {mesh->positions, mesh->normals, mesh->indices})
             if (b) device_.destroy(b);
-        return fail("the device could not create its buffers");
+        return fail("the device could not create its buffers", ErrorCode::DeviceFailure);
     }
     mesh->indexCount = a.indexCount;
     mesh->name = a.name;
@@ -163,9 +163,9 @@ VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshArrays& a, std::string* error
     return VoxelMeshHandle{meshes_.back()->id};
 }
 
-VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshBuffers& b, std::string* error) {
-    auto fail = [&](const std::string& why) {
-        if (error) *error = "voxel scene: mesh '" + b.name + "': " + why;
+VoxelMeshHandle VoxelScene::createMesh(const VoxelMeshBuffers& b, Error* error) {
+    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error) *error = {code, "voxel scene: mesh '" + b.name + "': " + why};
         return VoxelMeshHandle{};
     };
     if (b.vertexCount == 0) return fail("no vertices");
@@ -210,14 +210,14 @@ VoxelMeshHandle VoxelScene::addMesh(const VoxelMeshBuffers& b, std::string* erro
     return VoxelMeshHandle{meshes_.back()->id};
 }
 
-bool VoxelScene::removeMesh(VoxelMeshHandle handle, std::string* error) {
+bool VoxelScene::destroyMesh(VoxelMeshHandle handle, Error* error) {
     auto it = findById(meshes_, handle.id);
     if (it == meshes_.end()) {
-        if (error) *error = "voxel scene: removeMesh: unknown mesh " + std::to_string(handle.id);
+        if (error) *error = {ErrorCode::InvalidHandle, "voxel scene: destroyMesh: unknown mesh " + std::to_string(handle.id)};
         return false;
     }
     if ((*it)->users) {
-        if (error) *error = "voxel scene: mesh '" + (*it)->name + "' is used by " + std::to_string((*it)->users) + " instance(s)";
+        if (error) *error = {ErrorCode::InUse, "voxel scene: mesh '" + (*it)->name + "' is used by " + std::to_string((*it)->users) + " instance(s)"};
         return false;
     }
     if ((*it)->owned)
@@ -250,31 +250,31 @@ WorldBox VoxelScene::worldBounds(const Mesh& mesh, const glm::mat4& t) const {
     return box;
 }
 
-VoxelInstanceHandle VoxelScene::addInstance(const VoxelInstanceDesc& d, std::string* error) {
+VoxelInstanceHandle VoxelScene::addInstance(const VoxelInstanceDesc& d, Error* error) {
     auto it = findById(meshes_, d.mesh.id);
     if (it == meshes_.end()) {
-        if (error) *error = "voxel scene: addInstance: unknown mesh " + std::to_string(d.mesh.id);
+        if (error) *error = {ErrorCode::InvalidHandle, "voxel scene: addInstance: unknown mesh " + std::to_string(d.mesh.id)};
         return {};
     }
     const std::string who = "voxel scene: instance of mesh '" + (*it)->name + "': ";
     if (!usableTransform(d.transform)) {
-        if (error) *error = who + "the transform must be finite, affine and invertible";
+        if (error) *error = {ErrorCode::InvalidArgument, who + "the transform must be finite, affine and invertible"};
         return {};
     }
-    std::string why;
+    Error why;
     if (!checkVoxelMaterial(d.material, &why)) {
-        if (error) *error = who + why;
+        if (error) *error = {why.code, who + why.message};
         return {};
     }
     if (d.material.computeShader && !d.material.fragmentShader) {
         if (error)
-            *error = who + "the material has a computeShader but no fragmentShader: the compute voxelizer draws the triangles too big "
-                           "for one invocation with the fragmentShader, and Voxelizer::Draws uses only it";
+            *error = {ErrorCode::MissingInput, who + "the material has a computeShader but no fragmentShader: the compute voxelizer draws the triangles too big "
+                           "for one invocation with the fragmentShader, and Voxelizer::Draws uses only it"};
         return {};
     }
     for (int c = 0; c < 4; ++c)
         if (!std::isfinite(d.user0[c]) || !std::isfinite(d.user1[c])) {
-            if (error) *error = who + "user0 and user1 must be finite";
+            if (error) *error = {ErrorCode::InvalidArgument, who + "user0 and user1 must be finite"};
             return {};
         }
     auto instance = std::make_unique<Instance>();
@@ -290,14 +290,14 @@ VoxelInstanceHandle VoxelScene::addInstance(const VoxelInstanceDesc& d, std::str
     return VoxelInstanceHandle{instances_.back()->id};
 }
 
-bool VoxelScene::setTransform(VoxelInstanceHandle handle, const glm::mat4& transform, std::string* error) {
+bool VoxelScene::setTransform(VoxelInstanceHandle handle, const glm::mat4& transform, Error* error) {
     auto it = findById(instances_, handle.id);
     if (it == instances_.end()) {
-        if (error) *error = "voxel scene: setTransform: unknown instance " + std::to_string(handle.id);
+        if (error) *error = {ErrorCode::InvalidHandle, "voxel scene: setTransform: unknown instance " + std::to_string(handle.id)};
         return false;
     }
     if (!usableTransform(transform)) {
-        if (error) *error = "voxel scene: instance of mesh '" + (*it)->mesh->name + "': the transform must be finite, affine and invertible";
+        if (error) *error = {ErrorCode::InvalidArgument, "voxel scene: instance of mesh '" + (*it)->mesh->name + "': the transform must be finite, affine and invertible"};
         return false;
     }
     dirty_.push_back(worldBounds(*(*it)->mesh, (*it)->transform));
@@ -306,10 +306,10 @@ bool VoxelScene::setTransform(VoxelInstanceHandle handle, const glm::mat4& trans
     return true;
 }
 
-bool VoxelScene::removeInstance(VoxelInstanceHandle handle, std::string* error) {
+bool VoxelScene::removeInstance(VoxelInstanceHandle handle, Error* error) {
     auto it = findById(instances_, handle.id);
     if (it == instances_.end()) {
-        if (error) *error = "voxel scene: removeInstance: unknown instance " + std::to_string(handle.id);
+        if (error) *error = {ErrorCode::InvalidHandle, "voxel scene: removeInstance: unknown instance " + std::to_string(handle.id)};
         return false;
     }
     dirty_.push_back(worldBounds(*(*it)->mesh, (*it)->transform));
@@ -330,14 +330,14 @@ void VoxelScene::setVoxelizer(Voxelizer voxelizer, const ComputeVoxelizer& optio
     if (!(computeOptions_.splitVoxels >= 0.0f)) computeOptions_.splitVoxels = 0.0f;  // NaN: draw every triangle
 }
 
-bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::string* error) {
+bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, Error* error) {
     lastDraws_ = 0;
     lastComputes_ = 0;
     const std::vector<WorldBox> regions = clipmap.dirtyRegions();
     const float margin = clipmap.placement().voxelSize(clipmap.desc().levels - 1);
     bool ok = true;
-    auto refuse = [&](const Mesh& mesh, const std::string& why) {
-        if (error && ok) *error = "voxel scene: instance of mesh '" + mesh.name + "': " + why;
+    auto refuse = [&](const Mesh& mesh, const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
+        if (error && ok) *error = {code, "voxel scene: instance of mesh '" + mesh.name + "': " + why};
         ok = false;
     };
     // What this call writes, instance by instance; the constants live here until the calls that point at them.
@@ -359,10 +359,10 @@ bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::str
         bounds.min -= glm::vec3(margin);
         bounds.max += glm::vec3(margin);
         if (std::none_of(regions.begin(), regions.end(), [&](const WorldBox& r) { return overlaps(bounds, r); })) continue;
-        std::string why;
+        Error why;
         std::optional<rhi::DrawCallState> state = clipmap.voxelizationState(instance->material, &why);
         if (!state) {
-            refuse(mesh, why);
+            refuse(mesh, why.message, why.code);
             continue;
         }
         Work& w = work.emplace_back();
@@ -396,7 +396,7 @@ bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::str
             args.insert(args.end(), {0u, 1u, uint32_t(w.listWord), 0u, 0u});
         }
         if (words > UINT32_MAX) {
-            refuse(*work.front().instance->mesh, "the compute voxelizer's drawn-triangle lists exceed 2^32 indices; instances are drawn");
+            refuse(*work.front().instance->mesh, "the compute voxelizer's drawn-triangle lists exceed 2^32 indices; instances are drawn", ErrorCode::OverBudget);
             for (Work& w : work) w.compute = false;
             computeCount = 0;
         } else if (words * 4 > drawnBytes_) {
@@ -408,7 +408,7 @@ bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::str
             drawn_ = device_.createBuffer(bd);
             drawnBytes_ = drawn_ ? bd.size : 0;
             if (!drawn_) {
-                refuse(*work.front().instance->mesh, "the device could not create the compute voxelizer's list buffer; instances are drawn");
+                refuse(*work.front().instance->mesh, "the device could not create the compute voxelizer's list buffer; instances are drawn", ErrorCode::DeviceFailure);
                 for (Work& w : work) w.compute = false;
                 computeCount = 0;
             }
@@ -459,7 +459,7 @@ bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::str
             if (!device_.dispatch(ds, (c.positions.z + kComputeGroupSize - 1) / kComputeGroupSize, clipmap.desc().levels, 1)) {
                 refuse(mesh, "the device refused the compute voxelizer's dispatch (is the material's computeShader a compute shader "
                              "that includes bricklight/voxelize_compute.glsl, and do `extra`'s bindings leave its slots free?)" +
-                                 std::string(first == 0 ? "; the instance is drawn instead" : ""));
+                                 std::string(first == 0 ? "; the instance is drawn instead" : ""), ErrorCode::DeviceFailure);
                 // A refused call writes nothing: refused from the start, the draw path takes the whole instance.
                 if (first == 0) w.compute = false;
                 break;

@@ -24,8 +24,8 @@ int runClassify(const Options& o) {
     if (!scene) return 1;
     for (int i = 0; i < 4; ++i) scene->update(geometry.camera.eye), device->endFrame();
     BenchGBuffer gbuffer;
-    std::string error;
-    auto classifier = shadows::ShadowClassifier::create(*device, o.width, o.height, &error);
+    Error error;
+    auto classifier = shadows::ShadowClassifier::create(*device, {o.width, o.height}, &error);
     rhi::TextureDesc td;
     td.format = rhi::Format::R16_FLOAT;
     td.width = o.width;
@@ -42,7 +42,7 @@ int runClassify(const Options& o) {
     sd.blob = rhi::findShader("bench/sun_shadow_map.comp");
     const rhi::ShaderHandle mapShader = sd.blob ? device->createShader(sd) : rhi::ShaderHandle{};
     if (!classifier || !gbuffer.create(*device, o.width, o.height) || !mask || !shadowMap || !mapShader) {
-        std::fprintf(stderr, "bricklight-bench: the device could not create the classifier's inputs%s%s\n", error.empty() ? "" : ": ", error.c_str());
+        std::fprintf(stderr, "bricklight-bench: the device could not create the classifier's inputs%s%s\n", error.message.empty() ? "" : ": ", error.message.c_str());
         return 1;
     }
     // The sun of the benchmark's G-buffer (sdf_gbuffer.comp) and an orthographic map around the scene's bounding
@@ -99,7 +99,7 @@ int runClassify(const Options& o) {
         ok = ok && classifier->resolve(mask, &error);
         device->endMarker();
         if (!ok) {
-            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
             std::exit(1);
         }
         device->endFrame();
@@ -122,9 +122,9 @@ int runClassify(const Options& o) {
     std::printf("pixels facing the sun %u of %u; needing a ray %u (%.1f %% of all pixels) in %u listed tiles of %u\n", counts.activePixels, pixels,
                 counts.rayPixels, 100.0 * counts.rayPixels / pixels, counts.listedTiles, classifier->tilesX() * classifier->tilesY());
     // Soft shadows and the denoiser (a still camera: the history accumulates as in a still frame of a game).
-    auto denoiser = shadows::ShadowDenoiser::create(*device, o.width, o.height, &error);
+    auto denoiser = shadows::ShadowDenoiser::create(*device, {o.width, o.height}, &error);
     if (!denoiser) {
-        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
         return 1;
     }
     shadows::ShadowDenoiseDesc n;
@@ -152,7 +152,7 @@ int runClassify(const Options& o) {
         ok = ok && denoiser->denoise(*classifier, n, &error);
         device->endMarker();
         if (!ok) {
-            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
             std::exit(1);
         }
         device->endFrame();

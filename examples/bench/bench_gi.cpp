@@ -63,10 +63,10 @@ struct BenchAlphaPass {
         return vertex && fragment;
     }
     void record(rhi::IDevice& device, gi::GiContext& context) {
-        std::string error;
+        Error error;
         std::optional<rhi::DrawCallState> s = context.alphaPassState(fragment, &error);
         if (!s) {
-            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
             std::exit(1);
         }
         s->vertexShader = vertex;
@@ -104,10 +104,10 @@ int benchGi(const Options& o, const scenes::SceneGeometry& geometry, std::unique
     cd.probeTile = o.giProbeTile;
     if (o.giNoCameraCheck) cd.flags |= gi::ContextFlags::NoCameraCheck;
     if (alphaAware) cd.flags |= gi::ContextFlags::AlphaCache;
-    std::string error;
+    Error error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
     if (!context) {
-        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
         return 1;
     }
     using namespace rhi::TextureUsage;

@@ -30,11 +30,11 @@ int runReflections(const Options& o) {
     cd.displayWidth = o.width;
     cd.displayHeight = o.height;
     cd.internalResolution = gi::InternalResolution::Percent50;
-    std::string error;
+    Error error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);
-    auto pyramid = context ? gbuffer::DepthPyramid::create(*device, o.width, o.height, &error) : nullptr;
-    auto classifier = pyramid ? reflections::ReflectionClassifier::create(*device, o.width, o.height, &error) : nullptr;
-    auto denoiser = classifier ? reflections::ReflectionDenoiser::create(*device, o.width, o.height, &error) : nullptr;
+    auto pyramid = context ? gbuffer::DepthPyramid::create(*device, {o.width, o.height}, &error) : nullptr;
+    auto classifier = pyramid ? reflections::ReflectionClassifier::create(*device, {o.width, o.height}, &error) : nullptr;
+    auto denoiser = classifier ? reflections::ReflectionDenoiser::create(*device, {o.width, o.height}, &error) : nullptr;
     BenchGBuffer gbuffer;
     rhi::TextureDesc td;
     td.format = rhi::Format::RGBA16_FLOAT;
@@ -50,8 +50,8 @@ int runReflections(const Options& o) {
     td.debugName = "bench reflections";
     const rhi::TextureHandle reflections = device->createTexture(td);
     if (!denoiser || !gbuffer.create(*device, o.width, o.height) || !diffuse || !specular || !traced || !reflections) {
-        std::fprintf(stderr, "bricklight-bench: the device could not create the reflections' inputs%s%s\n", error.empty() ? "" : ": ",
-                     error.c_str());
+        std::fprintf(stderr, "bricklight-bench: the device could not create the reflections' inputs%s%s\n", error.message.empty() ? "" : ": ",
+                     error.message.c_str());
         return 1;
     }
     const float aspect = float(o.width) / float(o.height);
@@ -77,7 +77,7 @@ int runReflections(const Options& o) {
         g.outputDiffuse = diffuse;
         g.outputSpecular = specular;
         if (!context->dispatch(g)) std::exit(1);
-        std::string why;
+        Error why;
         device->beginMarker("reflections");
         device->beginMarker("depth pyramid");
         bool ok = pyramid->build(gbuffer.depth, &why);
@@ -137,7 +137,7 @@ int runReflections(const Options& o) {
         device->endMarker();
         device->endMarker();
         if (!ok) {
-            std::fprintf(stderr, "bricklight-bench: %s\n", why.c_str());
+            std::fprintf(stderr, "bricklight-bench: %s\n", why.message.c_str());
             std::exit(1);
         }
         device->endFrame();

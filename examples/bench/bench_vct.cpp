@@ -121,11 +121,11 @@ int runVct(const Options& o) {
         desc.emittance = mode;
         desc.persistent = o.vctPersistent;
         desc.finestVoxelSize = 2.0f * size / float(desc.resolution * (1u << (desc.levels - 1)));
-        std::string error;
+        Error error;
         auto clipmap = vct::Clipmap::create(*device, desc, &error);
-        auto tracer = clipmap ? vct::ConeTracer::create(*device, *clipmap, o.width, o.height, &error) : nullptr;
+        auto tracer = clipmap ? vct::ConeTracer::create(*device, *clipmap, {o.width, o.height}, &error) : nullptr;
         if (!tracer) {
-            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
             return false;
         }
         vct::VoxelMaterial material;
@@ -133,7 +133,7 @@ int runVct(const Options& o) {
         material.computeShader = mode == vct::EmittanceMode::None ? rhi::ShaderHandle{} : emittanceCompute;
         std::optional<rhi::DrawCallState> state = clipmap->voxelizationState(material, &error);
         if (!state) {
-            std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+            std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
             return false;
         }
         // --voxelizer scene: the scene's meshes and instances registered with a vct::VoxelScene, which draws only
@@ -146,12 +146,12 @@ int runVct(const Options& o) {
             for (const scenes::TriangleMesh& m : geometry.meshes) {
                 vct::VoxelMeshArrays a{m.positions.data(), m.normals.empty() ? nullptr : m.normals.data(), uint32_t(m.positions.size() / 3),
                                        m.indices.data(), uint32_t(m.indices.size()), m.name};
-                meshes.push_back(voxelScene ? voxelScene->addMesh(a, &error) : vct::VoxelMeshHandle{});
+                meshes.push_back(voxelScene ? voxelScene->createMesh(a, &error) : vct::VoxelMeshHandle{});
                 if (!meshes.back()) break;
             }
             for (const scenes::MeshInstance& i : geometry.instances)
                 if (!voxelScene || !meshes.back() || !voxelScene->addInstance({meshes[i.mesh], i.transform, material, {}, {}}, &error)) {
-                    std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+                    std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
                     return false;
                 }
         }
@@ -208,7 +208,7 @@ int runVct(const Options& o) {
             t.params = params;
             t.occlusionField = o.vctSdfOcclusion ? scene.get() : nullptr;
             if (!tracer->dispatch(t, &error)) {
-                std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+                std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
                 std::exit(1);
             }
             device->endFrame();

@@ -215,10 +215,10 @@ std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& d
     // 8M, beyond which work is deferred to later updates).
     desc.budgets.maxReferencesPerUpdate =
         uint32_t(std::min<uint64_t>(32u << 20, device.capabilities().limits.maxStorageBufferRange / 12));
-    std::string error;
+    Error error;
     auto scene = sdf::SdfScene::create(device, desc, &error);
     if (!scene) {
-        std::fprintf(stderr, "bricklight-bench: %s\n", error.c_str());
+        std::fprintf(stderr, "bricklight-bench: %s\n", error.message.c_str());
         return nullptr;
     }
     std::vector<sdf::MeshHandle> meshes;

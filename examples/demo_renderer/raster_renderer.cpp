@@ -152,9 +152,9 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
     sd.budgets = options_.sdfBudgets;
     sd.debugName = "render sdf";
     sd.errorCallback = options_.errorCallback;
-    std::string why;
+    Error why;
     sdf_ = sdf::SdfScene::create(device_, sd, &why);
-    if (!sdf_) return fail("the distance field for GI: " + why);
+    if (!sdf_) return fail("the distance field for GI: " + why.message);
     std::vector<sdf::MeshHandle> meshes;
     for (const scenes::TriangleMesh& m : scene.meshes) {
         sdf::MeshArrays a;
@@ -164,7 +164,7 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
         a.indexCount = uint32_t(m.indices.size());
         a.name = m.name;
         meshes.push_back(sdf_->createMesh(a));
-        if (!meshes.back()) return fail("the distance field rejected mesh '" + m.name + "': " + sdf_->lastError());
+        if (!meshes.back()) return fail("the distance field rejected mesh '" + m.name + "': " + sdf_->lastError().message);
     }
     for (const scenes::MeshInstance& i : scene.instances) {
         const bool alphaTested = scene.meshes[i.mesh].alphaTested();
@@ -178,7 +178,7 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
         id.transform = i.transform;
         id.alphaTested = alphaTested && options_.foliage == FoliageMode::AlphaAware;
         sdfInstances_.push_back(sdf_->addInstance(id));
-        if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError());
+        if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError().message);
     }
     sdfCenter_ = sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
     return true;
@@ -186,7 +186,7 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
 
 bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
     if (!sdf_ && !createSdf(scene, error)) return false;
-    std::string why;
+    Error why;
     gi::ContextDesc gd;
     gd.displayWidth = options_.width;
     gd.displayHeight = options_.height;
@@ -201,7 +201,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     if (options_.foliage == FoliageMode::LeftOut && scene_->hasAlphaTested()) gd.flags |= gi::ContextFlags::NoCameraCheck;
     gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
     if (!gi_) {
-        if (error) *error = "raster renderer: " + why;
+        if (error) *error = "raster renderer: " + why.message;
         return false;
     }
     return !alphaAwareFoliage() || createAlphaPass(error);
@@ -295,8 +295,8 @@ void RasterRenderer::render() {
     device_.draw(d, args);
     device_.endMarker();
     if (depthPyramid_) {
-        std::string why;
-        if (!depthPyramid_->build(depth_, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+        Error why;
+        if (!depthPyramid_->build(depth_, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
     }
     renderShadowMaps();
     sdfUpdated_ = false;

@@ -261,7 +261,7 @@ private:
     rhi::TextureHandle reflections_, reflectionTraced_;  // reflections_ is a 1×1 transparent stand-in when off
     uint32_t reflectionFrame_ = 0;
     Image readGi(rhi::TextureHandle t);
-    bool drawDebugView(View view, float exposure, std::string* error);  // into debugView_
+    bool drawDebugView(View view, float exposure, Error* error);  // into debugView_
     rhi::IDevice& device_;
     RasterOptions options_;
     std::unique_ptr<GpuScene> scene_;

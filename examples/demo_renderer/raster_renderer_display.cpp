@@ -10,7 +10,7 @@ enum DisplayMap : uint32_t { Radiance = 0, Color = 1, Signed = 2, Display = 3, D
 
 }  // namespace
 
-bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error) {
+bool RasterRenderer::drawDebugView(View view, float exposure, Error* error) {
     if (!debugView_) {
         rhi::TextureDesc d;
         d.format = rhi::Format::RGBA8_UNORM;
@@ -20,14 +20,14 @@ bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error
         d.debugName = "debug view";
         debugView_ = device_.createTexture(d);
         if (!debugView_) {
-            *error = "the debug view's texture could not be created";
+            *error = {ErrorCode::DeviceFailure, "the debug view's texture could not be created"};
             return false;
         }
     }
     bool drawn = false;
     if (view == View::VctConeSamples) {
         if (!coneTracer_) {
-            *error = "needs the cone tracer (--gi vxgi or --ao vxao)";
+            *error = {ErrorCode::InvalidState, "needs the cone tracer (--gi vxgi or --ao vxao)"};
             return false;
         }
         return coneTracer_->debugConeSamples(std::min(probePixel_.x, options_.width - 1), std::min(probePixel_.y, options_.height - 1),
@@ -45,12 +45,8 @@ bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error
         desc.cameraPosition = camera_.eye;
         desc.output = debugView_;
         desc.exposure = exposure;
-        std::string why;
-        drawn = clipmap_->debugView(desc, &why);
-        if (!drawn) {
-            *error = why;
-            return false;
-        }
+        if (!clipmap_->debugView(desc, error)) return false;
+        drawn = true;
     } else if (view >= View::GiRadianceCache) {
         gi::DebugViewDesc desc;
         desc.mode = gi::DebugMode(uint32_t(view) - uint32_t(View::GiRadianceCache));
@@ -65,13 +61,13 @@ bool RasterRenderer::drawDebugView(View view, float exposure, std::string* error
         desc.output = debugView_;
         drawn = sdf_->debugView(desc);
     }
-    if (!drawn) *error = std::string("the debug view ") + viewName(view) + " failed (see the messages before)";
+    if (!drawn) *error = {ErrorCode::DeviceFailure, std::string("the debug view ") + viewName(view) + " failed (see the messages before)"};
     return drawn;
 }
 
 bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const DisplayRect& rect, float exposure,
                               std::string* error) {
-    std::string why;
+    Error why;
     auto fail = [&](const std::string& message) {
         if (error) *error = std::string("raster renderer: view ") + viewName(view) + ": " + message;
         return false;
@@ -110,7 +106,7 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
         case View::Motion: texture = motion_, map = Motion; break;
         case View::Reflections: texture = reflections_; break;
         default:
-            if (!drawDebugView(view, exposure, &why)) return fail(why);
+            if (!drawDebugView(view, exposure, &why)) return fail(why.message);
             texture = debugView_, map = Display;
     }
     struct {
@@ -151,7 +147,7 @@ sdf::MemoryUse RasterRenderer::memoryUse() const {
         const rhi::BufferDesc* d = b ? device_.describe(b) : nullptr;
         if (d) add(d->debugName, d->size);
     }
-    if (depthPyramid_) add("depth pyramid", depthPyramid_->memoryBytes());
+    if (depthPyramid_) add("depth pyramid", depthPyramid_->memoryUse().totalBytes);
     return use;
 }
 

@@ -24,7 +24,7 @@ bool RasterRenderer::createAlphaPass(std::string* error) {
 
 void RasterRenderer::runAlphaPass() {
     if (!alphaPassFragment_) return;
-    std::string why;
+    Error why;
     std::optional<rhi::DrawCallState> state = gi_->alphaPassState(alphaPassFragment_, &why);
     if (!state) return;  // reported through the GI's error callback
     state->label = "gi alpha pass";

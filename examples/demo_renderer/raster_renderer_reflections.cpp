@@ -34,12 +34,12 @@ bool RasterRenderer::createReflections(std::string* error) {
     if (!reflections_) return fail("the device could not create the reflections' textures (see its messages)");
     device_.clearTexture(reflections_, 0, 1, rhi::ClearValue{});
     if (!hybrid) return true;
-    std::string why;
+    Error why;
     reflectionTraced_ = reflectionTexture(device_, w, h, "reflections traced");
     if (!reflectionTraced_) return fail("the device could not create the reflections' textures (see its messages)");
-    if (!depthPyramid_ && !(depthPyramid_ = gbuffer::DepthPyramid::create(device_, w, h, &why))) return fail(why);
-    if (!(reflectionClassifier_ = reflections::ReflectionClassifier::create(device_, w, h, &why))) return fail(why);
-    if (!(reflectionDenoiser_ = reflections::ReflectionDenoiser::create(device_, w, h, &why))) return fail(why);
+    if (!depthPyramid_ && !(depthPyramid_ = gbuffer::DepthPyramid::create(device_, {w, h}, &why))) return fail(why.message);
+    if (!(reflectionClassifier_ = reflections::ReflectionClassifier::create(device_, {w, h}, &why))) return fail(why.message);
+    if (!(reflectionDenoiser_ = reflections::ReflectionDenoiser::create(device_, {w, h}, &why))) return fail(why.message);
     return true;
 }
 
@@ -55,7 +55,7 @@ void RasterRenderer::traceReflections(bool resetHistory) {
     auto report = [&](const std::string& why) {
         if (options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
     };
-    std::string why;
+    Error why;
     reflections::ReflectionClassifyDesc c;
     c.view = view_;
     c.projection = projection_;
@@ -74,7 +74,7 @@ void RasterRenderer::traceReflections(bool resetHistory) {
     device_.beginMarker("reflections");
     if (!reflectionClassifier_->classify(c, &why)) {
         device_.endMarker();
-        return report(why);
+        return report(why.message);
     }
     reflections::ReflectionTraceDesc t;
     t.depthPyramid = depthPyramid_->texture();
@@ -82,7 +82,7 @@ void RasterRenderer::traceReflections(bool resetHistory) {
     t.output = reflectionTraced_;
     if (!reflectionClassifier_->traceScreenSpace(t, &why)) {
         device_.endMarker();
-        return report(why);
+        return report(why.message);
     }
     gi::ReflectionRaysDesc r;
     r.rays = reflectionClassifier_->sdfRayList();
@@ -93,7 +93,7 @@ void RasterRenderer::traceReflections(bool resetHistory) {
     r.output = reflectionTraced_;
     if (!gi_->traceReflectionRays(r)) {
         device_.endMarker();
-        return report(gi_->lastError());
+        return report(gi_->lastError().message);
     }
     reflections::ReflectionDenoiseDesc d;
     d.tiles = reflectionClassifier_->denoiseTileList();
@@ -113,7 +113,7 @@ void RasterRenderer::traceReflections(bool resetHistory) {
     d.roughnessChannel = 3;
     d.resetHistory = resetHistory;
     d.output = reflections_;
-    if (!reflectionDenoiser_->denoise(d, &why)) report(why);
+    if (!reflectionDenoiser_->denoise(d, &why)) report(why.message);
     device_.endMarker();
     ++reflectionFrame_;
 }
@@ -123,9 +123,9 @@ Image RasterRenderer::readReflections() { return reflectionClassifier_ ? readGi(
 Image RasterRenderer::reflectionView(View view) {
     if (!reflectionClassifier_ || !viewIsReflection(view)) return {};
     if (view == View::Reflections) return readReflections();
-    std::string why;
+    Error why;
     if (!drawDebugView(view, 1.0f, &why)) {
-        if (options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+        if (options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
         return {};
     }
     return readDebugView();

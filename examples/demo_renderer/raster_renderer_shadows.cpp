@@ -50,8 +50,9 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
         if (error) *error = "raster renderer: " + m;
         return false;
     };
-    std::string why;
-    if (!checkSunShadowOptions(options_.sunShadows, &why)) return fail(why);
+    std::string invalid;
+    if (!checkSunShadowOptions(options_.sunShadows, &invalid)) return fail(invalid);
+    Error why;
     const bool maps = mapsOn();
     setSun(scene);
     if (maps) {
@@ -88,8 +89,8 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
     }
     if (options_.shadows == ShadowMode::Hybrid) {
         if (!sdf_ && !createSdf(scene, error)) return false;
-        shadowClassifier_ = shadows::ShadowClassifier::create(device_, options_.width, options_.height, &why);
-        if (!shadowClassifier_) return fail(why);
+        shadowClassifier_ = shadows::ShadowClassifier::create(device_, {options_.width, options_.height}, &why);
+        if (!shadowClassifier_) return fail(why.message);
         rhi::TextureDesc md;
         md.format = rhi::Format::R16_FLOAT;
         md.width = options_.width;
@@ -99,14 +100,14 @@ bool RasterRenderer::createShadows(const scenes::SceneGeometry& scene, std::stri
         sunMask_ = device_.createTexture(md);
         if (!sunMask_) return fail("the device could not create the sun's shadow mask");
         if (sunAngle_ > 0.0f) {
-            shadowDenoiser_ = shadows::ShadowDenoiser::create(device_, options_.width, options_.height, &why);
-            if (!shadowDenoiser_) return fail(why);
+            shadowDenoiser_ = shadows::ShadowDenoiser::create(device_, {options_.width, options_.height}, &why);
+            if (!shadowDenoiser_) return fail(why.message);
             softShadowFrames_ = 0;
         }
     }
     if (options_.depthPyramid) {
-        depthPyramid_ = gbuffer::DepthPyramid::create(device_, options_.width, options_.height, &why);
-        if (!depthPyramid_) return fail(why);
+        depthPyramid_ = gbuffer::DepthPyramid::create(device_, {options_.width, options_.height}, &why);
+        if (!depthPyramid_) return fail(why.message);
     }
     return true;
 }
@@ -310,7 +311,7 @@ void RasterRenderer::classifyShadows() {
         d.softShadows = true;
         d.frameIndex = softShadowFrames_;
     }
-    std::string why;
+    Error why;
     device_.beginMarker("shadow classify");
     bool ok = shadowClassifier_->classify(d, &why);
     device_.endMarker();
@@ -336,7 +337,7 @@ void RasterRenderer::classifyShadows() {
     } else {
         ok = ok && shadowClassifier_->resolve(sunMask_, &why);
     }
-    if (!ok && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+    if (!ok && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
 }
 
 }  // namespace bricklight::render

@@ -29,18 +29,18 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
     desc.persistent = !options_.giFeedback;
     // The finest level holds the scene with a margin (the anchor snaps to even voxels: two voxels each side).
     desc.finestVoxelSize = std::max(side * 1.1f, 1e-6f) / float(std::max(desc.resolution, 8u) - 4);
-    std::string why;
+    Error why;
     if (options_.vctSdfOcclusion && !sdf_ && !createSdf(scene, error)) return false;
     clipmap_ = vct::Clipmap::create(device_, desc, &why);
-    if (!clipmap_) return fail(why);
+    if (!clipmap_) return fail(why.message);
     // The SDF GI with the clip-map's light for unseen surfaces voxelizes only; it traces no cones.
     const bool traceCones = options_.vxao || (options_.gi && options_.giTechnique == GiTechnique::Vct);
     if (traceCones) {
-        coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, options_.width, options_.height, &why);
-        if (!coneTracer_) return fail(why);
+        coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, {options_.width, options_.height}, &why);
+        if (!coneTracer_) return fail(why.message);
     }
     if (probePixel_.x == ~0u) probePixel_ = glm::uvec2(options_.width / 2, options_.height / 2);
-    if (!vct::checkConeTraceParams(options_.vctTrace, &why)) return fail(why);
+    if (!vct::checkConeTraceParams(options_.vctTrace, &why)) return fail(why.message);
     auto shader = [&](const char* name) {
         rhi::ShaderDesc sd;
         sd.blob = rhi::findShader(name);
@@ -64,9 +64,9 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
 
 void RasterRenderer::voxelizeVct() {
     device_.beginMarker("vct voxelize");
-    std::string why;
+    Error why;
     if (!clipmap_->update(sceneCenter_, &why)) {
-        if (options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+        if (options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
         device_.endMarker();
         return;
     }
@@ -109,7 +109,7 @@ void RasterRenderer::voxelizeVct() {
 
 void RasterRenderer::traceVct() {
     if (!coneTracer_) return;
-    std::string why;
+    Error why;
     if (options_.vctSdfOcclusion && !gi_) {  // GI updates the field itself when it runs
         device_.beginMarker("sdf update");
         sdf_->update(sdfCenter_);
@@ -134,7 +134,7 @@ void RasterRenderer::traceVct() {
     t.occlusionField = options_.vctSdfOcclusion ? sdf_.get() : nullptr;
     t.resetHistory = cut_;
     cut_ = false;
-    if (!coneTracer_->dispatch(t, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+    if (!coneTracer_->dispatch(t, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
 }
 
 Image RasterRenderer::readAmbientOcclusion() {
@@ -151,16 +151,16 @@ Image RasterRenderer::readAmbientOcclusion() {
 }
 
 Image RasterRenderer::vctDebugView(vct::DebugMode mode, float exposure) {
-    std::string why;
+    Error why;
     const View view = View(uint32_t(View::VctOpacity) + uint32_t(mode));
     if (!clipmap_ || mode > vct::DebugMode::Rewritten || !drawDebugView(view, exposure, &why)) return {};
     return readDebugView();
 }
 
 Image RasterRenderer::vctConeSamplesView() {
-    std::string why;
+    Error why;
     if (!coneTracer_ || !drawDebugView(View::VctConeSamples, 1.0f, &why)) {
-        if (!why.empty() && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why);
+        if (!why.message.empty() && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
         return {};
     }
     return readDebugView();

@@ -59,9 +59,10 @@ int main(int argc, char** argv) {
     sd.budgets.maxTrianglesPerUpdate = 1024;
     sd.budgets.maxReferencesPerUpdate = 1u << 18;
     sd.errorCallback = onMessage;
-    std::unique_ptr<sdf::SdfScene> scene = sdf::SdfScene::create(*device, sd, &error);
+    Error refused;
+    std::unique_ptr<sdf::SdfScene> scene = sdf::SdfScene::create(*device, sd, &refused);
     if (!scene) {
-        fprintf(stderr, "hand_link: SdfScene::create failed: %s\n", error.c_str());
+        fprintf(stderr, "hand_link: SdfScene::create failed: %s\n", refused.message.c_str());
         return 1;
     }
     // A 1 x 1 x 1 box: 8 corners, 12 triangles.
@@ -78,7 +79,7 @@ int main(int argc, char** argv) {
     sdf::InstanceDesc instance;
     instance.mesh = scene->createMesh(box);
     if (!instance.mesh || !scene->addInstance(instance)) {
-        fprintf(stderr, "hand_link: the box was refused: %s\n", scene->lastError().c_str());
+        fprintf(stderr, "hand_link: the box was refused: %s\n", scene->lastError().message.c_str());
         return 1;
     }
     scene->update(glm::vec3(0.0f));
@@ -92,9 +93,9 @@ int main(int argc, char** argv) {
     gi::ContextDesc cd;
     cd.displayWidth = cd.displayHeight = 64;
     cd.errorCallback = onMessage;
-    std::unique_ptr<gi::GiContext> gi = gi::GiContext::create(*device, *scene, cd, &error);  // creates every GI shader
+    std::unique_ptr<gi::GiContext> gi = gi::GiContext::create(*device, *scene, cd, &refused);  // creates every GI shader
     const bool giCreated = gi != nullptr;
-    if (!giCreated) fprintf(stderr, "hand_link: GiContext::create failed: %s\n", error.c_str());
+    if (!giCreated) fprintf(stderr, "hand_link: GiContext::create failed: %s\n", refused.message.c_str());
     gi.reset();
     scene.reset();
     device->waitIdle();

@@ -121,8 +121,13 @@ int main(int argc, char** argv) {
     sd.budgets.maxReferencesPerUpdate = 1u << 20;
     sd.debugName = "integration field";
     sd.errorCallback = logAs("sdf");
-    std::unique_ptr<sdf::SdfScene> field = sdf::SdfScene::create(device, sd, &error);
-    if (!field || !addRoomToField(*field, room, &error)) {
+    Error refused;  // what the library says when it refuses a call: a code and a message
+    std::unique_ptr<sdf::SdfScene> field = sdf::SdfScene::create(device, sd, &refused);
+    if (!field) {
+        fprintf(stderr, "bricklight_integration: %s (%s)\n", refused.message.c_str(), errorCodeName(refused.code));
+        return 1;
+    }
+    if (!addRoomToField(*field, room, &error)) {
         fprintf(stderr, "bricklight_integration: %s\n", error.c_str());
         return 1;
     }
@@ -134,9 +139,9 @@ int main(int argc, char** argv) {
     cd.internalResolution = gi::InternalResolution::Native;
     cd.debugName = "integration gi";
     cd.errorCallback = logAs("gi");
-    std::unique_ptr<gi::GiContext> gi = gi::GiContext::create(device, *field, cd, &error);
+    std::unique_ptr<gi::GiContext> gi = gi::GiContext::create(device, *field, cd, &refused);
     if (!gi) {
-        fprintf(stderr, "bricklight_integration: %s\n", error.c_str());
+        fprintf(stderr, "bricklight_integration: %s (%s)\n", refused.message.c_str(), errorCodeName(refused.code));
         return 1;
     }
 

@@ -121,7 +121,7 @@ bool addRoomToField(bricklight::sdf::SdfScene& field, const Room& room, std::str
     arrays.name = "unit cube";
     const bricklight::sdf::MeshHandle mesh = field.createMesh(arrays);  // copied to the GPU now
     if (!mesh) {
-        if (error) *error = "the distance field rejected the cube: " + field.lastError();
+        if (error) *error = "the distance field rejected the cube: " + field.lastError().message;
         return false;
     }
     for (const Box& b : room.boxes) {
@@ -129,7 +129,7 @@ bool addRoomToField(bricklight::sdf::SdfScene& field, const Room& room, std::str
         instance.mesh = mesh;
         instance.transform = b.transform;  // static: built once, rebuilt only if moved (setTransform)
         if (!field.addInstance(instance)) {
-            if (error) *error = "the distance field rejected box '" + b.name + "': " + field.lastError();
+            if (error) *error = "the distance field rejected box '" + b.name + "': " + field.lastError().message;
             return false;
         }
     }

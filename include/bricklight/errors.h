@@ -1,6 +1,7 @@
-// What went wrong, for code that branches on it (the messages are for people): every call of SdfScene and
-// GiContext that refuses its input says why with a stable ErrorCode next to the message that names the
-// objects involved. Diagnostics collect each distinct message once with a count, so that a mistake
+// What went wrong, the same for every technique: a call that refuses its input returns false (or null) and says
+// why in an Error — a stable ErrorCode for code that branches on it, and a message for people that names the
+// object and the problem — and changes nothing. The long-lived scene objects (sdf::SdfScene, gi::GiContext) also
+// keep their last Error and collect Diagnostics: each distinct message once with a count, so that a mistake
 // repeated every frame reaches the application's callback once and stays countable.
 #pragma once
 
@@ -31,6 +32,12 @@ enum class ErrorCode : uint16_t {
     SceneNotUpdated = 15,     // warning: GI dispatched on a scene that was never update()d
 };
 const char* errorCodeName(ErrorCode code);  // "InvalidArgument", ...
+
+// Every technique's create() and calls take an optional Error* (null: the caller does not want the details).
+struct Error {
+    ErrorCode code = ErrorCode::None;
+    std::string message;  // "<object>: <problem>", "" when code is None
+};
 
 // One distinct message of an object (its first report), how often it was reported, and its code.
 struct Diagnostic {

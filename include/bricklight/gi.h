@@ -14,6 +14,8 @@
 #include <glm/glm.hpp>
 
 #include "bricklight/reflections/ray_list.h"
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
@@ -220,16 +222,16 @@ struct DebugViewDesc {
     float exposure = 1.0f;
 };
 
-using MemoryUse = sdf::MemoryUse;  // named resources and their bytes
+using MemoryUse = bricklight::MemoryUse;  // named resources and their bytes
 
 class GiContext {
 public:
-    // Null (with a message through the error callback, `error` and `errorCode`) on a bad description or a
+    // Null (with a message through the error callback and `error`) on a bad description or a
     // device that lacks a format the passes need. The context follows `scene` (its caches are sized by the
     // scene's brick capacity): destroy the context first. A context whose scene is gone refuses every call
     // with ErrorCode::DependencyDestroyed.
     static std::unique_ptr<GiContext> create(rhi::IDevice& device, const sdf::SdfScene& scene, const ContextDesc& desc,
-                                             std::string* error = nullptr, ErrorCode* errorCode = nullptr);
+                                             Error* error = nullptr);
     virtual ~GiContext() = default;
 
     // Records one frame of GI. False (changing nothing, recording nothing) on missing or mismatched inputs,
@@ -249,8 +251,7 @@ public:
     virtual uint32_t internalHeight() const = 0;
     // Internal pixels per probe tile side (ContextDesc::probeTile, resolved).
     virtual uint32_t probeTile() const = 0;
-    virtual const std::string& lastError() const = 0;  // the latest error ("" if none)
-    virtual ErrorCode lastErrorCode() const = 0;       // its code (None if none)
+    virtual const Error& lastError() const = 0;  // the latest error (code None if none)
     // Every distinct message so far (errors, and the warnings of the camera self-check), with how often it
     // was reported: a message repeated every frame reaches the callback once.
     virtual std::vector<Diagnostic> diagnostics() const = 0;
@@ -268,7 +269,7 @@ public:
     // and one vector of its own) and fragment shader (bricklight/alpha_pass.glsl: its alpha test), and the
     // resources those read. Every draw with states taken between two dispatch() calls belongs to one pass.
     // Nullopt (and `error`) without ContextFlags::AlphaCache or geometry shaders, or once the scene is gone.
-    virtual std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, std::string* error) = 0;
+    virtual std::optional<rhi::DrawCallState> alphaPassState(rhi::ShaderHandle fragmentShader, Error* error = nullptr) = 0;
     // For tests and tools (blocking read-back): per brick of the scene's capacity, 64 cells in the field's cell
     // order ((z·4 + y)·4 + x) of the coverage the alpha passes found there, -1 where none reached; with
     // `fragments`, how many fragments the latest pass counted in each cell. Empty without ContextFlags::AlphaCache.

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::sdf {
@@ -134,14 +135,7 @@ struct UpdateReport {
     uint32_t jobsRetried = 0;      // re-queued because an earlier update reported GPU overflow
 };
 
-struct MemoryUse {
-    struct Resource {
-        std::string name;
-        uint64_t bytes = 0;
-    };
-    std::vector<Resource> resources;
-    uint64_t totalBytes = 0;
-};
+using MemoryUse = bricklight::MemoryUse;  // bricklight/memory_use.h
 
 enum class DebugMode : uint32_t { Distance, Normal, Iterations, BrickId, CascadeId, Uvw };
 
@@ -194,10 +188,9 @@ struct FieldSnapshot {
 
 class SdfScene {
 public:
-    // Null (and a message through the device's error callback, `error` and `errorCode`) if the description is
-    // invalid or the device lacks what the builder needs.
-    static std::unique_ptr<SdfScene> create(rhi::IDevice& device, const SceneDesc& desc, std::string* error = nullptr,
-                                            ErrorCode* errorCode = nullptr);
+    // Null (and a message through the device's error callback and `error`) if the description is invalid or the
+    // device lacks what the builder needs.
+    static std::unique_ptr<SdfScene> create(rhi::IDevice& device, const SceneDesc& desc, Error* error = nullptr);
     virtual ~SdfScene() = default;
 
     // Geometry. Errors name the object and the problem, and change nothing.
@@ -232,8 +225,7 @@ public:
     virtual glm::ivec3 cascadeOrigin(uint32_t cascade) const = 0;  // world voxel coordinates
     virtual float cascadeVoxelSize(uint32_t cascade) const = 0;
     virtual FieldSnapshot readField() = 0;  // blocking; for tests and tools
-    virtual const std::string& lastError() const = 0;  // the latest error of this scene ("" if none)
-    virtual ErrorCode lastErrorCode() const = 0;       // its code (None if none)
+    virtual const Error& lastError() const = 0;  // the latest error of this scene (code None if none)
     // Every distinct message so far, with how often it was reported (each reaches the callback once).
     virtual std::vector<Diagnostic> diagnostics() const = 0;
     // update() calls so far (GI warns when it is dispatched on a scene never updated).

@@ -16,8 +16,11 @@
 
 #include <glm/glm.hpp>
 
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
-#include "bricklight/sdf.h"  // MemoryUse
+#include "bricklight/memory_use.h"
+#include "bricklight/sdf.h"
 
 namespace bricklight::vct {
 
@@ -48,7 +51,7 @@ struct ClipmapDesc {
 };
 
 // False with *error naming the field and the problem for a description no clip-map can have.
-bool checkClipmapDesc(const ClipmapDesc& desc, std::string* error);
+bool checkClipmapDesc(const ClipmapDesc& desc, Error* error = nullptr);
 // The mip count a description asks for (resolving 0).
 uint32_t clipmapMipLevels(const ClipmapDesc& desc);
 
@@ -72,12 +75,12 @@ struct LevelUpdate {
 class ClipmapPlacement {
 public:
     // Null with *error for a bad description. No level is placed until the first moveAnchor().
-    static std::optional<ClipmapPlacement> create(const ClipmapDesc& desc, std::string* error);
+    static std::optional<ClipmapPlacement> create(const ClipmapDesc& desc, Error* error = nullptr);
     // Centres every level on `anchor` (snapped to its grid; non-finite anchors are refused with *error and
     // change nothing). Returns each level's new origin and the boxes that entered it: everything on the
     // first call or after invalidate(); then only the slabs the move uncovered (nothing if the snapped
     // origin did not change).
-    std::optional<std::vector<LevelUpdate>> moveAnchor(const glm::vec3& anchor, std::string* error);
+    std::optional<std::vector<LevelUpdate>> moveAnchor(const glm::vec3& anchor, Error* error = nullptr);
     // The next moveAnchor() revoxelizes every level in full.
     void invalidate() { placed_ = false; }
     bool placed() const { return placed_; }
@@ -99,7 +102,7 @@ private:
     bool placed_ = false;
 };
 
-using MemoryUse = sdf::MemoryUse;
+using MemoryUse = bricklight::MemoryUse;
 
 // A box of one level's world voxels.
 struct LevelBox {
@@ -133,7 +136,7 @@ struct VoxelMaterial {
     rhi::ShaderHandle computeShader;
 };
 // False with *error naming the field for a material no draw can use.
-bool checkVoxelMaterial(const VoxelMaterial& material, std::string* error);
+bool checkVoxelMaterial(const VoxelMaterial& material, Error* error = nullptr);
 
 // The binding slots a voxelization record uses; the application's own bindings (its vertex shader's and its
 // emittance function's) must use others.
@@ -191,7 +194,7 @@ uint64_t clipmapBytes(const ClipmapDesc& desc);
 class Clipmap {
 public:
     // Null with *error for a bad description or a device that cannot create the volumes.
-    static std::unique_ptr<Clipmap> create(rhi::IDevice& device, const ClipmapDesc& desc, std::string* error);
+    static std::unique_ptr<Clipmap> create(rhi::IDevice& device, const ClipmapDesc& desc, Error* error = nullptr);
     ~Clipmap();
     Clipmap(const Clipmap&) = delete;
     Clipmap& operator=(const Clipmap&) = delete;
@@ -200,7 +203,7 @@ public:
     // entered a level, what left the finer level inside it, and the `invalidated` boxes (moved objects,
     // changed lights), or everything when the clip-map is not persistent — and records their clears. A refused
     // anchor or a non-finite box changes and records nothing.
-    std::optional<std::vector<LevelUpdate>> update(const glm::vec3& anchor, std::string* error,
+    std::optional<std::vector<LevelUpdate>> update(const glm::vec3& anchor, Error* error,
                                                    const std::vector<WorldBox>& invalidated = {});
     // The next update() rewrites every level whole.
     void invalidate() { placement_.invalidate(); }
@@ -212,7 +215,7 @@ public:
     // (triangles), may add bindings in slots other than VoxelizationSlots, and draws. The record stays valid
     // across frames while this clip-map lives. Null with *error for a bad material or a device without
     // geometry shaders.
-    std::optional<rhi::DrawCallState> voxelizationState(const VoxelMaterial& material, std::string* error);
+    std::optional<rhi::DrawCallState> voxelizationState(const VoxelMaterial& material, Error* error = nullptr);
     // After this frame's draws: fills the coarser levels' inner voxels that this frame changed from the finer
     // levels (shaders/vct/downsample.comp), then turns what changed into the volumes cones sample
     // (shaders/vct/resolve_*.comp).
@@ -231,7 +234,7 @@ public:
 
     // Records a debug view (DebugMode) into desc.output; false with *error, recording nothing, for a bad
     // description.
-    bool debugView(const DebugViewDesc& desc, std::string* error);
+    bool debugView(const DebugViewDesc& desc, Error* error = nullptr);
 
     void setCountersEnabled(bool enabled);
     void resetCounters();
@@ -290,7 +293,7 @@ struct ConeTraceParams {
     float specularJitter = 0.0f;
 };
 // False with *error naming the field for parameters no trace can use.
-bool checkConeTraceParams(const ConeTraceParams& params, std::string* error);
+bool checkConeTraceParams(const ConeTraceParams& params, Error* error = nullptr);
 
 // One frame's cone tracing from the application's G-buffer. The conventions are GiContext's (gi.h,
 // DispatchDesc): depth [0, 1] with 1 the far plane, NDC y = −1 at the top row, world-space normals
@@ -328,6 +331,10 @@ struct ConeSample {
     uint32_t cone = 0;
 };
 
+struct ConeTracerDesc {
+    uint32_t width = 0, height = 0;  // the G-buffer's size in pixels
+};
+
 // The tracing passes: sparse diffuse cones + geometry-aware upsample with refinement + temporal reprojection
 // (shaders/vct/trace_diffuse.comp, resolve_diffuse.comp), one specular cone per pixel + temporal
 // (trace_specular.comp). Reads what the clip-map's finishVoxelization() resolved. Without emittance
@@ -335,19 +342,19 @@ struct ConeSample {
 class ConeTracer {
 public:
     // Null with *error for a zero size or a device that cannot create the history.
-    static std::unique_ptr<ConeTracer> create(rhi::IDevice& device, const Clipmap& clipmap, uint32_t width, uint32_t height,
-                                              std::string* error);
+    static std::unique_ptr<ConeTracer> create(rhi::IDevice& device, const Clipmap& clipmap, const ConeTracerDesc& desc,
+                                              Error* error = nullptr);
     ~ConeTracer();
     ConeTracer(const ConeTracer&) = delete;
     ConeTracer& operator=(const ConeTracer&) = delete;
     // Records the passes; false with *error (recording nothing) for missing or mis-sized inputs or bad parameters.
-    bool dispatch(const TraceDesc& desc, std::string* error);
+    bool dispatch(const TraceDesc& desc, Error* error = nullptr);
     // Debug: records the cones of pixel (x, y) as the latest dispatch() traced them (its diffuse cones of that
     // frame's turn, and its specular cone when it had a specular output) and draws their samples over the view —
     // spheres of each sample's width coloured by cone, darker by transmittance, the surface reads yellow, the pixel
     // marked — into `output` (RGBA8_UNORM, Storage, the tracer's size). The latest dispatch's inputs must still be
     // live. False with *error, recording nothing, before any dispatch or for a bad pixel or output.
-    bool debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, std::string* error);
+    bool debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, Error* error = nullptr);
     // The samples debugConeSamples recorded last, cone by cone (waits for the GPU; tests and tools).
     std::vector<ConeSample> readConeSamples();
     MemoryUse memoryUse() const;
@@ -367,7 +374,7 @@ private:
     std::optional<TraceDesc> latest_;  // the latest dispatch's description (debugConeSamples)
     rhi::ShaderHandle coneSamples_, coneSamplesSdf_, coneSamplesView_;  // cone_samples.cpp, created at first use
     rhi::BufferHandle coneSampleRecord_;
-    bool bindLowResolution(uint32_t sparsity, std::string* error);
+    bool bindLowResolution(uint32_t sparsity, Error* error = nullptr);
     void bindCommon(rhi::Bindings& bindings, const TraceDesc& desc) const;  // the G-buffer, the clip-map, the parameters
     void bindField(rhi::Bindings& bindings, const TraceDesc& desc) const;   // the occlusion field, if any
 };

@@ -93,24 +93,24 @@ struct ComputeVoxelizer {
 class VoxelScene {
 public:
     // Null with *error if the device cannot create our vertex and compute shaders.
-    static std::unique_ptr<VoxelScene> create(rhi::IDevice& device, std::string* error);
+    static std::unique_ptr<VoxelScene> create(rhi::IDevice& device, Error* error = nullptr);
     ~VoxelScene();
     VoxelScene(const VoxelScene&) = delete;
     VoxelScene& operator=(const VoxelScene&) = delete;
 
     // A null handle with *error (naming the mesh) for empty or inconsistent arrays, non-finite values, indices
     // out of range, or buffers that are not live, lack the usage, or are too small for the counts.
-    VoxelMeshHandle addMesh(const VoxelMeshArrays& mesh, std::string* error);
-    VoxelMeshHandle addMesh(const VoxelMeshBuffers& mesh, std::string* error);
+    VoxelMeshHandle createMesh(const VoxelMeshArrays& mesh, Error* error = nullptr);
+    VoxelMeshHandle createMesh(const VoxelMeshBuffers& mesh, Error* error = nullptr);
     // Refused while instances use the mesh.
-    bool removeMesh(VoxelMeshHandle mesh, std::string* error);
+    bool destroyMesh(VoxelMeshHandle mesh, Error* error = nullptr);
 
     // Each change of the instances marks the world boxes it touched (old and new places) dirty:
     // takeDirtyRegions() hands them to Clipmap::update's `invalidated`, so that a persistent clip-map rewrites
     // them. Refused (changing nothing) for an unknown mesh or instance, a bad transform or a bad material.
-    VoxelInstanceHandle addInstance(const VoxelInstanceDesc& desc, std::string* error);
-    bool setTransform(VoxelInstanceHandle instance, const glm::mat4& transform, std::string* error);
-    bool removeInstance(VoxelInstanceHandle instance, std::string* error);
+    VoxelInstanceHandle addInstance(const VoxelInstanceDesc& desc, Error* error = nullptr);
+    bool setTransform(VoxelInstanceHandle instance, const glm::mat4& transform, Error* error = nullptr);
+    bool removeInstance(VoxelInstanceHandle instance, Error* error = nullptr);
     std::vector<WorldBox> takeDirtyRegions();
 
     // Between Clipmap::update and finishVoxelization: voxelizes every instance whose world box meets this
@@ -119,7 +119,7 @@ public:
     // the material's shaders (ours, opacity only, declare none). False with *error, after voxelizing what it
     // could, if a material is refused or a dispatch fails (e.g. a computeShader that is not a compute shader:
     // that instance is then drawn).
-    bool voxelize(Clipmap& clipmap, const rhi::Bindings& extra, std::string* error);
+    bool voxelize(Clipmap& clipmap, const rhi::Bindings& extra, Error* error = nullptr);
     uint32_t lastDrawCount() const { return lastDraws_; }  // instances the last voxelize() wrote (the rest were culled)
     uint32_t lastComputeCount() const { return lastComputes_; }  // of those, the instances voxelized in compute
 

@@ -90,16 +90,16 @@ void pyramidMatchesCpu(const std::string& backend) {
 void badInputRefused(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    std::string error;
-    CHECK_FALSE(gbuffer::DepthPyramid::create(*td.device, 0, 16, &error));
-    CHECK(error.find("size 0x16 is outside") != std::string::npos);
-    CHECK_FALSE(gbuffer::DepthPyramid::create(*td.device, 16, 100000, &error));
-    CHECK(error.find("is outside") != std::string::npos);
-    auto p = gbuffer::DepthPyramid::create(*td.device, 16, 8, &error);
-    INFO(error);
+    Error error;
+    CHECK_FALSE(gbuffer::DepthPyramid::create(*td.device, {0, 16}, &error));
+    CHECK(error.message.find("size 0x16 is outside") != std::string::npos);
+    CHECK_FALSE(gbuffer::DepthPyramid::create(*td.device, {16, 100000}, &error));
+    CHECK(error.message.find("is outside") != std::string::npos);
+    auto p = gbuffer::DepthPyramid::create(*td.device, {16, 8}, &error);
+    INFO(error.message);
     REQUIRE(p);
     CHECK(p->mipCount() == 5);
-    CHECK(p->memoryBytes() == (16 * 8 + 8 * 4 + 4 * 2 + 2 * 1 + 1 * 1) * 8);
+    CHECK(p->memoryUse().totalBytes == (16 * 8 + 8 * 4 + 4 * 2 + 2 * 1 + 1 * 1) * 8);
     auto texture = [&](rhi::Format format, uint32_t w, uint32_t h, uint32_t usage, const char* name) {
         rhi::TextureDesc d;
         d.format = format;
@@ -122,10 +122,10 @@ void badInputRefused(const std::string& backend) {
     for (const Case& c : {Case{wrongSize, "'big depth' is 17x8, the pyramid 16x8"}, Case{wrongFormat, "'colour' has format RGBA8_UNORM"},
                           Case{unsampled, "'unsampled depth' lacks Sampled usage"}, Case{dead, "null or destroyed"},
                           Case{rhi::TextureHandle{}, "null or destroyed"}}) {
-        error.clear();
+        error = {};
         CHECK_FALSE(p->build(c.t, &error));
-        INFO(error);
-        CHECK(error.find(c.expected) != std::string::npos);
+        INFO(error.message);
+        CHECK(error.message.find(c.expected) != std::string::npos);
     }
     // Nothing was recorded: the pyramid still holds what it was cleared to.
     std::vector<glm::vec2> mip0(16 * 8, glm::vec2(-1.0f));

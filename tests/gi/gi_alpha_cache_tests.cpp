@@ -42,21 +42,21 @@ void alphaPassCoverage(const std::string& backend) {
     {  // refusals
         std::unique_ptr<gi::GiContext> plain = gi::GiContext::create(dev, *loaded.scene, cd);
         REQUIRE(plain);
-        std::string why;
+        Error why;
         CHECK(!plain->alphaPassState(rhi::ShaderHandle{}, &why));
-        CHECK(why.find("ContextFlags::AlphaCache") != std::string::npos);
+        CHECK(why.message.find("ContextFlags::AlphaCache") != std::string::npos);
         CHECK(plain->readAlphaCoverage().empty());
         td.messages->clear();
     }
     cd.flags = gi::ContextFlags::AlphaCache;
-    std::string createError;
+    Error createError;
     std::unique_ptr<gi::GiContext> context = gi::GiContext::create(dev, *loaded.scene, cd, &createError);
-    INFO(createError);
+    INFO(createError.message);
     REQUIRE(context);
     {
-        std::string why;
+        Error why;
         CHECK(!context->alphaPassState(rhi::ShaderHandle{}, &why));
-        CHECK(why.find("fragment shader") != std::string::npos);
+        CHECK(why.message.find("fragment shader") != std::string::npos);
         td.messages->clear();
     }
 
@@ -76,7 +76,7 @@ void alphaPassCoverage(const std::string& backend) {
 
     const sdf::FieldSnapshot field = loaded.scene->readField();
     auto draw = [&](float share) {
-        std::string why;
+        Error why;
         std::optional<rhi::DrawCallState> s = context->alphaPassState(fragment, &why);
         REQUIRE(s);
         s->vertexShader = vertex;

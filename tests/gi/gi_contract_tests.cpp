@@ -57,9 +57,9 @@ void makeContext(TestDevice& td, const sdf::SdfScene& scene, OwnContext& own, ui
     cd.debugName = "contract gi";
     auto messages = own.messages;
     cd.errorCallback = [messages](rhi::Severity, const std::string& m) { messages->push_back(m); };
-    std::string error;
+    Error error;
     own.context = gi::GiContext::create(*td.device, scene, cd, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(own.context);
     rhi::TextureDesc od;
     od.format = rhi::Format::RGBA16_FLOAT;
@@ -178,20 +178,20 @@ void repeatedErrorsAreCounted(const std::string& backend) {
     gi::DispatchDesc d = inputsOf(r->gbuffer(), own);
     d.normals = {};
     for (int i = 0; i < 5; ++i) CHECK_FALSE(own.context->dispatch(d));
-    CHECK(own.context->lastErrorCode() == ErrorCode::MissingInput);
+    CHECK(own.context->lastError().code == ErrorCode::MissingInput);
     REQUIRE(own.messages->size() == 1);  // the callback heard it once
     const std::optional<Diagnostic> missing = find(own.context->diagnostics(), ErrorCode::MissingInput);
     REQUIRE(missing);
     CHECK(missing->count == 5);
-    CHECK(missing->message == own.context->lastError());
+    CHECK(missing->message == own.context->lastError().message);
     CHECK(missing->message.find("contract gi: dispatch: input 'normals' is missing") != std::string::npos);
     // A different mistake is a new message; the first keeps its count.
     d = inputsOf(r->gbuffer(), own);
     d.outputDiffuse = r->gbuffer().lit;
     CHECK_FALSE(own.context->dispatch(d));
-    CHECK(own.context->lastErrorCode() == ErrorCode::Aliasing);
+    CHECK(own.context->lastError().code == ErrorCode::Aliasing);
     CHECK(own.messages->size() == 2);
-    CHECK(own.context->lastError().find("texture 'gbuffer lit' is bound as output 'outputDiffuse' and as input 'previousLitOutput'") !=
+    CHECK(own.context->lastError().message.find("texture 'gbuffer lit' is bound as output 'outputDiffuse' and as input 'previousLitOutput'") !=
           std::string::npos);
     CHECK(find(own.context->diagnostics(), ErrorCode::MissingInput)->count == 5);
     REQUIRE_NO_MESSAGES(td);
@@ -234,9 +234,9 @@ void inputChecksByKindAndChannels(const std::string& backend) {
         gi::DispatchDesc d = inputsOf(g, own);
         c.spoil(d);
         CHECK_FALSE(own.context->dispatch(d));
-        INFO("message: " << own.context->lastError());
-        CHECK(own.context->lastError().find(c.expect) != std::string::npos);
-        CHECK(own.context->lastErrorCode() == c.code);
+        INFO("message: " << own.context->lastError().message);
+        CHECK(own.context->lastError().message.find(c.expect) != std::string::npos);
+        CHECK(own.context->lastError().code == c.code);
     }
     td.device->destroy(rgbaDepth);
     REQUIRE_NO_MESSAGES(td);
@@ -307,11 +307,11 @@ void sceneLifetimeAndUpdates(const std::string& backend) {
     // The scene goes first: every call that needs it is refused, and destroying the context is safe.
     scene.reset();
     CHECK_FALSE(own.context->dispatch(d));
-    CHECK(own.context->lastErrorCode() == ErrorCode::DependencyDestroyed);
-    CHECK(own.context->lastError().find("sdf::SdfScene this context follows was destroyed") != std::string::npos);
+    CHECK(own.context->lastError().code == ErrorCode::DependencyDestroyed);
+    CHECK(own.context->lastError().message.find("sdf::SdfScene this context follows was destroyed") != std::string::npos);
     gi::DebugViewDesc view;
     CHECK_FALSE(own.context->debugView(view));
-    CHECK(own.context->lastErrorCode() == ErrorCode::DependencyDestroyed);
+    CHECK(own.context->lastError().code == ErrorCode::DependencyDestroyed);
     std::vector<float> sh;
     own.context->readCaches(nullptr, &sh);
     CHECK(sh.empty());
@@ -327,30 +327,29 @@ void sdfErrorCodes(const std::string& backend) {
     sd.atlasBricksPerAxis = 8;
     std::vector<std::string> heard;
     sd.errorCallback = [&heard](rhi::Severity, const std::string& m) { heard.push_back(m); };
-    ErrorCode code = ErrorCode::None;
-    std::string error;
+    Error error;
     sdf::SceneDesc bad = sd;
     bad.cascadeCount = 99;
-    CHECK_FALSE(sdf::SdfScene::create(*td.device, bad, &error, &code));
-    CHECK(code == ErrorCode::InvalidArgument);
-    CHECK(error.find("cascadeCount 99") != std::string::npos);
-    auto scene = sdf::SdfScene::create(*td.device, sd, &error, &code);
+    CHECK_FALSE(sdf::SdfScene::create(*td.device, bad, &error));
+    CHECK(error.code == ErrorCode::InvalidArgument);
+    CHECK(error.message.find("cascadeCount 99") != std::string::npos);
+    auto scene = sdf::SdfScene::create(*td.device, sd, &error);
     REQUIRE(scene);
     const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t indices[] = {0, 1, 2};
     sdf::MeshArrays empty;
     empty.name = "empty";
     CHECK_FALSE(scene->createMesh(empty));
-    CHECK(scene->lastErrorCode() == ErrorCode::InvalidGeometry);
+    CHECK(scene->lastError().code == ErrorCode::InvalidGeometry);
     CHECK_FALSE(scene->removeInstance({12345}));
-    CHECK(scene->lastErrorCode() == ErrorCode::InvalidHandle);
+    CHECK(scene->lastError().code == ErrorCode::InvalidHandle);
     sdf::MeshArrays triangle{positions, 3, indices, 3, "triangle"};
     sdf::MeshHandle mesh = scene->createMesh(triangle);
     REQUIRE(mesh);
     REQUIRE(scene->addInstance({mesh}));
     CHECK_FALSE(scene->destroyMesh(mesh));
-    CHECK(scene->lastErrorCode() == ErrorCode::InUse);
-    CHECK(scene->lastError().find("destroyMesh 'triangle': still used by 1") != std::string::npos);
+    CHECK(scene->lastError().code == ErrorCode::InUse);
+    CHECK(scene->lastError().message.find("destroyMesh 'triangle': still used by 1") != std::string::npos);
     CHECK_FALSE(scene->destroyMesh(mesh));
     CHECK(heard.size() == 4);  // the repeated destroyMesh is counted, not heard again
     CHECK(find(scene->diagnostics(), ErrorCode::InUse)->count == 2);

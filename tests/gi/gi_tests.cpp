@@ -41,9 +41,9 @@ std::unique_ptr<render::RasterRenderer> giRenderer(TestDevice& td, const scenes:
 std::string refusal(TestDevice& td, sdf::SdfScene& scene, gi::ContextDesc cd) {
     cd.displayWidth = cd.displayHeight = 32;
     cd.errorCallback = [](rhi::Severity, const std::string&) {};
-    std::string error;
+    Error error;
     CHECK_FALSE(gi::GiContext::create(*td.device, scene, cd, &error));
-    return error;
+    return error.message;
 }
 
 // Renders n frames and returns the mean of the last `averaged` frames' image of `aov`. The GI's passes race
@@ -334,8 +334,8 @@ void badInputChangesNothing(const std::string& backend) {
         gi::DispatchDesc d = good;
         c.spoil(d);
         CHECK_FALSE(context->dispatch(d));
-        INFO("message: " << context->lastError());
-        CHECK(context->lastError().find(c.expect) != std::string::npos);
+        INFO("message: " << context->lastError().message);
+        CHECK(context->lastError().message.find(c.expect) != std::string::npos);
     }
     context->readCaches(&after, nullptr);
     CHECK(before == after);  // a rejected dispatch records nothing
@@ -428,9 +428,9 @@ void widerProbeTiles(const std::string& backend) {
     cd.displayWidth = 2880;  // 1440 internal at the default 50 %: automatic tiles are 16×16
     cd.displayHeight = 64;
     cd.probeTile = 0;
-    std::string error;
+    Error error;
     auto automatic = gi::GiContext::create(*td.device, *reference->sdfScene(), cd, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(automatic);
     CHECK(automatic->probeTile() == 16);
 }

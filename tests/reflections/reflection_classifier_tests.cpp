@@ -152,12 +152,12 @@ struct Fixture {
         d.debugName = "test reflections";
         output = td.device->createTexture(d);
         REQUIRE((depth && normals && roughness && lit && output));
-        std::string error;
-        c = reflections::ReflectionClassifier::create(*td.device, kSize, kSize, &error);
-        INFO(error);
+        Error error;
+        c = reflections::ReflectionClassifier::create(*td.device, {kSize, kSize}, &error);
+        INFO(error.message);
         for (const std::string& m : *td.messages) UNSCOPED_INFO("message: " << m);
         REQUIRE(c);
-        pyramid = gbuffer::DepthPyramid::create(*td.device, kSize, kSize, &error);
+        pyramid = gbuffer::DepthPyramid::create(*td.device, {kSize, kSize}, &error);
         REQUIRE(pyramid);
     }
     ~Fixture() {
@@ -218,8 +218,8 @@ Lists readLists(Fixture& f) {
 }
 
 Lists classifyAndRead(Fixture& f, const reflections::ReflectionClassifyDesc& d) {
-    std::string error;
-    INFO(error);
+    Error error;
+    INFO(error.message);
     REQUIRE(f.c->classify(d, &error));
     return readLists(f);
 }
@@ -413,7 +413,7 @@ void classesFollowCounters(const std::string& backend) {
     vd.debugName = "test debug view";
     const rhi::TextureHandle view = f.td.device->createTexture(vd);
     REQUIRE(view);
-    std::string error;
+    Error error;
     REQUIRE(f.c->debugView(view, reflections::ReflectionDebugMode::TileClass, &error));
     std::vector<uint8_t> rgba(kSize * kSize * 4);
     REQUIRE(f.td.device->readTexture(view, {}, rgba.data()));
@@ -479,8 +479,8 @@ struct TraceResult {
 };
 
 TraceResult classifyAndTrace(Fixture& f, uint32_t perQuad) {
-    std::string error;
-    INFO(error);
+    Error error;
+    INFO(error.message);
     REQUIRE(f.pyramid->build(f.depth, &error));
     reflections::ReflectionClassifyDesc d = f.describe();
     d.useHitCounter = false;
@@ -616,7 +616,7 @@ void glossyRaysFollowTheFrame(const std::string& backend) {
     for (glm::vec4& r : rough)
         if (r.y == 0.0f) r.y = 0.3f;
     REQUIRE(f.td.device->writeTexture(f.roughness, {}, rough.data()));
-    std::string error;
+    Error error;
     REQUIRE(f.pyramid->build(f.depth, &error));
     auto trace = [&](uint32_t frame) {
         reflections::ReflectionClassifyDesc d = f.describe();
@@ -650,18 +650,18 @@ void glossyRaysFollowTheFrame(const std::string& backend) {
 
 void refusesBadInput(const std::string& backend) {
     Fixture f(backend, floorScene());
-    std::string error;
-    CHECK(!reflections::ReflectionClassifier::create(*f.td.device, 0, 16, &error));
-    CHECK(error.find("size 0x16") != std::string::npos);
-    CHECK(!reflections::ReflectionClassifier::create(*f.td.device, 16, 20000, &error));
+    Error error;
+    CHECK(!reflections::ReflectionClassifier::create(*f.td.device, {0, 16}, &error));
+    CHECK(error.message.find("size 0x16") != std::string::npos);
+    CHECK(!reflections::ReflectionClassifier::create(*f.td.device, {16, 20000}, &error));
     CHECK(!f.c->traceScreenSpace(f.traceDesc(), &error));
-    CHECK(error.find("needs a classify()") != std::string::npos);
+    CHECK(error.message.find("needs a classify()") != std::string::npos);
     const rhi::TextureHandle counterBefore = f.c->hitCounter();
     auto refused = [&](const reflections::ReflectionClassifyDesc& d, const char* expected) {
-        error.clear();
+        error = {};
         CHECK(!f.c->classify(d, &error));
-        INFO("expected: " << expected << "; got: " << error);
-        CHECK(error.find(expected) != std::string::npos);
+        INFO("expected: " << expected << "; got: " << error.message);
+        CHECK(error.message.find(expected) != std::string::npos);
         CHECK(f.c->hitCounter() == counterBefore);  // no state changed
     };
     reflections::ReflectionClassifyDesc d = f.describe();
@@ -714,10 +714,10 @@ void refusesBadInput(const std::string& backend) {
     REQUIRE(f.c->classify(f.describe(), &error));
     REQUIRE(f.pyramid->build(f.depth, &error));
     auto traceRefused = [&](const reflections::ReflectionTraceDesc& t, const char* expected) {
-        error.clear();
+        error = {};
         CHECK(!f.c->traceScreenSpace(t, &error));
-        INFO("expected: " << expected << "; got: " << error);
-        CHECK(error.find(expected) != std::string::npos);
+        INFO("expected: " << expected << "; got: " << error.message);
+        CHECK(error.message.find(expected) != std::string::npos);
     };
     reflections::ReflectionTraceDesc t = f.traceDesc();
     t.depthPyramid = f.depth;
@@ -739,9 +739,9 @@ void refusesBadInput(const std::string& backend) {
     traceRefused(t, "edgeFade");
     REQUIRE(f.c->traceScreenSpace(f.traceDesc(), &error));
     traceRefused(f.traceDesc(), "once per classify()");
-    error.clear();
+    error = {};
     CHECK(!f.c->debugView(f.output, reflections::ReflectionDebugMode::TileClass, &error));
-    CHECK(error.find("RGBA8_UNORM") != std::string::npos);
+    CHECK(error.message.find("RGBA8_UNORM") != std::string::npos);
     f.td.device->destroy(smallTexture);
     REQUIRE_NO_MESSAGES(f.td);
 }

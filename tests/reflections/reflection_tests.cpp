@@ -161,7 +161,7 @@ void reflectionRaysRejectBadInput(const std::string& backend) {
     good.countOffset = 12;
     good.output = out;
     CHECK_FALSE(context->traceReflectionRays(good));  // before any dispatch
-    CHECK(context->lastError().find("no dispatch() yet") != std::string::npos);
+    CHECK(context->lastError().message.find("no dispatch() yet") != std::string::npos);
     frames(td, *r, 8);
     struct Case {
         const char* expect;
@@ -179,8 +179,8 @@ void reflectionRaysRejectBadInput(const std::string& backend) {
         gi::ReflectionRaysDesc d = good;
         c.spoil(d);
         CHECK_FALSE(context->traceReflectionRays(d));
-        INFO("message: " << context->lastError());
-        CHECK(context->lastError().find(c.expect) != std::string::npos);
+        INFO("message: " << context->lastError().message);
+        CHECK(context->lastError().message.find(c.expect) != std::string::npos);
     }
     td.device->endFrame();
     for (float v : readRgba16f(td, out, 32, 32)) REQUIRE(v == 0.0f);

@@ -156,10 +156,10 @@ void badDescriptions(const std::string& backend) {
     std::vector<std::string> errors;
     auto attempt = [&](sdf::SceneDesc d, const char* fragment) {
         d.errorCallback = [&](rhi::Severity, const std::string& m) { errors.push_back(m); };
-        std::string error;
+        Error error;
         CHECK(!sdf::SdfScene::create(*td.device, d, &error));
-        INFO(error);
-        CHECK(error.find(fragment) != std::string::npos);
+        INFO(error.message);
+        CHECK(error.message.find(fragment) != std::string::npos);
     };
     sdf::SceneDesc d;
     d.finestVoxelSize = 0.1f;

@@ -149,7 +149,7 @@ sdf::SceneDesc modelSceneDesc(const scenes::SceneGeometry& geometry, uint32_t ca
 
 LoadedScene loadIntoSdf(rhi::IDevice& device, const scenes::SceneGeometry& geometry, const sdf::SceneDesc& desc) {
     LoadedScene out;
-    std::string error;
+    Error error;
     out.scene = sdf::SdfScene::create(device, desc, &error);
     if (!out.scene) return out;
     out.meshes = createMeshes(*out.scene, geometry);

@@ -127,8 +127,8 @@ struct Result {
 };
 
 Result run(TestDevice& td, shadows::ShadowClassifier& c, const shadows::ShadowClassifyDesc& d) {
-    std::string error;
-    INFO(error);
+    Error error;
+    INFO(error.message);
     REQUIRE(c.classify(d, &error));
     Result r;
     r.counts = c.readCounts();
@@ -153,9 +153,9 @@ struct Fixture {
     explicit Fixture(const std::string& backend) : td(makeDevice(backend)) {
         REQUIRE(td.device);
         in = upload(td, s);
-        std::string error;
-        c = shadows::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
-        INFO(error);
+        Error error;
+        c = shadows::ShadowClassifier::create(*td.device, {kWidth, kHeight}, &error);
+        INFO(error.message);
         REQUIRE(c);
     }
     ~Fixture() {
@@ -291,13 +291,13 @@ void hybridTraceFixesThePenumbra(const std::string& backend) {
     REQUIRE(field->addInstance({mesh, glm::mat4(1.0f)}));
     for (int i = 0; i < 8 && field->update(glm::vec3(0.0f)).jobsDeferred != 0; ++i) {
     }
-    std::string error;
+    Error error;
     shadows::ShadowClassifyDesc d = describe(s, in);
     d.rayNormalOffset = 0.05f;
     REQUIRE(c->classify(d, &error));
     std::vector<uint32_t> preloaded(size_t(c->tilesX()) * c->tilesY());
     REQUIRE(td.device->readTexture(c->hitMask(), {}, preloaded.data()));
-    INFO(error);
+    INFO(error.message);
     REQUIRE(c->trace(*field, &error));
     rhi::TextureDesc md;
     md.width = kWidth;
@@ -344,14 +344,14 @@ void refusesBadInput(const std::string& backend) {
     const Scene& s = f.s;
     const Inputs& in = f.in;
     shadows::ShadowClassifier* c = f.c.get();
-    std::string error;
-    CHECK(!shadows::ShadowClassifier::create(*td.device, 0, 16, &error));
-    CHECK(error.find("size 0x16") != std::string::npos);
+    Error error;
+    CHECK(!shadows::ShadowClassifier::create(*td.device, {0, 16}, &error));
+    CHECK(error.message.find("size 0x16") != std::string::npos);
     auto refused = [&](shadows::ShadowClassifyDesc d, const char* expected) {
-        error.clear();
-        INFO("expected: " << expected << "; got: " << error);
+        error = {};
+        INFO("expected: " << expected << "; got: " << error.message);
         CHECK(!c->classify(d, &error));
-        CHECK(error.find(expected) != std::string::npos);
+        CHECK(error.message.find(expected) != std::string::npos);
     };
     shadows::ShadowClassifyDesc d = describe(s, in);
     d.shadowMap = {};
@@ -383,9 +383,9 @@ void refusesBadInput(const std::string& backend) {
     d = describe(s, in);
     d.tileCutOff = 33;
     refused(d, "tileCutOff 33");
-    error.clear();
+    error = {};
     CHECK(!c->resolve(in.depth, &error));  // R32_FLOAT without Storage
-    CHECK(error.find("R16_FLOAT") != std::string::npos);
+    CHECK(error.message.find("R16_FLOAT") != std::string::npos);
     REQUIRE_NO_MESSAGES(td);
 }
 

@@ -192,11 +192,11 @@ struct Fixture {
         REQUIRE(field->addInstance({mesh, glm::mat4(1.0f)}));
         for (int i = 0; i < 8 && field->update(glm::vec3(0.0f)).jobsDeferred != 0; ++i) {
         }
-        std::string error;
-        classifier = shadows::ShadowClassifier::create(*td.device, kWidth, kHeight, &error);
-        INFO(error);
+        Error error;
+        classifier = shadows::ShadowClassifier::create(*td.device, {kWidth, kHeight}, &error);
+        INFO(error.message);
         REQUIRE(classifier);
-        denoiser = shadows::ShadowDenoiser::create(*td.device, kWidth, kHeight, &error);
+        denoiser = shadows::ShadowDenoiser::create(*td.device, {kWidth, kHeight}, &error);
         REQUIRE(denoiser);
     }
     ~Fixture() {
@@ -241,8 +241,8 @@ struct Fixture {
     }
     // One frame: classify, soft rays, denoise.
     void frame(uint32_t index) {
-        std::string error;
-        INFO(error);
+        Error error;
+        INFO(error.message);
         REQUIRE(classifier->classify(classifyDesc(index), &error));
         REQUIRE(classifier->trace(*field, &error));
         REQUIRE(denoiser->denoise(*classifier, denoiseDesc(index == 0), &error));
@@ -372,19 +372,19 @@ void denoiserConvergesOnListedTilesOnly(const std::string& backend) {
 void refusesBadInput(const std::string& backend) {
     Fixture f(backend);
     TestDevice& td = f.td;
-    std::string error;
-    CHECK(!shadows::ShadowDenoiser::create(*td.device, 16, 0, &error));
-    CHECK(error.find("size 16x0") != std::string::npos);
+    Error error;
+    CHECK(!shadows::ShadowDenoiser::create(*td.device, {16, 0}, &error));
+    CHECK(error.message.find("size 16x0") != std::string::npos);
     // A sentinel in the output: a refused call must leave it (and the history) untouched.
     REQUIRE(td.device->clearTexture(f.output, 0, 1, rhi::ClearValue{.f = {0.25f, 0.0f, 0.0f, 0.0f}}));
     REQUIRE(f.classifier->classify(f.classifyDesc(0), &error));
     const rhi::TextureHandle historyBefore = f.denoiser->history();
     auto refused = [&](const shadows::ShadowDenoiseDesc& d, const char* expected, const shadows::ShadowClassifier* c = nullptr) {
-        error.clear();
+        error = {};
         const bool ok = f.denoiser->denoise(c ? *c : *f.classifier, d, &error);
-        INFO("expected: " << expected << "; got: " << error);
+        INFO("expected: " << expected << "; got: " << error.message);
         CHECK(!ok);
-        CHECK(error.find(expected) != std::string::npos);
+        CHECK(error.message.find(expected) != std::string::npos);
         CHECK(f.denoiser->history() == historyBefore);
     };
     refused(f.denoiseDesc(false), "no history to reproject");
@@ -417,7 +417,7 @@ void refusesBadInput(const std::string& backend) {
     d = f.denoiseDesc(true);
     d.previousView = glm::mat4(0.0f);
     refused(d, "previous camera's view-projection is not invertible");
-    auto other = shadows::ShadowClassifier::create(*td.device, kWidth, kHeight / 2, &error);
+    auto other = shadows::ShadowClassifier::create(*td.device, {kWidth, kHeight / 2}, &error);
     REQUIRE(other);
     refused(f.denoiseDesc(true), "the shadow classifier is 128x32, the denoiser 128x64", other.get());
     other.reset();

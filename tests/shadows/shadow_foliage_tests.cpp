@@ -84,9 +84,9 @@ std::unique_ptr<sdf::SdfScene> makeField(TestDevice& td) {
     sd.finestVoxelSize = 0.1f;
     sd.atlasBricksPerAxis = 32;
     sd.errorCallback = [&td](rhi::Severity, const std::string& m) { td.messages->push_back(m); };
-    std::string error;
+    Error error;
     auto field = sdf::SdfScene::create(*td.device, sd, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(field);
     const float floorPositions[] = {-3, -0.3f, -3, 3, -0.3f, -3, -3, 0, -3, 3, 0, -3, -3, -0.3f, 3, 3, -0.3f, 3, -3, 0, 3, 3, 0, 3};
     const uint32_t floorIndices[] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
@@ -115,9 +115,9 @@ std::unique_ptr<gi::GiContext> makeGi(TestDevice& td, sdf::SdfScene& field, bool
     cd.displayHeight = kHeight;
     cd.flags = alphaCache ? gi::ContextFlags::AlphaCache : 0u;
     cd.errorCallback = [&td](rhi::Severity, const std::string& m) { td.messages->push_back(m); };
-    std::string error;
+    Error error;
     std::unique_ptr<gi::GiContext> context = gi::GiContext::create(dev, field, cd, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(context);
     if (!alphaCache) return context;
     rhi::ShaderDesc vd, fd;
@@ -134,7 +134,7 @@ std::unique_ptr<gi::GiContext> makeGi(TestDevice& td, sdf::SdfScene& field, bool
     bd.debugName = "card vertices";
     const rhi::BufferHandle vertexBuffer = dev.createBuffer(bd, vertices);
     std::optional<rhi::DrawCallState> s = context->alphaPassState(fragment, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(s);
     s->vertexShader = vertex;
     s->vertexInputs.push({0, rhi::VertexFormat::Float3, 0, 0});
@@ -179,12 +179,12 @@ struct Visibility {
 // 0, 1, ...; hard and sure rays average the resolved masks, soft ones take the denoiser's last output.
 Visibility traceFrames(TestDevice& td, const Floor& f, sdf::SdfScene& field, rhi::BufferHandle alphaCache, Rays rays) {
     rhi::IDevice& dev = *td.device;
-    std::string error;
-    auto classifier = shadows::ShadowClassifier::create(dev, kWidth, kHeight, &error);
-    INFO(error);
+    Error error;
+    auto classifier = shadows::ShadowClassifier::create(dev, {kWidth, kHeight}, &error);
+    INFO(error.message);
     REQUIRE(classifier);
     std::unique_ptr<shadows::ShadowDenoiser> denoiser;
-    if (rays == Rays::SoftDenoised) REQUIRE((denoiser = shadows::ShadowDenoiser::create(dev, kWidth, kHeight, &error)));
+    if (rays == Rays::SoftDenoised) REQUIRE((denoiser = shadows::ShadowDenoiser::create(dev, {kWidth, kHeight}, &error)));
     rhi::TextureDesc md;
     md.width = kWidth;
     md.height = kHeight;
@@ -331,8 +331,8 @@ void refusesBadAlphaCache(const std::string& backend) {
     rhi::IDevice& dev = *td.device;
     Floor f = makeFloor(dev);
     auto field = makeField(td);
-    std::string error;
-    auto c = shadows::ShadowClassifier::create(dev, kWidth, kHeight, &error);
+    Error error;
+    auto c = shadows::ShadowClassifier::create(dev, {kWidth, kHeight}, &error);
     REQUIRE(c);
     shadows::ShadowClassifyDesc d;
     d.mode = shadows::ShadowClassifyMode::Normals;
@@ -351,10 +351,10 @@ void refusesBadAlphaCache(const std::string& backend) {
     };
     auto refused = [&](rhi::BufferHandle cache, const char* expected) {
         d.alphaCache = cache;
-        error.clear();
-        INFO("expected: " << expected << "; got: " << error);
+        error = {};
+        INFO("expected: " << expected << "; got: " << error.message);
         CHECK(!c->classify(d, &error));
-        CHECK(error.find(expected) != std::string::npos);
+        CHECK(error.message.find(expected) != std::string::npos);
     };
     const rhi::BufferHandle readOnly = buffer(64, rhi::BufferUsage::ShaderRead), small = buffer(8, rhi::BufferUsage::ShaderWrite);
     const rhi::BufferHandle gone = buffer(16, rhi::BufferUsage::ShaderWrite);
@@ -367,9 +367,9 @@ void refusesBadAlphaCache(const std::string& backend) {
     d.alphaCache = early;
     REQUIRE(c->classify(d, &error));
     dev.destroy(early);
-    error.clear();
+    error = {};
     CHECK(!c->trace(*field, &error));
-    CHECK(error.find("alphaCache still live") != std::string::npos);
+    CHECK(error.message.find("alphaCache still live") != std::string::npos);
     dev.destroy(readOnly);
     dev.destroy(small);
     REQUIRE_NO_MESSAGES(td);

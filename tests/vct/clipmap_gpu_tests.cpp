@@ -35,9 +35,9 @@ void clearsWhatEntered(const std::string& backend) {
     desc.levels = kLevels;
     desc.resolution = kResolution;
     desc.finestVoxelSize = 0.25f;
-    std::string error;
+    Error error;
     auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(clipmap);
     CHECK(clipmap->memoryUse().totalBytes == vct::clipmapBytes(desc));
     // The first update clears every level whole.
@@ -81,7 +81,7 @@ void clearsWhatEntered(const std::string& backend) {
     // A refused anchor records nothing.
     REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
     CHECK_FALSE(clipmap->update(glm::vec3(INFINITY, 0.0f, 0.0f), &error));
-    CHECK(error.find("anchor") != std::string::npos);
+    CHECK(error.message.find("anchor") != std::string::npos);
     for (uint32_t v : readVolume(td, clipmap->opacityVolume())) REQUIRE(v == kMarker);
     REQUIRE_NO_MESSAGES(td);
 }
@@ -91,9 +91,9 @@ void refusesBadDescriptions(const std::string& backend) {
     REQUIRE(td.device);
     vct::ClipmapDesc desc;
     desc.resolution = 48;
-    std::string error;
+    Error error;
     CHECK_FALSE(vct::Clipmap::create(*td.device, desc, &error));
-    CHECK(error.find("resolution 48") != std::string::npos);
+    CHECK(error.message.find("resolution 48") != std::string::npos);
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -103,10 +103,10 @@ void coneSamplesRefuseBadRequests(const std::string& backend) {
     vct::ClipmapDesc desc;
     desc.levels = kLevels;
     desc.resolution = kResolution;
-    std::string error;
+    Error error;
     auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
     REQUIRE(clipmap);
-    auto tracer = vct::ConeTracer::create(*td.device, *clipmap, 16, 16, &error);
+    auto tracer = vct::ConeTracer::create(*td.device, *clipmap, {16, 16}, &error);
     REQUIRE(tracer);
     rhi::TextureDesc od;
     od.width = od.height = 16;
@@ -114,7 +114,7 @@ void coneSamplesRefuseBadRequests(const std::string& backend) {
     od.usage = rhi::TextureUsage::Storage;
     const rhi::TextureHandle output = td.device->createTexture(od);
     CHECK_FALSE(tracer->debugConeSamples(0, 0, output, &error));
-    CHECK(error.find("nothing traced yet") != std::string::npos);
+    CHECK(error.message.find("nothing traced yet") != std::string::npos);
     CHECK(tracer->readConeSamples().empty());
     td.device->destroy(output);
     REQUIRE_NO_MESSAGES(td);

@@ -130,7 +130,7 @@ void mipsHoldTheLevelDownsampled(const std::string& backend, vct::EmittanceMode 
         h.draw(boxTriangles(glm::vec3(30.0f, 8.0f, 20.0f), glm::vec3(47.0f, 12.5f, 43.0f)), vct::VoxelMaterial{}, &blue);
         h.draw(boxTriangles(glm::vec3(4.5f), glm::vec3(7.5f)), vct::VoxelMaterial{}, &red);
     };
-    std::string error;
+    Error error;
     // An anchor whose coarsest origin is not a multiple of the mips' voxels: their edge voxels reach past it.
     REQUIRE(h.clipmap().update(glm::vec3(16.5f, 18.3f, 14.9f), &error));
     draw();
@@ -162,7 +162,7 @@ void wideConesReadTheMips(const std::string& backend) {
     REQUIRE(td.device);
     vct::ClipmapDesc desc = testClipmapDesc(2);
     VoxelizeHarness h(td, desc);
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));
     std::vector<Triangle> cubes;
     // The cone runs along the clip-map's middle: a sample as wide as the mips' voxels needs half its width of

@@ -12,6 +12,7 @@
 #include "../../core/vct/clipmap_regions.h"
 
 using namespace bricklight::vct;
+using bricklight::Error;
 
 namespace {
 
@@ -30,9 +31,9 @@ ClipmapPlacement placement(uint32_t levels = 3, uint32_t resolution = 32, float 
     d.levels = levels;
     d.resolution = resolution;
     d.finestVoxelSize = voxel;
-    std::string error;
+    Error error;
     auto p = ClipmapPlacement::create(d, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(p);
     return *p;
 }
@@ -40,33 +41,33 @@ ClipmapPlacement placement(uint32_t levels = 3, uint32_t resolution = 32, float 
 }  // namespace
 
 TEST_CASE("clip-map descriptions outside the supported range are refused with the field named", "[vct][cpu]") {
-    std::string error;
+    Error error;
     ClipmapDesc d;
     CHECK(checkClipmapDesc(d, &error));
     CHECK(clipmapMipLevels(d) == 5);  // 128³: down to 4³
     d.levels = 9;
     CHECK_FALSE(checkClipmapDesc(d, &error));
-    CHECK(error.find("levels 9") != std::string::npos);
+    CHECK(error.message.find("levels 9") != std::string::npos);
     d = {};
     d.resolution = 96;
     CHECK_FALSE(checkClipmapDesc(d, &error));
-    CHECK(error.find("resolution 96") != std::string::npos);
+    CHECK(error.message.find("resolution 96") != std::string::npos);
     d = {};
     d.finestVoxelSize = -1.0f;
     CHECK_FALSE(checkClipmapDesc(d, &error));
-    CHECK(error.find("finestVoxelSize") != std::string::npos);
+    CHECK(error.message.find("finestVoxelSize") != std::string::npos);
     d.finestVoxelSize = 3e37f;  // the coarsest level's width would not be finite
     CHECK_FALSE(checkClipmapDesc(d, &error));
     d = {};
     d.mipLevels = 8;  // 128 has 7 halvings
     CHECK_FALSE(checkClipmapDesc(d, &error));
-    CHECK(error.find("mipLevels 8") != std::string::npos);
+    CHECK(error.message.find("mipLevels 8") != std::string::npos);
     CHECK_FALSE(ClipmapPlacement::create(d, &error));
 }
 
 TEST_CASE("the first placement voxelizes every level whole; levels nest and align", "[vct][cpu]") {
     ClipmapPlacement p = placement(4, 32, 0.25f);
-    std::string error;
+    Error error;
     const glm::vec3 anchor(3.3f, -7.9f, 0.6f);
     auto updates = p.moveAnchor(anchor, &error);
     REQUIRE(updates);
@@ -89,7 +90,7 @@ TEST_CASE("the first placement voxelizes every level whole; levels nest and alig
 
 TEST_CASE("an anchor move reports exactly the voxels each level gained", "[vct][cpu]") {
     ClipmapPlacement p = placement(3, 32, 0.5f);
-    std::string error;
+    Error error;
     std::mt19937 random(7);
     std::uniform_real_distribution<float> step(-9.0f, 9.0f);
     glm::vec3 anchor(0.2f, 1.7f, -3.1f);
@@ -126,7 +127,7 @@ TEST_CASE("an anchor move reports exactly the voxels each level gained", "[vct][
 
 TEST_CASE("toroidal texels are a bijection over a level wherever it lies", "[vct][cpu]") {
     ClipmapPlacement p = placement(2, 32, 1.0f);
-    std::string error;
+    Error error;
     for (const glm::vec3 anchor : {glm::vec3(0.0f), glm::vec3(-1000.5f, 37.2f, -3.0f), glm::vec3(12345.0f, -777.0f, 5.5f)}) {
         REQUIRE(p.moveAnchor(anchor, &error));
         for (uint32_t level = 0; level < 2; ++level) {
@@ -145,11 +146,11 @@ TEST_CASE("toroidal texels are a bijection over a level wherever it lies", "[vct
 
 TEST_CASE("a bad anchor is refused and changes nothing; invalidate voxelizes everything again", "[vct][cpu]") {
     ClipmapPlacement p = placement();
-    std::string error;
+    Error error;
     REQUIRE(p.moveAnchor(glm::vec3(1.0f), &error));
     const glm::ivec3 origin = p.origin(0);
     CHECK_FALSE(p.moveAnchor(glm::vec3(std::nanf(""), 0.0f, 0.0f), &error));
-    CHECK(error.find("anchor") != std::string::npos);
+    CHECK(error.message.find("anchor") != std::string::npos);
     CHECK_FALSE(p.moveAnchor(glm::vec3(1e30f, 0.0f, 0.0f), &error));
     CHECK(p.origin(0) == origin);
     auto same = p.moveAnchor(glm::vec3(1.0f), &error);

@@ -37,7 +37,7 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
     REQUIRE(td.device);
     vct::ClipmapDesc desc = testClipmapDesc(4, mode);
     VoxelizeHarness h(td, desc);
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));
     const glm::vec3 one(1.0f);
     h.draw(inwardBox(glm::vec3(6.5f), glm::vec3(25.5f)), vct::VoxelMaterial{}, &one);
@@ -79,7 +79,7 @@ void conesThroughAnOpenSide(const std::string& backend) {
     REQUIRE(td.device);
     vct::ClipmapDesc desc = testClipmapDesc(2);
     VoxelizeHarness h(td, desc);
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));
     // One wall at x = 25.5 facing −x, sending 2.
     std::vector<Triangle> box = inwardBox(glm::vec3(6.5f), glm::vec3(25.5f)), wall;

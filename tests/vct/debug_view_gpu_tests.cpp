@@ -15,9 +15,9 @@ using namespace bricklight::testing;
 namespace {
 
 glm::u8vec4 centrePixel(TestDevice& td, vct::Clipmap& clipmap, vct::DebugViewDesc d, rhi::TextureHandle output) {
-    std::string error;
+    Error error;
     d.output = output;
-    INFO(error);
+    INFO(error.message);
     REQUIRE(clipmap.debugView(d, &error));
     std::vector<glm::u8vec4> pixels(32 * 32);
     REQUIRE(td.device->readTexture(output, {}, pixels.data()));
@@ -29,7 +29,7 @@ void showsTheCube(const std::string& backend) {
     REQUIRE(td.device);
     vct::ClipmapDesc desc = testClipmapDesc(2);
     VoxelizeHarness h(td, desc);
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(glm::vec3(16.5f), &error));
     const glm::vec3 radiance(1.0f, 0.5f, 0.25f);
     vct::VoxelMaterial thin;
@@ -79,11 +79,11 @@ void showsTheCube(const std::string& backend) {
     // Bad descriptions record nothing.
     d.level = 7;
     CHECK_FALSE(h.clipmap().debugView(d, &error));
-    CHECK(error.find("level 7") != std::string::npos);
+    CHECK(error.message.find("level 7") != std::string::npos);
     d.level = -1;
     d.output = {};
     CHECK_FALSE(h.clipmap().debugView(d, &error));
-    CHECK(error.find("RGBA8_UNORM") != std::string::npos);
+    CHECK(error.message.find("RGBA8_UNORM") != std::string::npos);
     td.device->destroy(output);
     REQUIRE_NO_MESSAGES(td);
 }

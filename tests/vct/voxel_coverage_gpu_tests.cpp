@@ -127,7 +127,7 @@ public:
     // One frame: the clip-map rewritten whole around `anchor`, the triangles drawn with the coverage hook (or,
     // `hook` null, with the emissive test shader and no hook: the opaque material).
     Words voxelize(const std::vector<Triangle>& triangles, const Stripes* hook, const glm::vec3& anchor = kAnchor) {
-        std::string error;
+        Error error;
         REQUIRE(harness_.clipmap().update(anchor, &error));
         vct::VoxelMaterial m = thinMaterial();
         const glm::vec4 emission(kRadiance, 0.0f);
@@ -282,7 +282,7 @@ void computeVoxelizerWritesTheDrawsCoverage(const std::string& backend) {
                 indices.push_back(uint32_t(indices.size()));
             }
     Words words[2];
-    std::string error;
+    Error error;
     for (int compute = 0; compute < 2; ++compute) {
         INFO(backend << (compute ? ": compute" : ": draws"));
         CoverageRig rig(td);
@@ -297,7 +297,7 @@ void computeVoxelizerWritesTheDrawsCoverage(const std::string& backend) {
         arrays.indexCount = uint32_t(indices.size());
         arrays.name = "cards";
         vct::VoxelInstanceDesc id;
-        id.mesh = scene->addMesh(arrays, &error);
+        id.mesh = scene->createMesh(arrays, &error);
         REQUIRE(id.mesh);
         id.material = thinMaterial();
         id.material.fragmentShader = rig.coverageShader();

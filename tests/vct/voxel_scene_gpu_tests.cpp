@@ -72,9 +72,9 @@ void registeredMeshesEqualTheAppsDraws(const std::string& backend) {
     REQUIRE(td.device);
     const glm::vec3 radiance(0.8f, 0.6f, 0.4f);
     const glm::vec4 emission(radiance, 0.0f);
-    std::string error;
+    Error error;
     auto scene = vct::VoxelScene::create(*td.device, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(scene);
     VoxelizeHarness app(td, sceneDesc()), registered(td, sceneDesc());
     vct::VoxelMaterial material, harnessMaterial;  // the harnesses take their own emissive test shader
@@ -83,7 +83,7 @@ void registeredMeshesEqualTheAppsDraws(const std::string& backend) {
     extra.constants.push(rhi::constants(0, emission));
 
     const BoxArrays cube = boxArrays(glm::vec3(3.5f), glm::vec3(11.5f)), far = boxArrays(glm::vec3(24.5f), glm::vec3(28.5f));
-    const vct::VoxelMeshHandle cubeMesh = scene->addMesh(meshOf(cube, "cube"), &error), farMesh = scene->addMesh(meshOf(far, "far"), &error);
+    const vct::VoxelMeshHandle cubeMesh = scene->createMesh(meshOf(cube, "cube"), &error), farMesh = scene->createMesh(meshOf(far, "far"), &error);
     REQUIRE(cubeMesh);
     REQUIRE(farMesh);
     vct::VoxelInstanceDesc id;
@@ -149,8 +149,8 @@ void registeredMeshesEqualTheAppsDraws(const std::string& backend) {
     mb.name = "app cube";
     auto bufferScene = vct::VoxelScene::create(*td.device, &error);
     REQUIRE(bufferScene);
-    id.mesh = bufferScene->addMesh(mb, &error);
-    INFO(error);
+    id.mesh = bufferScene->createMesh(mb, &error);
+    INFO(error.message);
     REQUIRE(id.mesh);
     id.transform = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 0.0f));
     REQUIRE(bufferScene->addInstance(id, &error));
@@ -172,23 +172,23 @@ void registeredMeshesEqualTheAppsDraws(const std::string& backend) {
 void refusesBadMeshesAndInstances(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    std::string error;
+    Error error;
     auto scene = vct::VoxelScene::create(*td.device, &error);
     REQUIRE(scene);
     BoxArrays cube = boxArrays(glm::vec3(1.0f), glm::vec3(2.0f));
     cube.positions[4] = NAN;
-    CHECK_FALSE(scene->addMesh(meshOf(cube, "broken"), &error));
-    CHECK(error.find("mesh 'broken'") != std::string::npos);
-    CHECK(error.find("vertex 1") != std::string::npos);
+    CHECK_FALSE(scene->createMesh(meshOf(cube, "broken"), &error));
+    CHECK(error.message.find("mesh 'broken'") != std::string::npos);
+    CHECK(error.message.find("vertex 1") != std::string::npos);
     cube = boxArrays(glm::vec3(1.0f), glm::vec3(2.0f));
     cube.indices[7] = 1000;
-    CHECK_FALSE(scene->addMesh(meshOf(cube, "indices"), &error));
-    CHECK(error.find("index 7 is 1000") != std::string::npos);
+    CHECK_FALSE(scene->createMesh(meshOf(cube, "indices"), &error));
+    CHECK(error.message.find("index 7 is 1000") != std::string::npos);
     cube = boxArrays(glm::vec3(1.0f), glm::vec3(2.0f));
     vct::VoxelMeshArrays a = meshOf(cube, "short");
     a.indexCount = 4;
-    CHECK_FALSE(scene->addMesh(a, &error));
-    CHECK(error.find("multiple of 3") != std::string::npos);
+    CHECK_FALSE(scene->createMesh(a, &error));
+    CHECK(error.message.find("multiple of 3") != std::string::npos);
 
     rhi::BufferDesc bd;
     bd.size = 64;
@@ -201,36 +201,36 @@ void refusesBadMeshesAndInstances(const std::string& backend) {
     mb.indices = tiny;
     mb.indexCount = 36;
     mb.name = "too small";
-    CHECK_FALSE(scene->addMesh(mb, &error));
-    CHECK(error.find("positions needs 432 bytes") != std::string::npos);
+    CHECK_FALSE(scene->createMesh(mb, &error));
+    CHECK(error.message.find("positions needs 432 bytes") != std::string::npos);
     mb.vertexCount = 4;
-    CHECK_FALSE(scene->addMesh(mb, &error));
-    CHECK(error.find("indices lacks the Index usage") != std::string::npos);
+    CHECK_FALSE(scene->createMesh(mb, &error));
+    CHECK(error.message.find("indices lacks the Index usage") != std::string::npos);
     td.device->destroy(tiny);
 
-    const vct::VoxelMeshHandle mesh = scene->addMesh(meshOf(cube, "good"), &error);
+    const vct::VoxelMeshHandle mesh = scene->createMesh(meshOf(cube, "good"), &error);
     REQUIRE(mesh);
     vct::VoxelInstanceDesc id;
     id.mesh = vct::VoxelMeshHandle{999};
     CHECK_FALSE(scene->addInstance(id, &error));
-    CHECK(error.find("unknown mesh 999") != std::string::npos);
+    CHECK(error.message.find("unknown mesh 999") != std::string::npos);
     id.mesh = mesh;
     id.transform = glm::mat4(0.0f);
     id.transform[3][3] = 1.0f;
     CHECK_FALSE(scene->addInstance(id, &error));
-    CHECK(error.find("invertible") != std::string::npos);
+    CHECK(error.message.find("invertible") != std::string::npos);
     id.transform = glm::mat4(1.0f);
     id.material.opacity = 2.0f;
     CHECK_FALSE(scene->addInstance(id, &error));
-    CHECK(error.find("opacity") != std::string::npos);
+    CHECK(error.message.find("opacity") != std::string::npos);
     id.material.opacity = 1.0f;
     const vct::VoxelInstanceHandle instance = scene->addInstance(id, &error);
     REQUIRE(instance);
     CHECK_FALSE(scene->setTransform(instance, glm::mat4(NAN), &error));
-    CHECK_FALSE(scene->removeMesh(mesh, &error));
-    CHECK(error.find("used by 1 instance") != std::string::npos);
+    CHECK_FALSE(scene->destroyMesh(mesh, &error));
+    CHECK(error.message.find("used by 1 instance") != std::string::npos);
     CHECK(scene->removeInstance(instance, &error));
-    CHECK(scene->removeMesh(mesh, &error));
+    CHECK(scene->destroyMesh(mesh, &error));
     CHECK(scene->takeDirtyRegions().size() == 2);  // where the instance was added and removed (refusals mark nothing)
     REQUIRE_NO_MESSAGES(td);
 }
@@ -332,7 +332,7 @@ void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
     const glm::vec4 emission(0.8f, 0.6f, 0.4f, 0.0f);
     rhi::Bindings extra;
     extra.constants.push(rhi::constants(0, emission));
-    std::string error;
+    Error error;
     rhi::ShaderDesc sd;
     sd.blob = rhi::findShader("vct_tests/voxelize_emissive.comp");
     REQUIRE(sd.blob);
@@ -374,7 +374,7 @@ void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
         opaque.thickness = 0.5f;
         opaque.twoSided = true;
         auto instance = [&](vct::VoxelMeshHandle mesh, const glm::vec3& at, const vct::VoxelMaterial& material) {
-            INFO(error);
+            INFO(error.message);
             REQUIRE(mesh);
             vct::VoxelInstanceDesc id;
             id.mesh = mesh;
@@ -383,8 +383,8 @@ void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
             v.instances.push_back(v.scene->addInstance(id, &error));
             REQUIRE(v.instances.back());
         };
-        instance(v.scene->addMesh(mixed.arrays("sphere and floor"), &error), glm::vec3(0.25f, 0.0f, -0.5f), emissive);
-        instance(v.scene->addMesh(thin.arrays("slivers"), &error), glm::vec3(0.0f), opaque);
+        instance(v.scene->createMesh(mixed.arrays("sphere and floor"), &error), glm::vec3(0.25f, 0.0f, -0.5f), emissive);
+        instance(v.scene->createMesh(thin.arrays("slivers"), &error), glm::vec3(0.0f), opaque);
         for (int readable = 0; readable < 2; ++readable) {
             vct::VoxelMeshBuffers mb;
             mb.positions = mb.normals = appBuffers[2 * readable];
@@ -396,10 +396,10 @@ void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
             mb.boundsMin = glm::vec3(3.5f);
             mb.boundsMax = glm::vec3(11.5f);
             mb.name = readable ? "app cube (readable)" : "app cube";
-            instance(v.scene->addMesh(mb, &error), readable ? glm::vec3(14.0f, 1.0f, 0.0f) : glm::vec3(0.0f, 14.0f, 12.0f), emissive);
+            instance(v.scene->createMesh(mb, &error), readable ? glm::vec3(14.0f, 1.0f, 0.0f) : glm::vec3(0.0f, 14.0f, 12.0f), emissive);
         }
         // An emissive material without a compute shader: drawn, whatever the voxelizer.
-        instance(v.scene->addMesh(meshOf(cube, "cube"), &error), glm::vec3(-20.0f, 2.0f, 18.0f),
+        instance(v.scene->createMesh(meshOf(cube, "cube"), &error), glm::vec3(-20.0f, 2.0f, 18.0f),
                  fragmentOnly);
     }
     auto voxelize = [&](const glm::vec3& anchor) {
@@ -409,7 +409,7 @@ void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
             clipmap.resetCounters();
             REQUIRE(clipmap.update(anchor, &error, v.scene->takeDirtyRegions()));
             const bool voxelized = v.scene->voxelize(clipmap, extra, &error);
-            INFO(error);
+            INFO(error.message);
             REQUIRE(voxelized);
             v.drawn = v.scene->lastDrawCount();
             v.computed = v.scene->lastComputeCount();
@@ -456,7 +456,7 @@ void computeVoxelizerWritesTheDrawPathsWords(const std::string& backend) {
 void computeVoxelizerRefusesBadMaterials(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    std::string error;
+    Error error;
     const glm::vec4 emission(1.0f, 0.5f, 0.25f, 0.0f);
     rhi::Bindings extra;
     extra.constants.push(rhi::constants(0, emission));
@@ -469,14 +469,14 @@ void computeVoxelizerRefusesBadMaterials(const std::string& backend) {
     auto scene = vct::VoxelScene::create(*td.device, &error);
     REQUIRE(scene);
     const BoxArrays cube = boxArrays(glm::vec3(3.25f), glm::vec3(6.5f));  // triangles of ~3 voxels: in compute
-    const vct::VoxelMeshHandle mesh = scene->addMesh(meshOf(cube, "cube"), &error);
+    const vct::VoxelMeshHandle mesh = scene->createMesh(meshOf(cube, "cube"), &error);
     REQUIRE(mesh);
     vct::VoxelInstanceDesc id;
     id.mesh = mesh;
     id.material.computeShader = emissiveCompute;  // without its fragment shader: the big triangles would lose light
     CHECK_FALSE(scene->addInstance(id, &error));
-    CHECK(error.find("mesh 'cube'") != std::string::npos);
-    CHECK(error.find("computeShader but no fragmentShader") != std::string::npos);
+    CHECK(error.message.find("mesh 'cube'") != std::string::npos);
+    CHECK(error.message.find("computeShader but no fragmentShader") != std::string::npos);
 
     // A fragment shader given as the compute shader: the dispatch is refused, the error names the instance, and
     // the instance is drawn instead (the same words as the draw path).
@@ -486,9 +486,9 @@ void computeVoxelizerRefusesBadMaterials(const std::string& backend) {
     scene->setVoxelizer(vct::Voxelizer::Compute);
     REQUIRE(computed.clipmap().update(kAnchor, &error, scene->takeDirtyRegions()));
     CHECK_FALSE(scene->voxelize(computed.clipmap(), extra, &error));
-    CHECK(error.find("mesh 'cube'") != std::string::npos);
-    CHECK(error.find("refused the compute voxelizer's dispatch") != std::string::npos);
-    CHECK(error.find("drawn instead") != std::string::npos);
+    CHECK(error.message.find("mesh 'cube'") != std::string::npos);
+    CHECK(error.message.find("refused the compute voxelizer's dispatch") != std::string::npos);
+    CHECK(error.message.find("drawn instead") != std::string::npos);
     CHECK(scene->lastDrawCount() == 1);
     CHECK(scene->lastComputeCount() == 0);
     computed.clipmap().finishVoxelization();

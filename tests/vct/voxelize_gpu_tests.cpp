@@ -45,7 +45,7 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     VoxelizeHarness h(td, testDesc());
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(kAnchor, &error));
     REQUIRE(h.clipmap().placement().origin(0) == glm::ivec3(0));
     REQUIRE(h.clipmap().placement().origin(1) == glm::ivec3(-8));
@@ -155,7 +155,7 @@ void smallTrianglesAreNotLost(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     VoxelizeHarness h(td, testDesc());
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(kAnchor, &error));
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -278,7 +278,7 @@ void scrollingEqualsFromScratch(const std::string& backend) {
     const glm::vec3 radiance(0.8f, 0.6f, 0.4f);
     const glm::vec3 moved(3.0f, -2.0f, 1.0f);
     VoxelizeHarness scrolled(td, testDesc());
-    std::string error;
+    Error error;
     REQUIRE(scrolled.clipmap().update(kAnchor, &error));
     scrolled.draw(sceneAt(glm::vec3(0.0f)), thinMaterial(), &radiance);
     scrolled.clipmap().finishVoxelization();
@@ -303,19 +303,19 @@ void refusesBadInput(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     VoxelizeHarness h(td, testDesc());
-    std::string error;
+    Error error;
     vct::VoxelMaterial bad;
     bad.thickness = NAN;  // 
     CHECK_FALSE(h.clipmap().voxelizationState(bad, &error));
-    CHECK(error.find("thickness") != std::string::npos);
+    CHECK(error.message.find("thickness") != std::string::npos);
     bad = {};
     bad.opacity = 1.5f;
     CHECK_FALSE(h.clipmap().voxelizationState(bad, &error));
-    CHECK(error.find("opacity") != std::string::npos);
+    CHECK(error.message.find("opacity") != std::string::npos);
     REQUIRE(h.clipmap().update(kAnchor, &error));
     // A non-finite invalidated box: refused, nothing moves.
     CHECK_FALSE(h.clipmap().update(kAnchor + glm::vec3(8.0f), &error, {{glm::vec3(0.0f), glm::vec3(INFINITY)}}));
-    CHECK(error.find("invalidated box 0") != std::string::npos);
+    CHECK(error.message.find("invalidated box 0") != std::string::npos);
     CHECK(h.clipmap().placement().origin(0) == glm::ivec3(0));
     // Triangles with NaN or huge vertices are dropped; the good one next to them is voxelized alone.
     std::vector<Triangle> triangles = boxTriangles(glm::vec3(4.5f), glm::vec3(5.5f));
@@ -342,7 +342,7 @@ void hookSeesTheFragment(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     VoxelizeHarness h(td, testDesc());
-    std::string error;
+    Error error;
     REQUIRE(h.clipmap().update(kAnchor, &error));
     rhi::ShaderDesc sd;
     sd.blob = rhi::findShader("vct_tests/voxelize_position.frag");
@@ -384,7 +384,7 @@ TEST_CASE("voxelization: Vulkan and GL write the same words", "[vct][cross]") {
     REQUIRE(gl.device);
     const glm::vec3 radiance(0.7f, 0.3f, 1.9f);
     VoxelizeHarness a(vk, testDesc()), b(gl, testDesc());
-    std::string error;
+    Error error;
     for (VoxelizeHarness* h : {&a, &b}) {
         REQUIRE(h->clipmap().update(kAnchor, &error));
         h->draw(sceneAt(glm::vec3(0.5f, 0.25f, -0.75f)), vct::VoxelMaterial{0.5f, true, 0.8f, {}}, &radiance);

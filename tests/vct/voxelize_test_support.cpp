@@ -25,9 +25,9 @@ std::vector<Triangle> boxTriangles(const glm::vec3& lo, const glm::vec3& hi) {
 }
 
 VoxelizeHarness::VoxelizeHarness(TestDevice& td, const vct::ClipmapDesc& desc) : td_(td) {
-    std::string error;
+    Error error;
     clipmap_ = vct::Clipmap::create(*td.device, desc, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(clipmap_);
     rhi::ShaderDesc sd;
     sd.blob = rhi::findShader("vct_tests/voxelize_mesh.vert");
@@ -61,9 +61,9 @@ void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::Vo
     buffers_.push_back(buffer);
     vct::VoxelMaterial material = base;
     if (!material.fragmentShader) material.fragmentShader = radiance ? emissive_ : rhi::ShaderHandle{};
-    std::string error;
+    Error error;
     std::optional<rhi::DrawCallState> state = clipmap_->voxelizationState(material, &error);
-    INFO(error);
+    INFO(error.message);
     REQUIRE(state);
     state->vertexShader = vertex_;
     state->vertexInputs.push(rhi::VertexInput{0, rhi::VertexFormat::Float3, 0, 0});

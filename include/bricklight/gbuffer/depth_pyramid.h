@@ -8,9 +8,15 @@
 #include <memory>
 #include <string>
 
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::gbuffer {
+
+struct DepthPyramidDesc {
+    uint32_t width = 0, height = 0;  // the G-buffer's size in pixels, 1..16384 a side
+};
 
 // Mip 0 has the depth texture's size and holds each pixel's depth twice; mip n + 1 has the sizes of a texture's
 // mip chain (rhi::mipExtent: halved and rounded down, never below 1) and its texel (x, y) covers the texels
@@ -22,19 +28,20 @@ class DepthPyramid {
 public:
     // A pyramid for depth textures of width × height (1..16384 each): every mip down to 1 × 1. Null with *error
     // when the size is out of range or the device refuses the texture or the passes' shaders.
-    static std::unique_ptr<DepthPyramid> create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error);
+    static std::unique_ptr<DepthPyramid> create(rhi::IDevice& device, const DepthPyramidDesc& desc, Error* error = nullptr);
     ~DepthPyramid();
     DepthPyramid(const DepthPyramid&) = delete;
     DepthPyramid& operator=(const DepthPyramid&) = delete;
     // Records the passes (one dispatch per mip) that rebuild the whole pyramid from `depth` (D32_FLOAT or
     // R32_FLOAT, sampled, 2D, of the pyramid's size; mip 0 is read). False with *error, recording nothing, for a
     // dead handle or a texture of another size, format or kind.
-    bool build(rhi::TextureHandle depth, std::string* error);
+    bool build(rhi::TextureHandle depth, Error* error = nullptr);
     rhi::TextureHandle texture() const { return texture_; }  // RG32_FLOAT, Sampled | Storage, mipCount() mips
     uint32_t mipCount() const { return mipCount_; }
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
-    uint64_t memoryBytes() const;  // the texture's bytes, all mips
+
+    MemoryUse memoryUse() const;  // its textures and buffers on the device
 
 private:
     explicit DepthPyramid(rhi::IDevice& device) : device_(device) {}

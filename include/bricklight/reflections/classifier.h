@@ -14,6 +14,8 @@
 #include <glm/glm.hpp>
 
 #include "bricklight/reflections/ray_list.h"
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::reflections {
@@ -109,6 +111,10 @@ struct ReflectionClassifyCounts {
 // new misses, blue previous hits, each /64).
 enum class ReflectionDebugMode : uint32_t { TileClass, RaysPerTile, HitCounter };
 
+struct ReflectionClassifierDesc {
+    uint32_t width = 0, height = 0;  // the G-buffer's size in pixels, 1..16384 a side
+};
+
 //   resource                 format                               holds
 //   screen-space ray list    buffer, ⌈W/8⌉·⌈H/8⌉·64 uints          packed rays, each tile's padded to a multiple of
 //                                                                 32 with kReflectionHelperEntry
@@ -127,7 +133,7 @@ enum class ReflectionDebugMode : uint32_t { TileClass, RaysPerTile, HitCounter }
 class ReflectionClassifier {
 public:
     // Null with *error for a zero or too large size (1..16384 a side), or a device that cannot create the resources.
-    static std::unique_ptr<ReflectionClassifier> create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error);
+    static std::unique_ptr<ReflectionClassifier> create(rhi::IDevice& device, const ReflectionClassifierDesc& desc, Error* error = nullptr);
     ~ReflectionClassifier();
     ReflectionClassifier(const ReflectionClassifier&) = delete;
     ReflectionClassifier& operator=(const ReflectionClassifier&) = delete;
@@ -135,15 +141,15 @@ public:
     // Records the classification: the lists, the counts, the arguments, this frame's hit counter (the history is
     // the last frame's, read along the motion). False with *error, recording nothing and changing no state, for
     // missing, mis-sized or wrongly formatted inputs, non-finite or singular cameras, or bad parameters.
-    bool classify(const ReflectionClassifyDesc& desc, std::string* error);
+    bool classify(const ReflectionClassifyDesc& desc, Error* error = nullptr);
     // Records the screen-space trace of the last classify()'s list (whose depth, normals and roughness must still
     // be live): dispatchIndirect at kReflectionArgsScreenTrace, 32 threads a group; output as ReflectionTraceDesc
     // says; misses (with useSdf) appended to the SDF list with their copy flags and the SDF arguments updated;
     // each tile's new-hit / new-miss counter raised by the pixels its rays resolved / missed. Once per classify().
-    bool traceScreenSpace(const ReflectionTraceDesc& desc, std::string* error);
+    bool traceScreenSpace(const ReflectionTraceDesc& desc, Error* error = nullptr);
     // Per tile into `output` (RGBA8_UNORM with Storage usage, the classifier's size), after classify() (and the
     // trace, for its rays and counters).
-    bool debugView(rhi::TextureHandle output, ReflectionDebugMode mode, std::string* error);
+    bool debugView(rhi::TextureHandle output, ReflectionDebugMode mode, Error* error = nullptr);
 
     rhi::BufferHandle screenRayList() const { return screenList_; }
     rhi::BufferHandle sdfRayList() const { return sdfList_; }
@@ -160,6 +166,8 @@ public:
     uint32_t screenListCapacity() const { return tilesX() * tilesY() * 64; }
     uint32_t sdfListCapacity() const { return width_ * height_; }
     ReflectionClassifyCounts readCounts();  // waits for the GPU and sums the tiles' statistics (tests and tools)
+
+    MemoryUse memoryUse() const;  // its textures and buffers on the device
 
 private:
     explicit ReflectionClassifier(rhi::IDevice& device) : device_(device) {}

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::reflections {
@@ -48,21 +50,26 @@ struct ReflectionDenoiseDesc {
     rhi::TextureHandle output;
 };
 
+struct ReflectionDenoiserDesc {
+    uint32_t width = 0, height = 0;  // the G-buffer's size in pixels, 1..16384 a side
+};
+
 class ReflectionDenoiser {
 public:
     // Null with *error for a zero or too large size, or a device that cannot create the resources.
-    static std::unique_ptr<ReflectionDenoiser> create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error);
+    static std::unique_ptr<ReflectionDenoiser> create(rhi::IDevice& device, const ReflectionDenoiserDesc& desc, Error* error = nullptr);
     ~ReflectionDenoiser();
     ReflectionDenoiser(const ReflectionDenoiser&) = delete;
     ReflectionDenoiser& operator=(const ReflectionDenoiser&) = delete;
 
     // Records this frame's clears, the temporal pass and the spatial pass. False with *error, recording nothing, for
     // missing, dead or mis-sized resources or bad parameters.
-    bool denoise(const ReflectionDenoiseDesc& desc, std::string* error);
+    bool denoise(const ReflectionDenoiseDesc& desc, Error* error = nullptr);
 
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
-    uint64_t memoryBytes() const;
+
+    MemoryUse memoryUse() const;  // its textures and buffers on the device
 
 private:
     explicit ReflectionDenoiser(rhi::IDevice& device) : device_(device) {}

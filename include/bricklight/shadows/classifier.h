@@ -12,6 +12,8 @@
 
 #include <glm/glm.hpp>
 
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
@@ -98,6 +100,10 @@ struct ShadowClassifyCounts {
     uint32_t activePixels = 0;   // on-screen, not sky, facing the sun
 };
 
+struct ShadowClassifierDesc {
+    uint32_t width = 0, height = 0;  // the G-buffer's size in pixels, 1..16384 a side
+};
+
 //   resource                 format                              holds
 //   shadow tile list         buffer, uvec4 per tile (≤ tiles)    the listed tiles (ShadowClassifyDesc's comment)
 //   shadow tile count        buffer, 8 words, indirect args      groups of 8 listed tiles, 1, 1 (dispatchIndirect
@@ -111,25 +117,25 @@ struct ShadowClassifyCounts {
 class ShadowClassifier {
 public:
     // Null with *error for a zero or too large size, or a device that cannot create the resources.
-    static std::unique_ptr<ShadowClassifier> create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error);
+    static std::unique_ptr<ShadowClassifier> create(rhi::IDevice& device, const ShadowClassifierDesc& desc, Error* error = nullptr);
     ~ShadowClassifier();
     ShadowClassifier(const ShadowClassifier&) = delete;
     ShadowClassifier& operator=(const ShadowClassifier&) = delete;
 
     // Records the clear of the counts and the classification; false with *error, recording nothing, for missing or
     // mis-sized inputs or bad parameters.
-    bool classify(const ShadowClassifyDesc& desc, std::string* error);
+    bool classify(const ShadowClassifyDesc& desc, Error* error = nullptr);
     // Hybrid shadows, after classify(): one ray per masked pixel of each listed tile (dispatchIndirect on tileCount(),
     // 32 threads a tile, 8 tiles a group) towards the sun's centre (softShadows: a point of its disc) through `field`
     // (an updated distance field of the same scene), over the tile's interval, passing cut-out parts of alpha-tested
     // cards where the classify() gave an alpha cache; hitMask() takes the rays' answers for those pixels. The last
     // classify()'s depth, normals and alpha cache must still be live. False with *error, recording nothing, before
     // any classify() or when they are not.
-    bool trace(const sdf::SdfScene& field, std::string* error);
+    bool trace(const sdf::SdfScene& field, Error* error = nullptr);
     // hitMask() per pixel into `output` (R16_FLOAT with Storage usage, the classifier's size): 1 lit, 0 shadowed or
     // facing away from the sun; −1 where the answer is not sure (sureMask()) if the last classify() asked
     // markUnsurePixels.
-    bool resolve(rhi::TextureHandle output, std::string* error);
+    bool resolve(rhi::TextureHandle output, Error* error = nullptr);
 
     rhi::BufferHandle tileList() const { return tiles_; }
     rhi::BufferHandle tileCount() const { return count_; }  // dispatchIndirect arguments at offset 0
@@ -143,6 +149,8 @@ public:
     uint32_t tilesX() const { return (width_ + kShadowTileWidth - 1) / kShadowTileWidth; }
     uint32_t tilesY() const { return (height_ + kShadowTileHeight - 1) / kShadowTileHeight; }
     ShadowClassifyCounts readCounts();  // waits for the GPU (tests and tools)
+
+    MemoryUse memoryUse() const;  // its textures and buffers on the device
 
 private:
     explicit ShadowClassifier(rhi::IDevice& device) : device_(device) {}

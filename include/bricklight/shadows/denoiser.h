@@ -16,6 +16,8 @@
 #include <glm/glm.hpp>
 
 #include "bricklight/shadows/classifier.h"
+#include "bricklight/errors.h"
+#include "bricklight/memory_use.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::shadows {
@@ -41,6 +43,10 @@ struct ShadowDenoiseDesc {
     uint32_t filterPasses = 3;   // à-trous passes of 3×3 taps, steps 1, 2, 4, ... (0..kMaxShadowFilterPasses)
 };
 
+struct ShadowDenoiserDesc {
+    uint32_t width = 0, height = 0;  // the G-buffer's size in pixels, 1..16384 a side
+};
+
 //   resource                    format                          holds
 //   shadow denoiser history ×2  RGBA16_FLOAT, W × H              ping-pong: mean visibility, its second moment,
 //                                                                frames accumulated (a pixel that needed no ray:
@@ -62,7 +68,7 @@ struct ShadowDenoiseDesc {
 class ShadowDenoiser {
 public:
     // Null with *error for a zero or too large size, or a device that cannot create the resources.
-    static std::unique_ptr<ShadowDenoiser> create(rhi::IDevice& device, uint32_t width, uint32_t height, std::string* error);
+    static std::unique_ptr<ShadowDenoiser> create(rhi::IDevice& device, const ShadowDenoiserDesc& desc, Error* error = nullptr);
     ~ShadowDenoiser();
     ShadowDenoiser(const ShadowDenoiser&) = delete;
     ShadowDenoiser& operator=(const ShadowDenoiser&) = delete;
@@ -71,12 +77,14 @@ public:
     // passes above into desc.output. False with *error naming the object, recording nothing, for a classifier of
     // another size, mis-sized or wrongly formatted textures, bad parameters, or no history (resetHistory unset on
     // the first call).
-    bool denoise(const ShadowClassifier& classifier, const ShadowDenoiseDesc& desc, std::string* error);
+    bool denoise(const ShadowClassifier& classifier, const ShadowDenoiseDesc& desc, Error* error = nullptr);
 
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     // The accumulated history of the latest denoise() (RGBA16_FLOAT; tests and debug views).
     rhi::TextureHandle history() const { return history_[current_]; }
+
+    MemoryUse memoryUse() const;  // its textures and buffers on the device
 
 private:
     explicit ShadowDenoiser(rhi::IDevice& device) : device_(device) {}

@@ -13,11 +13,11 @@ int main() {
     sdf::SceneDesc desc;
     desc.finestVoxelSize = 0.1f;
     desc.atlasBricksPerAxis = 8;
-    std::string error;
+    Error error;
     std::unique_ptr<sdf::SdfScene> scene = sdf::SdfScene::create(*device, desc, &error);
     const bool ownShader = rhi::findShader("field_probe.comp") != nullptr;
     const bool ok = scene && ownShader;
     std::printf("subdirectory_check (Bricklight %s): scene %s, the parent's shader %s: %s\n", BRICKLIGHT_VERSION_STRING,
-                scene ? "created" : error.c_str(), ownShader ? "registered" : "missing", ok ? "PASS" : "FAIL");
+                scene ? "created" : error.message.c_str(), ownShader ? "registered" : "missing", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }
