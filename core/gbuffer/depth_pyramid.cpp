@@ -1,5 +1,5 @@
 // The depth pyramid's passes: a copy of the depth into mip 0, then one reduction per mip
-// (shaders/classify/depth_pyramid_*.comp). docs/depth_pyramid.md.
+// (shaders/gbuffer/depth_pyramid_*.comp). docs/gbuffer.md.
 #include "bricklight/gbuffer/depth_pyramid.h"
 
 #include <algorithm>

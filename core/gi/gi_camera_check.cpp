@@ -32,7 +32,7 @@ void GiContextImpl::recordCameraCheck(const DispatchDesc& d) {
     if (frameIndex_ % kCameraCheckInterval != 0 || cameraCheck_.pending.size() >= kMaxPendingChecks) return;
     device_.clearBuffer(cameraCheck_.counts, {}, 0);
     rhi::DispatchState s;
-    texture(s.bindings, 0, d.depth, point_);
+    texture(s.bindings, 0, d.gbuffer.depth, point_);
     storageBuffer(s.bindings, 0, cameraCheck_.counts, rhi::Access::ReadWrite);
     addTrace(s.bindings);
     run("camera check", shaders_.cameraCheck, s, 1, 1);

@@ -72,8 +72,8 @@ void GiContextImpl::runOverProbes(const char* label, rhi::ShaderHandle shader, r
 void GiContextImpl::fillConstants(const DispatchDesc& d) {
     // Inverted in double: with a near plane far below the far plane (standard depth) a float inverse
     // loses most of the depth range's precision, and positions rebuilt from depth land metres off.
-    const glm::dmat4 viewProjection = glm::dmat4(d.projection) * glm::dmat4(d.view);
-    const glm::dmat4 previousViewProjection = glm::dmat4(d.previousProjection) * glm::dmat4(d.previousView);
+    const glm::dmat4 viewProjection = glm::dmat4(d.camera.projection) * glm::dmat4(d.camera.view);
+    const glm::dmat4 previousViewProjection = glm::dmat4(d.camera.previousProjection) * glm::dmat4(d.camera.previousView);
     camera_.viewProjection = glm::mat4(viewProjection);
     camera_.inverseViewProjection = glm::mat4(glm::inverse(viewProjection));
     camera_.previousViewProjection = glm::mat4(previousViewProjection);
@@ -84,7 +84,7 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     if (desc_.flags & ContextFlags::ReversedDepth) flags |= FlagReversedDepth;
     if (d.resetHistory) flags |= FlagResetHistory;
     if (historyValid_) flags |= FlagHistoryValid;
-    if (!d.motionVectors) flags |= FlagCameraMotion;
+    if (!d.gbuffer.motionVectors) flags |= FlagCameraMotion;
     frame_ = GpuFrame{};
     frame_.size[0] = width_;
     frame_.size[1] = height_;
@@ -95,13 +95,13 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.tiles[2] = uint32_t(frameIndex_);
     frame_.tiles[3] = flags;
     frame_.camera = glm::vec4(d.cameraPosition, scene_.cascadeVoxelSize(start));
-    frame_.normalScale = glm::vec4(d.normalsUnpackScale, d.roughnessThreshold);
-    frame_.normalOffset = glm::vec4(d.normalsUnpackOffset, d.environmentIntensity);
-    frame_.inputs[0] = d.roughnessChannel;
-    frame_.inputs[1] = d.roughnessPerceptual ? 1u : 0u;
+    frame_.normalScale = glm::vec4(d.gbuffer.normalsUnpackScale, d.roughnessThreshold);
+    frame_.normalOffset = glm::vec4(d.gbuffer.normalsUnpackOffset, d.environmentIntensity);
+    frame_.inputs[0] = d.gbuffer.roughnessChannel;
+    frame_.inputs[1] = d.gbuffer.roughnessPerceptual ? 1u : 0u;
     frame_.inputs[2] = uint32_t(d.environmentKind);
     frame_.inputs[3] = kMaxDiffuseHistory;
-    frame_.motion = glm::vec4(d.motionVectorScale, 0.0f, 0.0f);
+    frame_.motion = glm::vec4(d.gbuffer.motionVectorScale, 0.0f, 0.0f);
     frame_.trace = glm::vec4(d.trace.rayPushOff, d.trace.specularRayPushOff, d.trace.tMin, d.trace.tMax);
     frame_.cascades[0] = start;
     frame_.cascades[1] = end;
@@ -151,16 +151,16 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
     // Passes 3 and 6 read the application's G-buffer as pass 1 stores it (gi_input.glsl), so that the three
     // run side by side.
     auto addInputs = [&](rhi::Bindings& b) {
-        texture(b, 0, d.depth, point_);
-        texture(b, 1, d.normals, point_);
-        texture(b, 2, d.roughness, point_);
+        texture(b, 0, d.gbuffer.depth, point_);
+        texture(b, 1, d.gbuffer.normals, point_);
+        texture(b, 2, d.gbuffer.roughness, point_);
     };
     {  // 1, 2. downsample; disocclusion mask
         rhi::DispatchState s;
         addInputs(s.bindings);
         // Without motion vectors: a 1x1 black stand-in whose texel the shader fetches and ignores (it selects the
         // camera's motion instead of branching on the flag: lavapipe recompiles per dispatch on such branches).
-        texture(s.bindings, 3, d.motionVectors ? d.motionVectors : black2D_, point_);
+        texture(s.bindings, 3, d.gbuffer.motionVectors ? d.gbuffer.motionVectors : black2D_, point_);
         texture(s.bindings, 4, depth_[prev], point_);
         texture(s.bindings, 5, surface_[prev], point_);
         image(s.bindings, 0, depth_[cur], Access::Write);
@@ -364,17 +364,17 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         texture(s.bindings, 1, finalSpecular, point_);
         texture(s.bindings, 2, depth_[cur], point_);
         texture(s.bindings, 3, surface_[cur], point_);
-        texture(s.bindings, 4, d.depth, point_);
-        texture(s.bindings, 5, d.normals, point_);
+        texture(s.bindings, 4, d.gbuffer.depth, point_);
+        texture(s.bindings, 5, d.gbuffer.normals, point_);
         image(s.bindings, 0, d.outputDiffuse, Access::Write);
         image(s.bindings, 1, d.outputSpecular ? d.outputSpecular : dummyStorage_, Access::Write);
         run("upsample", shaders_.upsample, s, groups(desc_.displayWidth, 8), groups(desc_.displayHeight, 8));
     }
     recordCameraCheck(d);
     device_.endMarker();
-    lastInputs_.depth = d.depth;
-    lastInputs_.normals = d.normals;
-    lastInputs_.roughness = d.roughness;
+    lastInputs_.depth = d.gbuffer.depth;
+    lastInputs_.normals = d.gbuffer.normals;
+    lastInputs_.roughness = d.gbuffer.roughness;
     lastInputs_.environment.environmentKind = d.environmentKind;
     lastInputs_.environment.environmentMap = d.environmentMap;
     lastFrame_ = cur;

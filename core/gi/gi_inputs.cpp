@@ -54,12 +54,12 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
             return fail(ErrorCode::WrongSize, name + " is " + std::to_string(td->width) + "x" + std::to_string(td->height) + "; it must be " + displaySize);
         return true;
     };
-    if (!input("depth", d.depth, 1, true) || !input("normals", d.normals, 3, true) || !input("roughness", d.roughness, 1, true) ||
+    if (!input("depth", d.gbuffer.depth, 1, true) || !input("normals", d.gbuffer.normals, 3, true) || !input("roughness", d.gbuffer.roughness, 1, true) ||
         !input("previousLitOutput", d.previousLitOutput, 3, false))
         return false;
-    if (d.motionVectors && !input("motionVectors", d.motionVectors, 2, true)) return false;
+    if (d.gbuffer.motionVectors && !input("motionVectors", d.gbuffer.motionVectors, 2, true)) return false;
     {  // depth is one channel of device depth: a colour texture here is a G-buffer target bound by mistake
-        const rhi::TextureDesc* td = device_.describe(d.depth);
+        const rhi::TextureDesc* td = device_.describe(d.gbuffer.depth);
         const rhi::FormatInfo& fi = rhi::formatInfo(td->format);
         if (fi.channels != 1 || (fi.kind != K::Float && fi.kind != K::Depth))
             return fail(ErrorCode::WrongFormat, "dispatch: input 'depth' (texture '" + td->debugName + "') has format " + fi.name +
@@ -69,16 +69,16 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
     if (d.emission && !d.diffuseAlbedo) return fail(ErrorCode::MissingInput, "dispatch: input 'emission' is given without 'diffuseAlbedo': relighting needs the albedo");
     if (d.emission && !input("emission", d.emission, 3, true)) return false;
     if (!checkLights(d)) return false;
-    const rhi::FormatInfo& roughness = rhi::formatInfo(device_.describe(d.roughness)->format);
-    if (d.roughnessChannel >= roughness.channels)
-        return fail(ErrorCode::WrongFormat, "dispatch: roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture (" +
+    const rhi::FormatInfo& roughness = rhi::formatInfo(device_.describe(d.gbuffer.roughness)->format);
+    if (d.gbuffer.roughnessChannel >= roughness.channels)
+        return fail(ErrorCode::WrongFormat, "dispatch: roughnessChannel " + std::to_string(d.gbuffer.roughnessChannel) + " is not a channel of the roughness texture (" +
                     roughness.name + ")");
     if (!output("outputDiffuse", d.outputDiffuse)) return false;
     if (!(desc_.flags & ContextFlags::NoSpecular) || d.outputSpecular)
         if (!output("outputSpecular", d.outputSpecular)) return false;
     if (d.outputSpecular && d.outputSpecular == d.outputDiffuse) return fail(ErrorCode::Aliasing, "dispatch: outputDiffuse and outputSpecular are the same texture");
     const std::pair<rhi::TextureHandle, const char*> inputs[] = {
-        {d.depth, "depth"}, {d.normals, "normals"}, {d.roughness, "roughness"}, {d.motionVectors, "motionVectors"},
+        {d.gbuffer.depth, "depth"}, {d.gbuffer.normals, "normals"}, {d.gbuffer.roughness, "roughness"}, {d.gbuffer.motionVectors, "motionVectors"},
         {d.previousLitOutput, "previousLitOutput"}, {d.diffuseAlbedo, "diffuseAlbedo"}, {d.emission, "emission"}};
     for (const auto& [in, inName] : inputs)
         for (const auto& [out, outName] : {std::pair{d.outputDiffuse, "outputDiffuse"}, std::pair{d.outputSpecular, "outputSpecular"}})
@@ -104,13 +104,13 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
             return fail(ErrorCode::InvalidArgument, "dispatch: environmentIntensity must be finite and >= 0");
     }
     if (uint32_t(d.environmentKind) > uint32_t(EnvironmentKind::Equirectangular)) return fail(ErrorCode::InvalidArgument, "dispatch: unknown environmentKind");
-    for (const auto& [m, what] : {std::pair{&d.view, "view"}, std::pair{&d.projection, "projection"},
-                                  std::pair{&d.previousView, "previousView"}, std::pair{&d.previousProjection, "previousProjection"}})
+    for (const auto& [m, what] : {std::pair{&d.camera.view, "view"}, std::pair{&d.camera.projection, "projection"},
+                                  std::pair{&d.camera.previousView, "previousView"}, std::pair{&d.camera.previousProjection, "previousProjection"}})
         if (!bricklight::detail::finite(*m) || !invertible(*m)) return fail(ErrorCode::InvalidArgument, std::string("dispatch: matrix '") + what + "' is not finite and invertible");
     if (!std::isfinite(d.cameraPosition.x) || !std::isfinite(d.cameraPosition.y) || !std::isfinite(d.cameraPosition.z))
         return fail(ErrorCode::InvalidArgument, "dispatch: cameraPosition is not finite");
-    for (float v : {d.normalsUnpackScale.x, d.normalsUnpackScale.y, d.normalsUnpackScale.z, d.normalsUnpackOffset.x,
-                    d.normalsUnpackOffset.y, d.normalsUnpackOffset.z, d.motionVectorScale.x, d.motionVectorScale.y, d.roughnessThreshold})
+    for (float v : {d.gbuffer.normalsUnpackScale.x, d.gbuffer.normalsUnpackScale.y, d.gbuffer.normalsUnpackScale.z, d.gbuffer.normalsUnpackOffset.x,
+                    d.gbuffer.normalsUnpackOffset.y, d.gbuffer.normalsUnpackOffset.z, d.gbuffer.motionVectorScale.x, d.gbuffer.motionVectorScale.y, d.roughnessThreshold})
         if (!std::isfinite(v)) return fail(ErrorCode::InvalidArgument, "dispatch: normal unpack, motion vector scale and roughnessThreshold must be finite");
     const TraceParams& t = d.trace;
     const uint32_t cascades = scene_.desc().cascadeCount;

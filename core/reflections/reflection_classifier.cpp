@@ -1,6 +1,6 @@
 // The reflection classifier (include/bricklight/reflections/classifier.h): checks, resources, the classification
 // (shaders/reflections/classify_reflections.comp) and the arguments pass (reflection_args.comp). The screen-space
-// trace and the debug view are in reflection_trace.cpp. docs/classify.md.
+// trace and the debug view are in reflection_trace.cpp. docs/reflections.md.
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -128,17 +128,17 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
                         " channel(s)", ErrorCode::WrongFormat);
         return true;
     };
-    if (!check(d.depth, "depth", 1, true, false) || !check(d.normals, "normals", 3, false, false)) return false;
-    if (d.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is outside 0..3");
-    if (!check(d.roughness, "roughness", d.roughnessChannel + 1, false, false)) return false;
-    if (d.motionVectors && !check(d.motionVectors, "motionVectors", 2, false, true)) return false;
-    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection))
+    if (!check(d.gbuffer.depth, "depth", 1, true, false) || !check(d.gbuffer.normals, "normals", 3, false, false)) return false;
+    if (d.gbuffer.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.gbuffer.roughnessChannel) + " is outside 0..3");
+    if (!check(d.gbuffer.roughness, "roughness", d.gbuffer.roughnessChannel + 1, false, false)) return false;
+    if (d.gbuffer.motionVectors && !check(d.gbuffer.motionVectors, "motionVectors", 2, false, true)) return false;
+    if (!detail::finite(d.camera.view) || !detail::finite(d.camera.projection) || !detail::finite(d.camera.previousView) || !detail::finite(d.camera.previousProjection))
         return fail("the camera matrices (view, projection, previousView, previousProjection) must be finite");
-    const glm::mat4 viewProjection = d.projection * d.view, previousViewProjection = d.previousProjection * d.previousView;
-    if (!invertible(viewProjection) || !invertible(d.projection)) return fail("the camera's view-projection is not invertible");
+    const glm::mat4 viewProjection = d.camera.projection * d.camera.view, previousViewProjection = d.camera.previousProjection * d.camera.previousView;
+    if (!invertible(viewProjection) || !invertible(d.camera.projection)) return fail("the camera's view-projection is not invertible");
     if (!invertible(previousViewProjection)) return fail("the previous camera's view-projection is not invertible");
-    if (!detail::finite(d.normalsUnpackScale) || !detail::finite(d.normalsUnpackOffset)) return fail("the normals' unpack scale and offset must be finite");
-    if (!detail::finite(d.motionVectorScale)) return fail("motionVectorScale must be finite");
+    if (!detail::finite(d.gbuffer.normalsUnpackScale) || !detail::finite(d.gbuffer.normalsUnpackOffset)) return fail("the normals' unpack scale and offset must be finite");
+    if (!detail::finite(d.gbuffer.motionVectorScale)) return fail("motionVectorScale must be finite");
     if (!(d.roughnessThreshold >= 0.0f && d.roughnessThreshold <= 1.0f)) return fail("roughnessThreshold " + std::to_string(d.roughnessThreshold) + " is outside 0..1");
     if (!(d.sdfRoughnessThreshold >= 0.0f && d.sdfRoughnessThreshold <= 1.0f))
         return fail("sdfRoughnessThreshold " + std::to_string(d.sdfRoughnessThreshold) + " is outside 0..1");
@@ -152,13 +152,13 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
     p.inverseViewProjection = glm::inverse(viewProjection);
     p.viewProjection = viewProjection;
     p.previousViewProjection = previousViewProjection;
-    p.inverseProjection = glm::inverse(d.projection);
-    p.normalScale = glm::vec4(d.normalsUnpackScale, d.roughnessThreshold);
-    p.normalBias = glm::vec4(d.normalsUnpackOffset, d.sdfRoughnessThreshold);
-    p.hybrid = glm::vec4(d.hybridMissWeight, d.hybridSpawnRate, d.motionVectorScale);
+    p.inverseProjection = glm::inverse(d.camera.projection);
+    p.normalScale = glm::vec4(d.gbuffer.normalsUnpackScale, d.roughnessThreshold);
+    p.normalBias = glm::vec4(d.gbuffer.normalsUnpackOffset, d.sdfRoughnessThreshold);
+    p.hybrid = glm::vec4(d.hybridMissWeight, d.hybridSpawnRate, d.gbuffer.motionVectorScale);
     p.size = glm::uvec4(width_, height_, tilesX(), tilesY());
-    p.options = glm::uvec4(d.samplesPerQuad, d.roughnessChannel, d.roughnessPerceptual ? 1u : 0u, d.reversedDepth ? 1u : 0u);
-    p.options2 = glm::uvec4(d.useHitCounter ? 1u : 0u, d.useScreenSpace ? 1u : 0u, d.useSdf ? 1u : 0u, d.motionVectors ? 1u : 0u);
+    p.options = glm::uvec4(d.samplesPerQuad, d.gbuffer.roughnessChannel, d.gbuffer.roughnessPerceptual ? 1u : 0u, d.camera.reversedDepth ? 1u : 0u);
+    p.options2 = glm::uvec4(d.useHitCounter ? 1u : 0u, d.useScreenSpace ? 1u : 0u, d.useSdf ? 1u : 0u, d.gbuffer.motionVectors ? 1u : 0u);
     p.frame = glm::uvec4(d.frameIndex, 0u, 0u, 0u);
     device_.beginMarker("parameters and counts");
     const bool paramsOk = writeParams(&p, 0, offsetof(ReflectionParams, trace));
@@ -171,10 +171,10 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
     s.shader = classify_;
     s.label = "classify reflections";
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
-    s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.depth), point_});
-    s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.normals), point_});
-    s.bindings.textures.push(rhi::TextureBinding{2, rhi::wholeTexture(d.roughness), point_});
-    s.bindings.textures.push(rhi::TextureBinding{3, rhi::wholeTexture(d.motionVectors ? d.motionVectors : noMotion_), point_});
+    s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.gbuffer.depth), point_});
+    s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.gbuffer.normals), point_});
+    s.bindings.textures.push(rhi::TextureBinding{2, rhi::wholeTexture(d.gbuffer.roughness), point_});
+    s.bindings.textures.push(rhi::TextureBinding{3, rhi::wholeTexture(d.gbuffer.motionVectors ? d.gbuffer.motionVectors : noMotion_), point_});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, screenList_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, sdfList_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{2, denoiseList_, {}, rhi::Access::Write});
@@ -186,9 +186,9 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
     if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);
     if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)", ErrorCode::DeviceFailure);
     current_ ^= 1u;
-    depth_ = d.depth;
-    normals_ = d.normals;
-    roughness_ = d.roughness;
+    depth_ = d.gbuffer.depth;
+    normals_ = d.gbuffer.normals;
+    roughness_ = d.gbuffer.roughness;
     classified_ = true;
     traced_ = false;
     return true;

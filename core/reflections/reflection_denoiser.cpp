@@ -1,5 +1,5 @@
 // The reflection denoiser (include/bricklight/reflections/denoiser.h): checks, resources and its two passes
-// (shaders/classify/reflection_denoise_{temporal,spatial}.comp). docs/classify.md.
+// (shaders/reflections/reflection_denoise_{temporal,spatial}.comp). docs/reflections.md.
 #include <cmath>
 #include <cstring>
 
@@ -98,12 +98,12 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, Error* error) {
         !buffer(d.arguments, "arguments", rhi::BufferUsage::IndirectArgs, d.argumentsOffset, 12) ||
         !buffer(d.count, "count", rhi::BufferUsage::ShaderRead, d.countOffset, 4))
         return false;
-    if (!input(d.radiance, "radiance") || !input(d.depth, "depth") || !input(d.normals, "normals") || !input(d.roughness, "roughness")) return false;
-    const rhi::TextureDesc* depth = device_.describe(d.depth);
+    if (!input(d.radiance, "radiance") || !input(d.gbuffer.depth, "depth") || !input(d.gbuffer.normals, "normals") || !input(d.gbuffer.roughness, "roughness")) return false;
+    const rhi::TextureDesc* depth = device_.describe(d.gbuffer.depth);
     if (depth->format != rhi::Format::D32_FLOAT && depth->format != rhi::Format::R32_FLOAT)
         return fail("depth '" + depth->debugName + "' must be D32_FLOAT or R32_FLOAT");
-    if (d.roughnessChannel >= rhi::formatInfo(device_.describe(d.roughness)->format).channels)
-        return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is not a channel of the roughness texture");
+    if (d.gbuffer.roughnessChannel >= rhi::formatInfo(device_.describe(d.gbuffer.roughness)->format).channels)
+        return fail("roughnessChannel " + std::to_string(d.gbuffer.roughnessChannel) + " is not a channel of the roughness texture");
     const rhi::TextureDesc* out = d.output ? device_.describe(d.output) : nullptr;
     if (!out) return fail("output is missing or not a live texture", ErrorCode::MissingInput);
     if (out->dimension != rhi::TextureDimension::Texture2D || out->format != rhi::Format::RGBA16_FLOAT || !(out->usage & rhi::TextureUsage::Storage))
@@ -111,26 +111,26 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, Error* error) {
     if (out->width != width_ || out->height != height_)
         return fail("output '" + out->debugName + "' is " + std::to_string(out->width) + "x" + std::to_string(out->height) + ", the denoiser " +
                     std::to_string(width_) + "x" + std::to_string(height_));
-    for (rhi::TextureHandle in : {d.radiance, d.depth, d.normals, d.roughness})
+    for (rhi::TextureHandle in : {d.radiance, d.gbuffer.depth, d.gbuffer.normals, d.gbuffer.roughness})
         if (in == d.output) return fail("output '" + out->debugName + "' is also an input", ErrorCode::Aliasing);
-    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection) || !detail::finite(d.normalsUnpackScale) ||
-        !detail::finite(d.normalsUnpackOffset))
+    if (!detail::finite(d.camera.view) || !detail::finite(d.camera.projection) || !detail::finite(d.camera.previousView) || !detail::finite(d.camera.previousProjection) || !detail::finite(d.gbuffer.normalsUnpackScale) ||
+        !detail::finite(d.gbuffer.normalsUnpackOffset))
         return fail("the camera matrices and the normals' unpacking must be finite");
     if (d.maxHistory < 1 || d.maxHistory > 256) return fail("maxHistory " + std::to_string(d.maxHistory) + " is outside 1..256");
     // In double: a float inverse of a projection with a far-away far plane loses the depth's precision.
-    const glm::dmat4 viewProjection = glm::dmat4(d.projection) * glm::dmat4(d.view);
-    const glm::dmat4 previousViewProjection = glm::dmat4(d.previousProjection) * glm::dmat4(d.previousView);
+    const glm::dmat4 viewProjection = glm::dmat4(d.camera.projection) * glm::dmat4(d.camera.view);
+    const glm::dmat4 previousViewProjection = glm::dmat4(d.camera.previousProjection) * glm::dmat4(d.camera.previousView);
     if (std::abs(glm::determinant(viewProjection)) < 1e-30 || std::abs(glm::determinant(previousViewProjection)) < 1e-30)
         return fail("the camera's view-projection (this frame's or the previous) is not invertible");
     ReflectionDenoiseParams p{};
     p.inverseViewProjection = glm::mat4(glm::inverse(viewProjection));
     p.previousViewProjection = glm::mat4(previousViewProjection);
     p.previousInverseViewProjection = glm::mat4(glm::inverse(previousViewProjection));
-    p.eye = glm::vec4(glm::vec3(glm::inverse(glm::dmat4(d.view))[3]), 0.0f);
-    p.normalScale = glm::vec4(d.normalsUnpackScale, float(d.maxHistory));
-    p.normalOffset = glm::vec4(d.normalsUnpackOffset, 0.0f);
+    p.eye = glm::vec4(glm::vec3(glm::inverse(glm::dmat4(d.camera.view))[3]), 0.0f);
+    p.normalScale = glm::vec4(d.gbuffer.normalsUnpackScale, float(d.maxHistory));
+    p.normalOffset = glm::vec4(d.gbuffer.normalsUnpackOffset, 0.0f);
     const bool history = historyValid_ && !d.resetHistory;
-    p.size = glm::uvec4(width_, height_, d.roughnessChannel, (d.roughnessPerceptual ? 1u : 0u) | (d.reversedDepth ? 2u : 0u) | (history ? 4u : 0u));
+    p.size = glm::uvec4(width_, height_, d.gbuffer.roughnessChannel, (d.gbuffer.roughnessPerceptual ? 1u : 0u) | (d.camera.reversedDepth ? 2u : 0u) | (history ? 4u : 0u));
     p.list = glm::uvec4(uint32_t(d.countOffset / 4), 0u, 0u, 0u);
     device_.writeBuffer(params_, 0, &p, sizeof(p));
 
@@ -156,8 +156,8 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, Error* error) {
         s.bindings.readBuffers.push({1, d.tiles, {}});
         s.bindings.readBuffers.push({2, d.count, {}});
         s.bindings.textures.push({0, rhi::wholeTexture(d.radiance), point_});
-        s.bindings.textures.push({1, rhi::wholeTexture(d.depth), point_});
-        s.bindings.textures.push({2, rhi::wholeTexture(d.roughness), point_});
+        s.bindings.textures.push({1, rhi::wholeTexture(d.gbuffer.depth), point_});
+        s.bindings.textures.push({2, rhi::wholeTexture(d.gbuffer.roughness), point_});
         s.bindings.textures.push({3, rhi::wholeTexture(history_[prev]), point_});
         s.bindings.textures.push({4, rhi::wholeTexture(historyDepth_[prev]), point_});
         s.bindings.storageImages.push(rhi::storageImage(0, history_[cur], rhi::Access::Write, 0));
@@ -174,9 +174,9 @@ bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, Error* error) {
         s.bindings.readBuffers.push({1, d.tiles, {}});
         s.bindings.readBuffers.push({2, d.count, {}});
         s.bindings.textures.push({0, rhi::wholeTexture(history_[cur]), point_});
-        s.bindings.textures.push({1, rhi::wholeTexture(d.depth), point_});
-        s.bindings.textures.push({2, rhi::wholeTexture(d.normals), point_});
-        s.bindings.textures.push({3, rhi::wholeTexture(d.roughness), point_});
+        s.bindings.textures.push({1, rhi::wholeTexture(d.gbuffer.depth), point_});
+        s.bindings.textures.push({2, rhi::wholeTexture(d.gbuffer.normals), point_});
+        s.bindings.textures.push({3, rhi::wholeTexture(d.gbuffer.roughness), point_});
         s.bindings.storageImages.push(rhi::storageImage(0, d.output, rhi::Access::Write, 0));
         device_.dispatchIndirect(s, d.arguments, d.argumentsOffset);
     }

@@ -1,6 +1,6 @@
 // The reflection classifier's screen-space trace (shaders/reflections/trace_reflections_screen.comp, then the
 // arguments pass again for the SDF list it grew) and its debug view (reflection_debug.comp).
-// include/bricklight/reflections/classifier.h, docs/classify.md.
+// include/bricklight/reflections/classifier.h, docs/reflections.md.
 #include <cmath>
 
 #include "bricklight/reflections/classifier.h"

@@ -1,5 +1,5 @@
 // The shadow classifier (include/bricklight/shadows/classifier.h): checks, resources and the classification pass
-// (shaders/shadows/classify_shadows.comp). docs/classify.md.
+// (shaders/shadows/classify_shadows.comp). docs/shadows.md.
 #include <cmath>
 #include <cstring>
 
@@ -106,16 +106,16 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
     };
     if (d.mode != ShadowClassifyMode::Normals && d.mode != ShadowClassifyMode::Cascades)
         return fail("mode " + std::to_string(uint32_t(d.mode)) + " is not Normals or Cascades");
-    if (!sized(d.depth, "depth", true) || !sized(d.normals, "normals", false)) return false;
-    for (rhi::TextureHandle t : {d.depth, d.normals}) {
+    if (!sized(d.gbuffer.depth, "depth", true) || !sized(d.gbuffer.normals, "normals", false)) return false;
+    for (rhi::TextureHandle t : {d.gbuffer.depth, d.gbuffer.normals}) {
         const rhi::TextureDesc* td = device_.describe(t);
         if (td->width != width_ || td->height != height_)
             return fail("'" + td->debugName + "' is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", the classifier " +
                         std::to_string(width_) + "x" + std::to_string(height_));
     }
-    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.normalsUnpackScale) || !detail::finite(d.normalsUnpackOffset))
+    if (!detail::finite(d.camera.view) || !detail::finite(d.camera.projection) || !detail::finite(d.gbuffer.normalsUnpackScale) || !detail::finite(d.gbuffer.normalsUnpackOffset))
         return fail("the camera matrices and the normals' unpacking must be finite");
-    const glm::mat4 viewProjection = d.projection * d.view;
+    const glm::mat4 viewProjection = d.camera.projection * d.camera.view;
     const glm::mat4 inverse = glm::inverse(viewProjection);
     if (!detail::finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
     const float sunLength = detail::finite(d.sunDirection) ? glm::length(d.sunDirection) : 0.0f;
@@ -141,18 +141,18 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
     ShadowClassifyParams p{};
     p.inverseViewProjection = inverse;
     p.sun = glm::vec4(d.sunDirection / sunLength, std::tan(0.5f * d.sunAngle));
-    p.normalScale = glm::vec4(d.normalsUnpackScale, d.blockerOffset);
-    p.normalBias = glm::vec4(d.normalsUnpackOffset, d.rayPushOff);
+    p.normalScale = glm::vec4(d.gbuffer.normalsUnpackScale, d.blockerOffset);
+    p.normalBias = glm::vec4(d.gbuffer.normalsUnpackOffset, d.rayPushOff);
     p.size = glm::uvec4(width_, height_, tilesX(), uint32_t(d.mode));
     p.options = glm::uvec4(0u, d.blockerTaps, d.rejectLitPixels ? 1u : 0u, d.cascadeRayInterval ? 1u : 0u);
-    p.options2 = glm::uvec4(d.tileCutOff, d.reversedDepth ? 1u : 0u, 1u, 1u);
+    p.options2 = glm::uvec4(d.tileCutOff, d.camera.reversedDepth ? 1u : 0u, 1u, 1u);
     p.size.w |= d.markUnsurePixels ? 2u : 0u;  // bit 1: resolve() marks unsure pixels
     // y: the field's hit epsilon scale; z: the radius of the disc the soft rays' directions cover (tan of half the
     // sun's angle, 0 for hard rays); w: the frame's sample index, as a float (exact below 2^24; a float, not its bits,
     // so that no denormal flush can touch it).
     p.trace = glm::vec4(d.rayNormalOffset, 1.0f, d.softShadows ? std::tan(0.5f * d.sunAngle) : 0.0f, float(d.frameIndex & 0xFFFFFFu));
     p.trust = glm::vec4(d.sureHitEpsilon, d.sureMissEpsilon, d.selfClearance, d.sureRaysOnly ? 1.0f : 0.0f);
-    rhi::TextureHandle shadowMap = d.depth;  // bound in Normals mode too (never read there)
+    rhi::TextureHandle shadowMap = d.gbuffer.depth;  // bound in Normals mode too (never read there)
     if (d.mode == ShadowClassifyMode::Cascades) {
         if (!sized(d.shadowMap, "shadowMap", true)) return false;
         if (d.cascadeCount < 1 || d.cascadeCount > kMaxShadowCascades)
@@ -192,16 +192,16 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
     s.shader = classify_;
     s.label = "classify shadows";
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
-    s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.depth), point_});
-    s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.normals), point_});
+    s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.gbuffer.depth), point_});
+    s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.gbuffer.normals), point_});
     s.bindings.textures.push(rhi::TextureBinding{2, rhi::wholeTexture(shadowMap), point_});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, tiles_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::Write));
     if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);  // 2 × 4 tiles a group
-    depth_ = d.depth;
-    normals_ = d.normals;
+    depth_ = d.gbuffer.depth;
+    normals_ = d.gbuffer.normals;
     alphaCache_ = d.alphaCache;
     classified_ = true;
     return true;

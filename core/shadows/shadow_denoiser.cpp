@@ -1,5 +1,5 @@
 // The shadow denoiser (include/bricklight/shadows/denoiser.h): checks, resources and the records of its temporal,
-// decided and filter passes (shaders/classify/denoise_shadows_*.comp). docs/classify.md.
+// decided and filter passes (shaders/shadows/denoise_shadows_*.comp). docs/shadows.md.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -103,7 +103,7 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
             return fail(std::string(name) + " '" + td->debugName + "' is " + std::to_string(td->width) + "x" + std::to_string(td->height) + ", the denoiser " + size);
         return true;
     };
-    if (!check(d.depth, "depth", true) || !check(d.normals, "normals", false)) return false;
+    if (!check(d.gbuffer.depth, "depth", true) || !check(d.gbuffer.normals, "normals", false)) return false;
     const rhi::TextureDesc* out = d.output ? device_.describe(d.output) : nullptr;
     if (!out) return fail("output is missing or not a live texture", ErrorCode::MissingInput);
     if (out->dimension != rhi::TextureDimension::Texture2D || out->format != rhi::Format::R16_FLOAT || !(out->usage & rhi::TextureUsage::Storage))
@@ -111,10 +111,10 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     if (out->width != width_ || out->height != height_)
         return fail("output '" + out->debugName + "' is " + std::to_string(out->width) + "x" + std::to_string(out->height) + ", the denoiser " + size);
     if (!d.resetHistory && !hasHistory_) return fail("there is no history to reproject yet: the first denoise() after create() must set resetHistory", ErrorCode::InvalidState);
-    if (!detail::finite(d.view) || !detail::finite(d.projection) || !detail::finite(d.previousView) || !detail::finite(d.previousProjection) || !detail::finite(d.normalsUnpackScale) ||
-        !detail::finite(d.normalsUnpackOffset))
+    if (!detail::finite(d.camera.view) || !detail::finite(d.camera.projection) || !detail::finite(d.camera.previousView) || !detail::finite(d.camera.previousProjection) || !detail::finite(d.gbuffer.normalsUnpackScale) ||
+        !detail::finite(d.gbuffer.normalsUnpackOffset))
         return fail("the cameras and the normals' unpacking must be finite");
-    const glm::mat4 viewProjection = d.projection * d.view, previous = d.previousProjection * d.previousView;
+    const glm::mat4 viewProjection = d.camera.projection * d.camera.view, previous = d.camera.previousProjection * d.camera.previousView;
     const glm::mat4 inverse = glm::inverse(viewProjection), inversePrevious = glm::inverse(previous);
     if (!detail::finite(inverse) || std::abs(glm::determinant(viewProjection)) < 1.0e-30f) return fail("the camera's view-projection is not invertible");
     if (!detail::finite(inversePrevious) || std::abs(glm::determinant(previous)) < 1.0e-30f) return fail("the previous camera's view-projection is not invertible");
@@ -129,10 +129,10 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     p.inverseViewProjection = inverse;
     p.previousViewProjection = previous;
     p.inversePreviousViewProjection = inversePrevious;
-    p.eye = glm::vec4(glm::vec3(glm::inverse(d.view)[3]), d.depthTolerance);
-    p.normalScale = glm::vec4(d.normalsUnpackScale, d.clampSigma);
-    p.normalBias = glm::vec4(d.normalsUnpackOffset, 0.0f);
-    p.size = glm::uvec4(width_, height_, classifier.tilesX(), d.reversedDepth ? 1u : 0u);
+    p.eye = glm::vec4(glm::vec3(glm::inverse(d.camera.view)[3]), d.depthTolerance);
+    p.normalScale = glm::vec4(d.gbuffer.normalsUnpackScale, d.clampSigma);
+    p.normalBias = glm::vec4(d.gbuffer.normalsUnpackOffset, 0.0f);
+    p.size = glm::uvec4(width_, height_, classifier.tilesX(), d.camera.reversedDepth ? 1u : 0u);
     p.options = glm::uvec4(d.maxHistory, d.resetHistory ? 1u : 0u, 0u, 0u);
     // Written only when it changes (a still camera: never); the textures ping-pong.
     if (!paramsWritten_ || std::memcmp(&p, lastParams_.data(), sizeof(p)) != 0) {
@@ -149,8 +149,8 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     t.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
     t.bindings.readBuffers.push(rhi::ReadBufferBinding{1, classifier.tileList(), {}});
     t.bindings.readBuffers.push(rhi::ReadBufferBinding{2, classifier.tileCount(), {}});
-    t.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.depth), point_});
-    t.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.normals), point_});
+    t.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.gbuffer.depth), point_});
+    t.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.gbuffer.normals), point_});
     t.bindings.textures.push(rhi::TextureBinding{2, rhi::wholeTexture(history_[prev]), point_});
     t.bindings.textures.push(rhi::TextureBinding{3, rhi::wholeTexture(geometry_[prev]), point_});
     t.bindings.storageImages.push(rhi::storageImage(0, classifier.hitMask(), rhi::Access::Read));
@@ -163,8 +163,8 @@ bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDen
     u.shader = decided_;
     u.label = "denoise shadows: decided tiles";
     u.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
-    u.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.depth), point_});
-    u.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.normals), point_});
+    u.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(d.gbuffer.depth), point_});
+    u.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.gbuffer.normals), point_});
     u.bindings.storageImages.push(rhi::storageImage(0, classifier.hitMask(), rhi::Access::Read));
     u.bindings.storageImages.push(rhi::storageImage(1, history_[cur], rhi::Access::Write));
     u.bindings.storageImages.push(rhi::storageImage(2, geometry_[cur], rhi::Access::Write));

@@ -30,9 +30,9 @@ bool ConeTracer::debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle out
         od->height != height_)
         return fail("the output must be a live RGBA8_UNORM texture with Storage usage of the tracer's size", ErrorCode::WrongFormat);
     const TraceDesc& d = *latest_;
-    for (rhi::TextureHandle t : {d.depth, d.normals, d.roughness})
+    for (rhi::TextureHandle t : {d.gbuffer.depth, d.gbuffer.normals, d.gbuffer.roughness})
         if (!device_.describe(t)) return fail("an input of the latest dispatch is no longer live");
-    if (d.motionVectors && !device_.describe(d.motionVectors)) return fail("an input of the latest dispatch is no longer live");
+    if (d.gbuffer.motionVectors && !device_.describe(d.gbuffer.motionVectors)) return fail("an input of the latest dispatch is no longer live");
     if (!coneSampleRecord_) {
         coneSamples_ = shaders::createCoreShader(device_, "vct/cone_samples.comp");
         coneSamplesSdf_ = shaders::createCoreShader(device_, "vct/cone_samples_sdf.comp");

@@ -143,8 +143,8 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
         rhi::TextureHandle texture;
         bool required, output;
     };
-    const Input inputs[] = {{"depth", d.depth, true, false},           {"normals", d.normals, true, false},
-                            {"roughness", d.roughness, true, false},   {"motionVectors", d.motionVectors, false, false},
+    const Input inputs[] = {{"depth", d.gbuffer.depth, true, false},           {"normals", d.gbuffer.normals, true, false},
+                            {"roughness", d.gbuffer.roughness, true, false},   {"motionVectors", d.gbuffer.motionVectors, false, false},
                             {"outputDiffuse", d.outputDiffuse, true, true}, {"outputSpecular", d.outputSpecular, false, true}};
     for (const Input& in : inputs) {
         if (!in.texture) {
@@ -159,7 +159,10 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
         if (in.output && (td->format != rhi::Format::RGBA16_FLOAT || !(td->usage & rhi::TextureUsage::Storage)))
             return fail(std::string(in.name) + " must be RGBA16_FLOAT with Storage usage", ErrorCode::WrongFormat);
     }
-    if (d.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.roughnessChannel) + " is outside 0..3");
+    if (d.gbuffer.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.gbuffer.roughnessChannel) + " is outside 0..3");
+    // The cone widths are fitted to perceptual roughness; a G-buffer of GGX α would widen every cone silently.
+    if (!d.gbuffer.roughnessPerceptual)
+        return fail("gbuffer.roughnessPerceptual = false (GGX α) is not supported: the cone tracer reads perceptual roughness", ErrorCode::Unsupported);
     if (!bindLowResolution(d.params.tracingSparsity, error)) return false;
 
     const ClipmapDesc& cd = clipmap_.desc();
@@ -171,13 +174,13 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
     // The pixel of each block traced this frame: every one of the s² in turn, in a scattered order.
     const uint32_t phase = (frame_ * 3u) % (s * s);
     TraceParamsBlock b{};
-    b.inverseViewProjection = glm::inverse(d.projection * d.view);
-    b.previousViewProjection = d.previousProjection * d.previousView;
+    b.inverseViewProjection = glm::inverse(d.camera.projection * d.camera.view);
+    b.previousViewProjection = d.camera.previousProjection * d.camera.previousView;
     b.eye = glm::vec4(d.cameraPosition, 0.0f);
     b.size = glm::uvec4(width_, height_, s, frame_);
-    b.lowSize = glm::uvec4(lowW, lowH, p.diffuseCones, (d.resetHistory || frame_ == 0 ? 1u : 0u) | (d.motionVectors ? 2u : 0u));
-    b.normalUnpackScale = glm::vec4(d.normalsUnpackScale, float(d.roughnessChannel));
-    b.normalUnpackOffset = glm::vec4(d.normalsUnpackOffset, p.maxSpecularRoughness);
+    b.lowSize = glm::uvec4(lowW, lowH, p.diffuseCones, (d.resetHistory || frame_ == 0 ? 1u : 0u) | (d.gbuffer.motionVectors ? 2u : 0u));
+    b.normalUnpackScale = glm::vec4(d.gbuffer.normalsUnpackScale, float(d.gbuffer.roughnessChannel));
+    b.normalUnpackOffset = glm::vec4(d.gbuffer.normalsUnpackOffset, p.maxSpecularRoughness);
     b.cone = glm::vec4(2.0f * std::tan(0.5f * angle), p.tracingStep, p.opacityCorrection, p.initialOffset);
     b.limits = glm::vec4(p.maxDistance, p.ambientRange > 0.0f ? p.ambientRange : 8.0f * cd.finestVoxelSize, p.temporalWeight, float(p.lightLeakLag));
     // The diffuse cones turn by the golden angle's fraction of a turn each frame (a low-discrepancy sequence).
@@ -244,7 +247,7 @@ void ConeTracer::bindField(rhi::Bindings& bindings, const TraceDesc& d) const {
 
 void ConeTracer::bindCommon(rhi::Bindings& bindings, const TraceDesc& d) const {
     uint8_t slot = 0;
-    for (rhi::TextureHandle t : {d.depth, d.normals, d.roughness, d.motionVectors ? d.motionVectors : d.depth})
+    for (rhi::TextureHandle t : {d.gbuffer.depth, d.gbuffer.normals, d.gbuffer.roughness, d.gbuffer.motionVectors ? d.gbuffer.motionVectors : d.gbuffer.depth})
         bindings.textures.push(rhi::TextureBinding{slot++, rhi::wholeTexture(t), point_});
     clipmap_.traceBindings(bindings, 8, 7);
     bindings.readBuffers.push(rhi::ReadBufferBinding{6, params_, {}});

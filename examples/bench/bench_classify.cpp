@@ -74,12 +74,12 @@ int runClassify(const Options& o) {
     const BenchCamera camera = cameraAt(geometry.camera, 0.0f, aspect, size);
     gbuffer.record(*device, *scene, camera, camera, o.width, o.height);
     shadows::ShadowClassifyDesc d;
-    d.view = camera.view;
-    d.projection = camera.projection;
-    d.depth = gbuffer.depth;
-    d.normals = gbuffer.normals;
-    d.normalsUnpackScale = glm::vec3(1.0f);
-    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.camera.view = camera.view;
+    d.camera.projection = camera.projection;
+    d.gbuffer.depth = gbuffer.depth;
+    d.gbuffer.normals = gbuffer.normals;
+    d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
     d.sunDirection = sun;
     d.shadowMap = shadowMap;
     d.cascadeCount = 1;
@@ -128,12 +128,12 @@ int runClassify(const Options& o) {
         return 1;
     }
     shadows::ShadowDenoiseDesc n;
-    n.view = n.previousView = camera.view;
-    n.projection = n.previousProjection = camera.projection;
-    n.depth = gbuffer.depth;
-    n.normals = gbuffer.normals;
-    n.normalsUnpackScale = glm::vec3(1.0f);
-    n.normalsUnpackOffset = glm::vec3(0.0f);
+    n.camera.view = n.camera.previousView = camera.view;
+    n.camera.projection = n.camera.previousProjection = camera.projection;
+    n.gbuffer.depth = gbuffer.depth;
+    n.gbuffer.normals = gbuffer.normals;
+    n.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    n.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
     n.output = mask;
     d.sunAngle = glm::radians(0.5f);
     d.softShadows = true;

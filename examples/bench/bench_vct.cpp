@@ -191,18 +191,18 @@ int runVct(const Options& o) {
             device->endMarker();
             clipmap->finishVoxelization();
             vct::TraceDesc t;
-            t.view = now.view;
-            t.projection = now.projection;
-            t.previousView = previous.view;
-            t.previousProjection = previous.projection;
+            t.camera.view = now.view;
+            t.camera.projection = now.projection;
+            t.camera.previousView = previous.view;
+            t.camera.previousProjection = previous.projection;
             t.cameraPosition = now.eye;
-            t.depth = gbuffer.depth;
-            t.normals = gbuffer.normals;
-            t.normalsUnpackScale = glm::vec3(1.0f);  // float normals
-            t.normalsUnpackOffset = glm::vec3(0.0f);
-            t.roughness = gbuffer.normals;
-            t.roughnessChannel = 3;
-            t.motionVectors = gbuffer.motion;
+            t.gbuffer.depth = gbuffer.depth;
+            t.gbuffer.normals = gbuffer.normals;
+            t.gbuffer.normalsUnpackScale = glm::vec3(1.0f);  // float normals
+            t.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+            t.gbuffer.roughness = gbuffer.normals;
+            t.gbuffer.roughnessChannel = 3;
+            t.gbuffer.motionVectors = gbuffer.motion;
             t.outputDiffuse = diffuse;
             t.outputSpecular = mode == vct::EmittanceMode::None ? rhi::TextureHandle{} : specular;
             t.params = params;

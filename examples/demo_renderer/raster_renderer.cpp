@@ -334,18 +334,18 @@ void RasterRenderer::render() {
             runAlphaPass();
         }
         gi::DispatchDesc g;
-        g.view = view_;
-        g.projection = projection_;
-        g.previousView = previousView_;
-        g.previousProjection = previousProjection_;
+        g.camera.view = view_;
+        g.camera.projection = projection_;
+        g.camera.previousView = previousView_;
+        g.camera.previousProjection = previousProjection_;
         g.cameraPosition = camera_.eye;
-        g.depth = depth_;
-        g.normals = normal_;
-        g.normalsUnpackScale = glm::vec3(1.0f);
-        g.normalsUnpackOffset = glm::vec3(0.0f);
-        g.roughness = albedo_;
-        g.roughnessChannel = 3;
-        g.motionVectors = motion_;
+        g.gbuffer.depth = depth_;
+        g.gbuffer.normals = normal_;
+        g.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+        g.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+        g.gbuffer.roughness = albedo_;
+        g.gbuffer.roughnessChannel = 3;
+        g.gbuffer.motionVectors = motion_;
         g.previousLitOutput = lit_;
         if (options_.giRelight) {
             g.diffuseAlbedo = albedo_;  // base colour: metals' (small) diffuse part is overestimated off screen

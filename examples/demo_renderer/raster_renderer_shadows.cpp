@@ -247,9 +247,8 @@ Image RasterRenderer::readSunVisibility() {
 
 uint32_t RasterRenderer::hybridShadowFinerCascades() const {
     if (options_.shadows != ShadowMode::Hybrid) return 0;
-    // Three: the atrium's finest voxel goes from 1.03 m to 0.13 m within 4 m of the camera (8 m cascades). Measured
-    // (tests/shadows/shadow_tests.cpp, hard sun, wrong pixels of 4977): 0 finer 18, 2 finer 13, 3 finer 13, 4 finer
-    // 13; soft sun, atrium penumbra relMSE at 3 degrees: 0 finer 0.79, 2 finer 0.63, 3 finer 0.18 (maps 0.53).
+    // Three finer cascades around the camera: the fewest after which the rays' answers stop improving (the
+    // measurements: docs/notes/shadows-hybrid.md, "Finer cascades around the camera").
     return 3;
 }
 
@@ -266,12 +265,12 @@ void RasterRenderer::classifyShadows() {
         if (gi_) runAlphaPass();  // the shadow rays read this frame's coverage (the field's bricks may have moved)
     }
     shadows::ShadowClassifyDesc d;
-    d.view = view_;
-    d.projection = projection_;
-    d.depth = depth_;
-    d.normals = normal_;
-    d.normalsUnpackScale = glm::vec3(1.0f);
-    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.camera.view = view_;
+    d.camera.projection = projection_;
+    d.gbuffer.depth = depth_;
+    d.gbuffer.normals = normal_;
+    d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
     d.sunDirection = sunDirection_;
     d.shadowMap = shadowMap_;
     d.cascadeCount = kShadowCascades;
@@ -320,14 +319,14 @@ void RasterRenderer::classifyShadows() {
     device_.endMarker();
     if (soft) {
         shadows::ShadowDenoiseDesc n;
-        n.view = view_;
-        n.projection = projection_;
-        n.previousView = previousView_;
-        n.previousProjection = previousProjection_;
-        n.depth = depth_;
-        n.normals = normal_;
-        n.normalsUnpackScale = glm::vec3(1.0f);
-        n.normalsUnpackOffset = glm::vec3(0.0f);
+        n.camera.view = view_;
+        n.camera.projection = projection_;
+        n.camera.previousView = previousView_;
+        n.camera.previousProjection = previousProjection_;
+        n.gbuffer.depth = depth_;
+        n.gbuffer.normals = normal_;
+        n.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+        n.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
         n.output = sunMask_;
         n.resetHistory = softShadowFrames_ == 0;
         device_.beginMarker("shadow denoise");

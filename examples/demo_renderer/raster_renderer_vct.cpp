@@ -116,18 +116,18 @@ void RasterRenderer::traceVct() {
         device_.endMarker();
     }
     vct::TraceDesc t;
-    t.view = view_;
-    t.projection = projection_;
-    t.previousView = previousView_;
-    t.previousProjection = previousProjection_;
+    t.camera.view = view_;
+    t.camera.projection = projection_;
+    t.camera.previousView = previousView_;
+    t.camera.previousProjection = previousProjection_;
     t.cameraPosition = camera_.eye;
-    t.depth = depth_;
-    t.normals = normal_;
-    t.normalsUnpackScale = glm::vec3(1.0f);  // float normals
-    t.normalsUnpackOffset = glm::vec3(0.0f);
-    t.roughness = albedo_;
-    t.roughnessChannel = 3;
-    t.motionVectors = motion_;
+    t.gbuffer.depth = depth_;
+    t.gbuffer.normals = normal_;
+    t.gbuffer.normalsUnpackScale = glm::vec3(1.0f);  // float normals
+    t.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+    t.gbuffer.roughness = albedo_;
+    t.gbuffer.roughnessChannel = 3;
+    t.gbuffer.motionVectors = motion_;
     t.outputDiffuse = giDiffuse_;
     t.outputSpecular = options_.vctEmittance == vct::EmittanceMode::None ? rhi::TextureHandle{} : giSpecular_;
     t.params = options_.vctTrace;

@@ -168,18 +168,18 @@ int main(int argc, char** argv) {
         recorded &= passes->drawGBuffer(roomBuffers, viewProjection, previousProjection * previousView);
         field->update(room.camera.eye);  // rebuilds what changed (here: everything, once), then nothing
         gi::DispatchDesc d;
-        d.view = view;
-        d.projection = projection;
-        d.previousView = previousView;
-        d.previousProjection = previousProjection;
+        d.camera.view = view;
+        d.camera.projection = projection;
+        d.camera.previousView = previousView;
+        d.camera.previousProjection = previousProjection;
         d.cameraPosition = room.camera.eye;
-        d.depth = images.depth;
-        d.normals = images.normal;  // stored as-is in a float target: no unpacking
-        d.normalsUnpackScale = glm::vec3(1.0f);
-        d.normalsUnpackOffset = glm::vec3(0.0f);
-        d.roughness = images.albedo;
-        d.roughnessChannel = 3;
-        d.motionVectors = images.motion;
+        d.gbuffer.depth = images.depth;
+        d.gbuffer.normals = images.normal;  // stored as-is in a float target: no unpacking
+        d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+        d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+        d.gbuffer.roughness = images.albedo;
+        d.gbuffer.roughnessChannel = 3;
+        d.gbuffer.motionVectors = images.motion;
         d.previousLitOutput = images.lit;  // last frame's composite (zero in the first frame)
         d.diffuseAlbedo = images.albedo;   // with the lights: off-screen relighting
         d.lights = &sun;

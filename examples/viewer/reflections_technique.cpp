@@ -1,4 +1,4 @@
-// The reflections panel (docs/classify.md "Hybrid reflections", docs/render.md "Reflections"): where glossy
+// The reflections panel (docs/reflections.md "Hybrid reflections", docs/render.md "Reflections"): where glossy
 // reflections come from — GI's specular alone, or the reflection classifier's screen-space and distance-field rays,
 // denoised — and the classifier's counts of the latest frame. The views "reflections", "reflection-tile-class",
 // "reflection-rays" and "reflection-counters" show its output and tiles. Registered, not called by the UI code.
@@ -35,7 +35,7 @@ void reflectionsPanel(ViewerApp& app) {
 
 }  // namespace
 
-BRICKLIGHT_VIEWER_TECHNIQUE(Technique{"Reflections", "Hybrid reflections: the reflection classifier, screen-space and SDF rays (docs/classify.md).",
+BRICKLIGHT_VIEWER_TECHNIQUE(Technique{"Reflections", "Hybrid reflections: the reflection classifier, screen-space and SDF rays (docs/reflections.md).",
                                       35, reflectionsPanel});
 
 }  // namespace bricklight::viewer

@@ -1,4 +1,4 @@
-// The sun's shadows panel (docs/render.md "Shadows", docs/classify.md): where the sun's visibility comes from —
+// The sun's shadows panel (docs/render.md "Shadows", docs/shadows.md): where the sun's visibility comes from —
 // BVH rays, cascaded shadow maps, or the maps classified per tile with rays through the distance field (hybrid) —
 // the maps' parameters (rebuild the renderer), and the shadow classifier's counts of the latest frame. Registered,
 // not called by the UI code.
@@ -46,7 +46,7 @@ void shadowsPanel(ViewerApp& app) {
 
 }  // namespace
 
-BRICKLIGHT_VIEWER_TECHNIQUE(Technique{"Sun shadows", "Shadow maps, the shadow classifier and hybrid SDF shadows (docs/classify.md).", 30,
+BRICKLIGHT_VIEWER_TECHNIQUE(Technique{"Sun shadows", "Shadow maps, the shadow classifier and hybrid SDF shadows (docs/shadows.md).", 30,
                                       shadowsPanel});
 
 }  // namespace bricklight::viewer

@@ -16,6 +16,7 @@
 #include "bricklight/reflections/ray_list.h"
 #include "bricklight/errors.h"
 #include "bricklight/memory_use.h"
+#include "bricklight/gbuffer/inputs.h"
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
@@ -129,22 +130,11 @@ constexpr uint32_t kMaxLights = 64;
 //   lights                       no        lightCount <= kMaxLights (needs diffuseAlbedo)
 //   environmentMap               with environmentKind != None
 struct DispatchDesc {
-    glm::mat4 view{1.0f}, projection{1.0f};
-    glm::mat4 previousView{1.0f}, previousProjection{1.0f};
+    gbuffer::Camera camera;                    // bricklight/gbuffer/inputs.h
+    bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     glm::vec3 cameraPosition{0.0f};
 
-    rhi::TextureHandle depth;             // one channel of device depth (D32_FLOAT, R32_FLOAT or R16_FLOAT)
-    rhi::TextureHandle normals;           // world normal in xyz = stored * normalsUnpackScale + normalsUnpackOffset
-    glm::vec3 normalsUnpackScale{2.0f};
-    glm::vec3 normalsUnpackOffset{-1.0f};
-    rhi::TextureHandle roughness;         // any float/unorm texture; one channel is roughness
-    uint32_t roughnessChannel = 0;
-    bool roughnessPerceptual = true;      // false: the channel holds perceptual roughness squared
     float roughnessThreshold = 0.75f;     // perceptual roughness above which no specular rays are traced
-    // Optional: UV-space motion (current - previous) in xy, times motionVectorScale. Without them GI takes
-    // the world as still and derives the motion from depth and the two cameras.
-    rhi::TextureHandle motionVectors;
-    glm::vec2 motionVectorScale{1.0f};
     // The previous frame's lit image (the light that surfaces send into the scene): feeds the radiance
     // cache. Any size; sampled by UV.
     rhi::TextureHandle previousLitOutput;
@@ -181,7 +171,7 @@ struct DispatchDesc {
     const vct::Clipmap* unseenLight = nullptr;
 };
 
-// Hybrid reflections' distance-field half (docs/classify.md, "Hybrid reflections"): after this frame's dispatch(),
+// Hybrid reflections' distance-field half (docs/reflections.md, "Hybrid reflections"): after this frame's dispatch(),
 // one reflection ray per listed display pixel, traced through the whole field (not only inside a pre-traced brick as
 // the GI's own specular rays are), reading the radiance cache where it hits and the environment where it leaves the
 // field. Each pixel's ray is blReflectionDirection's (include/bricklight/reflection_ray.glsl) for its

@@ -18,6 +18,7 @@
 
 #include "bricklight/errors.h"
 #include "bricklight/memory_use.h"
+#include "bricklight/gbuffer/inputs.h"
 #include "bricklight/rhi.h"
 #include "bricklight/memory_use.h"
 #include "bricklight/sdf.h"
@@ -299,12 +300,9 @@ bool checkConeTraceParams(const ConeTraceParams& params, Error* error = nullptr)
 // DispatchDesc): depth [0, 1] with 1 the far plane, NDC y = −1 at the top row, world-space normals
 // (unpacked as n · scale + offset), motion vectors as UV (current − previous).
 struct TraceDesc {
-    glm::mat4 view{1.0f}, projection{1.0f}, previousView{1.0f}, previousProjection{1.0f};
+    gbuffer::Camera camera;                    // bricklight/gbuffer/inputs.h
+    bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     glm::vec3 cameraPosition{0.0f};
-    rhi::TextureHandle depth, normals, roughness, motionVectors;  // motionVectors optional
-    // The default unpacks an 8-bit UNORM normal, as every other technique's does; float normals take {1}, {0}.
-    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
-    uint32_t roughnessChannel = 0;
     // RGBA16_FLOAT, display size, Storage. Diffuse: rgb irradiance / π (before albedo), a ambient (1 open);
     // specular (optional): rgb prefiltered radiance along the mirror direction.
     rhi::TextureHandle outputDiffuse, outputSpecular;

@@ -3,7 +3,7 @@
 #include "bricklight/bindings.glsl"
 // Depth pyramid, mip n + 1 from mip n: the min of the mins and the max of the maxes of the 2 × 2 texels below,
 // and of a third column (row) where mip n's width (height) is odd and this is the last column (row), so every
-// texel of mip n lies under one of mip n + 1 (core/gbuffer/depth_pyramid.cpp, docs/depth_pyramid.md).
+// texel of mip n lies under one of mip n + 1 (core/gbuffer/depth_pyramid.cpp, docs/gbuffer.md).
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_CONSTANTS(0) uniform Params {
     uvec4 size;  // xy mip n's size, zw mip n + 1's

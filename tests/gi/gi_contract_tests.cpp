@@ -76,8 +76,8 @@ void makeContext(TestDevice& td, const sdf::SdfScene& scene, OwnContext& own, ui
 // The renderer's G-buffer into our context's outputs; the previous camera is this one (a still view).
 gi::DispatchDesc inputsOf(const render::GBufferView& g, const OwnContext& own) {
     gi::DispatchDesc d = giInputsOf(g, own.diffuse, own.specular);
-    d.previousView = g.view;
-    d.previousProjection = g.projection;
+    d.camera.previousView = g.view;
+    d.camera.previousProjection = g.projection;
     return d;
 }
 
@@ -105,8 +105,8 @@ struct CameraMistake {
 const CameraMistake kMistakes[] = {
     {"projection without the y-flip",
      [](gi::DispatchDesc& d, const render::GBufferView&) {
-         d.projection[1][1] = -d.projection[1][1];
-         d.previousProjection = d.projection;
+         d.camera.projection[1][1] = -d.camera.projection[1][1];
+         d.camera.previousProjection = d.camera.projection;
      }},
     {"projection to [-1, 1] depth (GL style)",
      [](gi::DispatchDesc& d, const render::GBufferView& g) {
@@ -116,12 +116,12 @@ const CameraMistake kMistakes[] = {
          glm::mat4 gl = glm::perspectiveRH_NO(2.0f * std::atan(1.0f / std::fabs(g.projection[1][1])),
                                               g.projection[1][1] / -g.projection[0][0], nearPlane, farPlane);
          gl[1][1] = -gl[1][1];
-         d.projection = d.previousProjection = gl;
+         d.camera.projection = d.camera.previousProjection = gl;
      }},
     {"transposed matrices",
      [](gi::DispatchDesc& d, const render::GBufferView&) {
-         d.view = d.previousView = glm::transpose(d.view);
-         d.projection = d.previousProjection = glm::transpose(d.projection);
+         d.camera.view = d.camera.previousView = glm::transpose(d.camera.view);
+         d.camera.projection = d.camera.previousProjection = glm::transpose(d.camera.projection);
      }},
 };
 
@@ -176,7 +176,7 @@ void repeatedErrorsAreCounted(const std::string& backend) {
     OwnContext own;
     makeContext(td, *r->sdfScene(), own);
     gi::DispatchDesc d = inputsOf(r->gbuffer(), own);
-    d.normals = {};
+    d.gbuffer.normals = {};
     for (int i = 0; i < 5; ++i) CHECK_FALSE(own.context->dispatch(d));
     CHECK(own.context->lastError().code == ErrorCode::MissingInput);
     REQUIRE(own.messages->size() == 1);  // the callback heard it once
@@ -217,11 +217,11 @@ void inputChecksByKindAndChannels(const std::string& backend) {
     };
     const Case cases[] = {
         {"input 'depth' (texture 'rgba32 depth') has format RGBA32_FLOAT; it must hold one channel of device depth", ErrorCode::WrongFormat,
-         [&](gi::DispatchDesc& d) { d.depth = rgbaDepth; }},
-        {"input 'normals' (texture 'gbuffer depth') has format", ErrorCode::WrongFormat, [&](gi::DispatchDesc& d) { d.normals = g.depth; }},
+         [&](gi::DispatchDesc& d) { d.gbuffer.depth = rgbaDepth; }},
+        {"input 'normals' (texture 'gbuffer depth') has format", ErrorCode::WrongFormat, [&](gi::DispatchDesc& d) { d.gbuffer.normals = g.depth; }},
         {"input 'motionVectors' (texture 'gbuffer depth') has format", ErrorCode::WrongFormat,
-         [&](gi::DispatchDesc& d) { d.motionVectors = g.depth; }},
-        {"input 'roughness' is not a live texture", ErrorCode::InvalidHandle, [](gi::DispatchDesc& d) { d.roughness = {999999}; }},
+         [&](gi::DispatchDesc& d) { d.gbuffer.motionVectors = g.depth; }},
+        {"input 'roughness' is not a live texture", ErrorCode::InvalidHandle, [](gi::DispatchDesc& d) { d.gbuffer.roughness = {999999}; }},
         {"trace.tMax must be greater", ErrorCode::InvalidArgument, [](gi::DispatchDesc& d) { d.trace.tMax = 0.0f; }},
         {"lightCount 65 is above kMaxLights", ErrorCode::OverBudget, [&](gi::DispatchDesc& d) {
              static gi::Light light;
@@ -253,7 +253,7 @@ void motionVectorsAreOptional(const std::string& backend) {
     makeContext(td, *r->sdfScene(), with);
     makeContext(td, *r->sdfScene(), without);
     gi::DispatchDesc a = inputsOf(g, with), b = inputsOf(g, without);
-    b.motionVectors = {};
+    b.gbuffer.motionVectors = {};
     for (int f = 0; f < 24; ++f) {
         REQUIRE(with.context->dispatch(a));
         REQUIRE(without.context->dispatch(b));

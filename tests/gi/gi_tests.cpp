@@ -300,12 +300,12 @@ void badInputChangesNothing(const std::string& backend) {
         std::function<void(gi::DispatchDesc&)> spoil;
     };
     const Case cases[] = {
-        {"input 'depth' is missing", [](gi::DispatchDesc& d) { d.depth = {}; }},
-        {"must be the display size", [&](gi::DispatchDesc& d) { d.depth = small; }},
+        {"input 'depth' is missing", [](gi::DispatchDesc& d) { d.gbuffer.depth = {}; }},
+        {"must be the display size", [&](gi::DispatchDesc& d) { d.gbuffer.depth = small; }},
         {"output 'outputSpecular' (texture 'small output') is 16x32", [&](gi::DispatchDesc& d) { d.outputSpecular = small; }},
         {"must be a 2D RGBA16_FLOAT texture", [&](gi::DispatchDesc& d) { d.outputDiffuse = wrongFormat; }},
-        {"roughnessChannel 7", [](gi::DispatchDesc& d) { d.roughnessChannel = 7; }},
-        {"matrix 'projection' is not finite", [](gi::DispatchDesc& d) { d.projection[0][0] = NAN; }},
+        {"roughnessChannel 7", [](gi::DispatchDesc& d) { d.gbuffer.roughnessChannel = 7; }},
+        {"matrix 'projection' is not finite", [](gi::DispatchDesc& d) { d.camera.projection[0][0] = NAN; }},
         {"trace.startCascade 9", [](gi::DispatchDesc& d) { d.trace.startCascade = 9; }},
         {"trace.maxIterationsPerCascade 0 is outside", [](gi::DispatchDesc& d) { d.trace.maxIterationsPerCascade = 0; }},
         {"trace.coarsenAfterVoxels must be finite", [](gi::DispatchDesc& d) { d.trace.coarsenAfterVoxels = NAN; }},

@@ -168,14 +168,14 @@ struct Fixture {
     }
     reflections::ReflectionClassifyDesc describe() const {
         reflections::ReflectionClassifyDesc d;
-        d.view = d.previousView = s.view;
-        d.projection = d.previousProjection = s.projection;
-        d.depth = depth;
-        d.normals = normals;
-        d.normalsUnpackScale = glm::vec3(1.0f);
-        d.normalsUnpackOffset = glm::vec3(0.0f);
-        d.roughness = roughness;
-        d.roughnessChannel = 1;
+        d.camera.view = d.camera.previousView = s.view;
+        d.camera.projection = d.camera.previousProjection = s.projection;
+        d.gbuffer.depth = depth;
+        d.gbuffer.normals = normals;
+        d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+        d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+        d.gbuffer.roughness = roughness;
+        d.gbuffer.roughnessChannel = 1;
         return d;
     }
     reflections::ReflectionTraceDesc traceDesc() const {
@@ -438,7 +438,7 @@ void countersFollowTheMotion(const std::string& backend) {
     std::vector<uint32_t> history(kTiles * kTiles, counter(0, 4, 0, 4));
     history[3 * kTiles + 3] = counter(6, 0, 6, 0);
     reflections::ReflectionClassifyDesc d = f.describe();
-    d.previousView = floorView(-2.0f);
+    d.camera.previousView = floorView(-2.0f);
     d.frameIndex = 3;
     REQUIRE(f.td.device->writeTexture(f.c->hitCounter(), {}, history.data()));
     const Lists fromDepth = classifyAndRead(f, d);
@@ -458,8 +458,8 @@ void countersFollowTheMotion(const std::string& backend) {
     md.debugName = "test motion";
     const rhi::TextureHandle motionTexture = f.td.device->createTexture(md, motion.data());
     REQUIRE(motionTexture);
-    d.motionVectors = motionTexture;
-    d.previousView = d.view;  // the motion vectors alone carry it
+    d.gbuffer.motionVectors = motionTexture;
+    d.camera.previousView = d.camera.view;  // the motion vectors alone carry it
     REQUIRE(f.td.device->writeTexture(f.c->hitCounter(), {}, history.data()));
     const Lists fromVectors = classifyAndRead(f, d);
     const Expected ev = expectClasses(history, d.frameIndex, d, [](glm::ivec2 tile, glm::ivec2) { return tile + glm::ivec2(1, 0); });
@@ -665,35 +665,35 @@ void refusesBadInput(const std::string& backend) {
         CHECK(f.c->hitCounter() == counterBefore);  // no state changed
     };
     reflections::ReflectionClassifyDesc d = f.describe();
-    d.depth = {};
+    d.gbuffer.depth = {};
     refused(d, "depth is missing");
     d = f.describe();
-    d.depth = f.normals;
+    d.gbuffer.depth = f.normals;
     refused(d, "must be D32_FLOAT or R32_FLOAT");
     d = f.describe();
-    d.normals = f.output;  // storage and sampled, the right size: fine; a wrong size is not
+    d.gbuffer.normals = f.output;  // storage and sampled, the right size: fine; a wrong size is not
     rhi::TextureDesc small;
     small.width = 32;
     small.height = 64;
     small.format = rhi::Format::RGBA32_FLOAT;
     small.debugName = "small";
     const rhi::TextureHandle smallTexture = f.td.device->createTexture(small);
-    d.normals = smallTexture;
+    d.gbuffer.normals = smallTexture;
     refused(d, "'small' is 32x64, the classifier 64x64");
     d = f.describe();
-    d.roughnessChannel = 4;
+    d.gbuffer.roughnessChannel = 4;
     refused(d, "roughnessChannel 4");
     d = f.describe();
-    d.roughness = f.depth;  // one channel, channel 1 asked
+    d.gbuffer.roughness = f.depth;  // one channel, channel 1 asked
     refused(d, "needs 2 float or unorm channel(s)");
     d = f.describe();
-    d.motionVectors = f.lit;  // unorm: motion must be signed
+    d.gbuffer.motionVectors = f.lit;  // unorm: motion must be signed
     refused(d, "motionVectors 'test previous lit' has format RGBA8_UNORM");
     d = f.describe();
-    d.view[1][1] = NAN;
+    d.camera.view[1][1] = NAN;
     refused(d, "must be finite");
     d = f.describe();
-    d.previousView = glm::mat4(0.0f);
+    d.camera.previousView = glm::mat4(0.0f);
     refused(d, "previous camera's view-projection is not invertible");
     d = f.describe();
     d.roughnessThreshold = -0.1f;

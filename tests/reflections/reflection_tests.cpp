@@ -1,7 +1,7 @@
 // Hybrid reflections in the renderer (ReflectionMode::Hybrid: the reflection classifier's screen-space and distance-
 // field rays, denoised, over GI's specular) against the path tracer, on a mirror-like and a glossy metal floor, with
 // GI's specular alone as the baseline they must beat; across backends; and the option's refusals. Bounds are stated
-// where they are asserted; docs/classify.md lists the figures.
+// where they are asserted; docs/reflections.md lists the figures.
 #include <cmath>
 
 #include "backend_test.h"
@@ -110,7 +110,7 @@ void glossyFloor(const std::string& backend) {
     // Roughness 0.3, otherwise as above: the lobe is wide, and 1324 of 1513 rays resolve on screen. Measured: GI relMSE
     // 0.0035, mean 0.01425 (98 % of 0.01455); hybrid relMSE 0.00083, mean 0.01300 (89 %). The hybrid is the closer
     // per pixel but the darker on average; its screen-space and SDF halves alone give 93 % and 92 %, so the shortfall
-    // is common to both (not understood; docs/classify.md "Limitations"). Bounds: relMSE about twice the measured;
+    // is common to both (not understood; docs/reflections.md "Limitations"). Bounds: relMSE about twice the measured;
     // the mean within 15 %.
     const FloorResult r = floorAgainstReference(backend, 0.3f);
     CHECK(r.hybrid.relMse < 0.5 * r.gi.relMse);

@@ -78,18 +78,18 @@ inline bool allFinite(const std::vector<float>& v) {
 // GI's inputs from the renderer's G-buffer (the renderer's own GI takes the same), into the given outputs.
 inline gi::DispatchDesc giInputsOf(const render::GBufferView& g, rhi::TextureHandle outputDiffuse, rhi::TextureHandle outputSpecular) {
     gi::DispatchDesc d;
-    d.view = g.view;
-    d.projection = g.projection;
-    d.previousView = g.previousView;
-    d.previousProjection = g.previousProjection;
+    d.camera.view = g.view;
+    d.camera.projection = g.projection;
+    d.camera.previousView = g.previousView;
+    d.camera.previousProjection = g.previousProjection;
     d.cameraPosition = g.eye;
-    d.depth = g.depth;
-    d.normals = g.normal;
-    d.normalsUnpackScale = glm::vec3(1.0f);
-    d.normalsUnpackOffset = glm::vec3(0.0f);
-    d.roughness = g.albedo;
-    d.roughnessChannel = 3;
-    d.motionVectors = g.motion;
+    d.gbuffer.depth = g.depth;
+    d.gbuffer.normals = g.normal;
+    d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+    d.gbuffer.roughness = g.albedo;
+    d.gbuffer.roughnessChannel = 3;
+    d.gbuffer.motionVectors = g.motion;
     d.previousLitOutput = g.lit;
     d.outputDiffuse = outputDiffuse;
     d.outputSpecular = outputSpecular;

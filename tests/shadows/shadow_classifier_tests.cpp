@@ -105,12 +105,12 @@ Inputs upload(TestDevice& td, const Scene& s) {
 
 shadows::ShadowClassifyDesc describe(const Scene& s, const Inputs& in) {
     shadows::ShadowClassifyDesc d;
-    d.view = s.view;
-    d.projection = s.projection;
-    d.depth = in.depth;
-    d.normals = in.normals;
-    d.normalsUnpackScale = glm::vec3(1.0f);
-    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.camera.view = s.view;
+    d.camera.projection = s.projection;
+    d.gbuffer.depth = in.depth;
+    d.gbuffer.normals = in.normals;
+    d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
     d.sunDirection = glm::vec3(0.0f, 1.0f, 0.0f);
     d.sunAngle = 0.1f;  // a wide sun: a penumbra band of about ±0.1 around the plate's outline, a search radius of 1 unit
     d.shadowMap = in.shadowMap;
@@ -362,11 +362,11 @@ void refusesBadInput(const std::string& backend) {
     d.cascadeCount = 0;
     refused(d, "cascadeCount 0");
     d = describe(s, in);
-    d.depth = in.shadowMap;  // 128 × 64
+    d.gbuffer.depth = in.shadowMap;  // 128 × 64
     refused(d, "the classifier 64x32");
     d = describe(s, in);
-    d.normals = in.depth;
-    d.depth = in.normals;
+    d.gbuffer.normals = in.depth;
+    d.gbuffer.depth = in.normals;
     refused(d, "must be D32_FLOAT or R32_FLOAT");
     d = describe(s, in);
     d.sunDirection = glm::vec3(NAN, 1.0f, 0.0f);
@@ -378,7 +378,7 @@ void refusesBadInput(const std::string& backend) {
     d.cascades[0].uvRect = glm::vec4(0.5f, 0.0f, 0.4f, 1.0f);
     refused(d, "uvRect");
     d = describe(s, in);
-    d.view = glm::mat4(0.0f);
+    d.camera.view = glm::mat4(0.0f);
     refused(d, "not invertible");
     d = describe(s, in);
     d.tileCutOff = 33;

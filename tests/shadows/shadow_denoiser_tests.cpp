@@ -209,12 +209,12 @@ struct Fixture {
 
     shadows::ShadowClassifyDesc classifyDesc(uint32_t frame) const {
         shadows::ShadowClassifyDesc d;
-        d.view = s.view;
-        d.projection = s.projection;
-        d.depth = depth;
-        d.normals = normals;
-        d.normalsUnpackScale = glm::vec3(1.0f);
-        d.normalsUnpackOffset = glm::vec3(0.0f);
+        d.camera.view = s.view;
+        d.camera.projection = s.projection;
+        d.gbuffer.depth = depth;
+        d.gbuffer.normals = normals;
+        d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+        d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
         d.sunDirection = glm::vec3(0.0f, 1.0f, 0.0f);
         d.sunAngle = kSunAngle;
         d.softShadows = true;
@@ -229,12 +229,12 @@ struct Fixture {
     }
     shadows::ShadowDenoiseDesc denoiseDesc(bool reset) const {
         shadows::ShadowDenoiseDesc d;
-        d.view = d.previousView = s.view;
-        d.projection = d.previousProjection = s.projection;
-        d.depth = depth;
-        d.normals = normals;
-        d.normalsUnpackScale = glm::vec3(1.0f);
-        d.normalsUnpackOffset = glm::vec3(0.0f);
+        d.camera.view = d.camera.previousView = s.view;
+        d.camera.projection = d.camera.previousProjection = s.projection;
+        d.gbuffer.depth = depth;
+        d.gbuffer.normals = normals;
+        d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+        d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
         d.output = output;
         d.resetHistory = reset;
         return d;
@@ -403,10 +403,10 @@ void refusesBadInput(const std::string& backend) {
     d.output = half;
     refused(d, "output 'test small visibility' is 64x64, the denoiser 128x64");
     d = f.denoiseDesc(true);
-    d.depth = f.normals;  // RGBA32_FLOAT
+    d.gbuffer.depth = f.normals;  // RGBA32_FLOAT
     refused(d, "depth 'test normals' must be D32_FLOAT or R32_FLOAT");
     d = f.denoiseDesc(true);
-    d.normals = {};
+    d.gbuffer.normals = {};
     refused(d, "normals is missing");
     d = f.denoiseDesc(true);
     d.maxHistory = 0;
@@ -415,7 +415,7 @@ void refusesBadInput(const std::string& backend) {
     d.filterPasses = 9;
     refused(d, "filterPasses 9");
     d = f.denoiseDesc(true);
-    d.previousView = glm::mat4(0.0f);
+    d.camera.previousView = glm::mat4(0.0f);
     refused(d, "previous camera's view-projection is not invertible");
     auto other = shadows::ShadowClassifier::create(*td.device, {kWidth, kHeight / 2}, &error);
     REQUIRE(other);

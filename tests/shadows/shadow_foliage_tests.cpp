@@ -195,12 +195,12 @@ Visibility traceFrames(TestDevice& td, const Floor& f, sdf::SdfScene& field, rhi
     REQUIRE(mask);
     shadows::ShadowClassifyDesc d;
     d.mode = shadows::ShadowClassifyMode::Normals;
-    d.view = f.view;
-    d.projection = f.projection;
-    d.depth = f.depthTexture;
-    d.normals = f.normalTexture;
-    d.normalsUnpackScale = glm::vec3(1.0f);
-    d.normalsUnpackOffset = glm::vec3(0.0f);
+    d.camera.view = f.view;
+    d.camera.projection = f.projection;
+    d.gbuffer.depth = f.depthTexture;
+    d.gbuffer.normals = f.normalTexture;
+    d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
     d.sunDirection = kSun;
     d.alphaCache = alphaCache;
     d.sureRaysOnly = d.markUnsurePixels = rays == Rays::Sure;
@@ -217,12 +217,12 @@ Visibility traceFrames(TestDevice& td, const Floor& f, sdf::SdfScene& field, rhi
         REQUIRE(classifier->trace(field, &error));
         if (denoiser) {
             shadows::ShadowDenoiseDesc n;
-            n.view = n.previousView = f.view;
-            n.projection = n.previousProjection = f.projection;
-            n.depth = f.depthTexture;
-            n.normals = f.normalTexture;
-            n.normalsUnpackScale = glm::vec3(1.0f);
-            n.normalsUnpackOffset = glm::vec3(0.0f);
+            n.camera.view = n.camera.previousView = f.view;
+            n.camera.projection = n.camera.previousProjection = f.projection;
+            n.gbuffer.depth = f.depthTexture;
+            n.gbuffer.normals = f.normalTexture;
+            n.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+            n.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
             n.output = mask;
             n.resetHistory = frame == 0;
             REQUIRE(denoiser->denoise(*classifier, n, &error));
@@ -336,10 +336,10 @@ void refusesBadAlphaCache(const std::string& backend) {
     REQUIRE(c);
     shadows::ShadowClassifyDesc d;
     d.mode = shadows::ShadowClassifyMode::Normals;
-    d.depth = f.depthTexture;
-    d.normals = f.normalTexture;
-    d.view = f.view;
-    d.projection = f.projection;
+    d.gbuffer.depth = f.depthTexture;
+    d.gbuffer.normals = f.normalTexture;
+    d.camera.view = f.view;
+    d.camera.projection = f.projection;
     auto buffer = [&](uint64_t size, uint32_t usage) {
         rhi::BufferDesc bd;
         bd.size = size;

@@ -1,7 +1,7 @@
 // Bricklight hierarchical depth pyramid: from a depth texture (the G-buffer's, or the application's own), a mip
 // chain of RG32_FLOAT texels holding the closest (r = min) and the farthest (g = max) depth of their footprint,
 // for the classifiers' blocker search and the screen-space reflection trace's hierarchical steps. An engine
-// that builds its own pyramid hands that to the consumers instead. docs/depth_pyramid.md.
+// that builds its own pyramid hands that to the consumers instead. docs/gbuffer.md.
 #pragma once
 
 #include <cstdint>

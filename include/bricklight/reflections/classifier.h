@@ -2,7 +2,7 @@
 // the screen into a screen-space ray list and a distance-field (SDF) ray list, tile by tile (8×8 pixels), from
 // their roughness and from how well screen-space rays did in each tile over the previous frames (hit/miss
 // counters carried along the motion), and traces the screen-space list through a depth pyramid; the rays it
-// misses join the SDF list. docs/classify.md.
+// misses join the SDF list. docs/reflections.md.
 #pragma once
 
 #include <array>
@@ -16,6 +16,7 @@
 #include "bricklight/reflections/ray_list.h"
 #include "bricklight/errors.h"
 #include "bricklight/memory_use.h"
+#include "bricklight/gbuffer/inputs.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::reflections {
@@ -48,21 +49,8 @@ using bricklight::reflectionRayPixel;
 enum class ReflectionTileClass : uint32_t { ScreenSpaceFirst, Checkerboard, SdfOnly };
 
 struct ReflectionClassifyDesc {
-    // This frame's and the last frame's cameras (the library's conventions: GLM column-major, depth [0, 1], NDC y
-    // −1 at the image's top row; docs/gi.md). The previous camera carries the counters along a still world and
-    // places screen-space hits in the previous frame's lit image.
-    glm::mat4 view{1.0f}, projection{1.0f}, previousView{1.0f}, previousProjection{1.0f};
-    bool reversedDepth = false;  // depth 1 near, 0 far (sky: 0)
-    rhi::TextureHandle depth;    // D32_FLOAT / R32_FLOAT, sampled, the classifier's size
-    rhi::TextureHandle normals;  // sampled, the classifier's size: world normal = stored × scale + offset
-    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
-    rhi::TextureHandle roughness;  // sampled float/unorm texture of the classifier's size
-    uint32_t roughnessChannel = 0;   // 0..3
-    bool roughnessPerceptual = true;  // true: the channel holds perceptual roughness; false: GGX α (its square)
-    // Optional: UV-space motion (current − previous) in xy, times motionVectorScale (previous UV = UV − motion).
-    // Without them the counters move with the cameras over a still world (depth reprojected).
-    rhi::TextureHandle motionVectors;
-    glm::vec2 motionVectorScale{1.0f};
+    gbuffer::Camera camera;                    // bricklight/gbuffer/inputs.h
+    bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     float roughnessThreshold = 0.4f;     // perceptual: pixels at least this rough get no ray
     float sdfRoughnessThreshold = 0.4f;  // perceptual: pixels at least this rough never go to the SDF list directly
     uint32_t samplesPerQuad = 4;  // rays per 2×2 quad: 1 (x, y even), 2 (x + y even), 4

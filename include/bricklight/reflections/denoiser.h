@@ -1,6 +1,6 @@
 // Bricklight's reflection denoiser for hybrid reflections: a temporal accumulation and an edge-aware spatial filter
 // that run only on the tiles the reflection classifier listed for denoising (dispatchIndirect, one 8×8 group per
-// tile), so that its cost follows the reflective pixels, not the screen. docs/classify.md, "Hybrid reflections".
+// tile), so that its cost follows the reflective pixels, not the screen. docs/reflections.md, "Hybrid reflections".
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 
 #include "bricklight/errors.h"
 #include "bricklight/memory_use.h"
+#include "bricklight/gbuffer/inputs.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::reflections {
@@ -35,14 +36,8 @@ struct ReflectionDenoiseDesc {
     rhi::BufferHandle count;
     uint64_t countOffset = 0;
     rhi::TextureHandle radiance;
-    glm::mat4 view{1.0f}, projection{1.0f}, previousView{1.0f}, previousProjection{1.0f};
-    bool reversedDepth = false;
-    rhi::TextureHandle depth;    // one channel of device depth (D32_FLOAT / R32_FLOAT)
-    rhi::TextureHandle normals;  // world normal = stored × normalsUnpackScale + normalsUnpackOffset
-    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
-    rhi::TextureHandle roughness;
-    uint32_t roughnessChannel = 0;
-    bool roughnessPerceptual = true;  // false: the channel holds perceptual roughness squared
+    gbuffer::Camera camera;                    // bricklight/gbuffer/inputs.h
+    bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     // Most frames a pixel accumulates: mirrors keep fewer (their reflections move against the surface when the camera
     // moves, and surface-motion reprojection cannot follow that), rough surfaces up to this many.
     uint32_t maxHistory = 16;

@@ -1,7 +1,7 @@
 // The reflection ray list: the contract between the reflection classifier, which lists the rays
 // (reflections::ReflectionClassifier), and a tracer of the list (gi::GiContext::traceReflectionRays, or the
 // application's own). One uint per ray; the list's dispatchIndirect arguments count groups of
-// kReflectionRaysPerGroup rays. docs/classify.md, "Hybrid reflections".
+// kReflectionRaysPerGroup rays. docs/reflections.md, "Hybrid reflections".
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 // Bricklight tile classifiers (FidelityFX Classifier-class): the shadow classifier sorts the screen's 8×4 pixel tiles
 // by what the sun's shadow maps can decide — pixels surely lit, surely shadowed, and those that need a ray — and
 // lists the tiles with rays to trace (through the distance field, bricklight/trace.glsl) with each tile's pixel
-// mask and ray interval. docs/classify.md.
+// mask and ray interval. docs/shadows.md.
 #pragma once
 
 #include <array>
@@ -14,6 +14,7 @@
 
 #include "bricklight/errors.h"
 #include "bricklight/memory_use.h"
+#include "bricklight/gbuffer/inputs.h"
 #include "bricklight/rhi.h"
 #include "bricklight/sdf.h"
 
@@ -40,11 +41,8 @@ struct ShadowCascade {
 // ray interval's start and end (floats, world units along the ray towards the sun, from the surface).
 struct ShadowClassifyDesc {
     ShadowClassifyMode mode = ShadowClassifyMode::Cascades;
-    glm::mat4 view{1.0f}, projection{1.0f};  // the G-buffer's camera (the library's conventions, docs/gi.md)
-    bool reversedDepth = false;              // depth 1 near, 0 far
-    rhi::TextureHandle depth;                // one channel of device depth (D32_FLOAT / R32_FLOAT), the classifier's size
-    rhi::TextureHandle normals;              // world normal = stored × normalsUnpackScale + normalsUnpackOffset
-    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
+    gbuffer::Camera camera;                    // bricklight/gbuffer/inputs.h
+    bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     glm::vec3 sunDirection{0.0f, 1.0f, 0.0f};  // towards the sun
     float sunAngle = 0.0093f;  // the sun's full angular diameter (radians): widens the blocker search with depth
     // Soft shadows: trace() jitters each ray's direction uniformly over the sun's disc (sunAngle) with a per-pixel,

@@ -4,7 +4,7 @@
 // disocclusion, clamped to the current neighbourhood's mean ± clampSigma·σ so that moving shadows do not ghost) then
 // an edge-aware à-trous filter (depth-plane, normal and visibility weights), both dispatched indirectly on the
 // classifier's count buffer. Pixels that needed no ray (unlisted tiles, and the unmasked pixels of listed ones) take
-// the hit mask's decided answer exactly, and their history is kept consistent with it. docs/classify.md.
+// the hit mask's decided answer exactly, and their history is kept consistent with it. docs/shadows.md.
 #pragma once
 
 #include <array>
@@ -18,6 +18,7 @@
 #include "bricklight/shadows/classifier.h"
 #include "bricklight/errors.h"
 #include "bricklight/memory_use.h"
+#include "bricklight/gbuffer/inputs.h"
 #include "bricklight/rhi.h"
 
 namespace bricklight::shadows {
@@ -26,13 +27,8 @@ constexpr uint32_t kMaxShadowDenoiseHistory = 64;
 constexpr uint32_t kMaxShadowFilterPasses = 5;
 
 struct ShadowDenoiseDesc {
-    // This frame's camera (the classify()'s) and last frame's: the reprojection goes through both view-projections.
-    glm::mat4 view{1.0f}, projection{1.0f};
-    glm::mat4 previousView{1.0f}, previousProjection{1.0f};
-    bool reversedDepth = false;  // depth 1 near, 0 far
-    // The classify()'s depth (D32_FLOAT / R32_FLOAT) and normals (stored × scale + offset), the denoiser's size.
-    rhi::TextureHandle depth, normals;
-    glm::vec3 normalsUnpackScale{2.0f}, normalsUnpackOffset{-1.0f};
+    gbuffer::Camera camera;                    // bricklight/gbuffer/inputs.h
+    bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     rhi::TextureHandle output;  // R16_FLOAT with Storage usage, the denoiser's size: 1 lit, 0 shadowed
     // Start over (the first frame, a cut): the history is not read. The first denoise() after create() must set it.
     bool resetHistory = false;
