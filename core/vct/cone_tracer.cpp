@@ -160,6 +160,9 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
             return fail(std::string(in.name) + " must be RGBA16_FLOAT with Storage usage", ErrorCode::WrongFormat);
     }
     if (d.gbuffer.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.gbuffer.roughnessChannel) + " is outside 0..3");
+    // Motion vectors are read as UV motion (current − previous) as they are.
+    if (d.gbuffer.motionVectors && d.gbuffer.motionVectorScale != glm::vec2(1.0f))
+        return fail("gbuffer.motionVectorScale must be {1, 1}: the cone tracer reads UV motion as stored", ErrorCode::Unsupported);
     // The cone widths are fitted to perceptual roughness; a G-buffer of GGX α would widen every cone silently.
     if (!d.gbuffer.roughnessPerceptual)
         return fail("gbuffer.roughnessPerceptual = false (GGX α) is not supported: the cone tracer reads perceptual roughness", ErrorCode::Unsupported);

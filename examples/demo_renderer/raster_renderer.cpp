@@ -27,34 +27,6 @@ glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sce
     return projection;
 }
 
-// The scene's sun and point/spot lights, for GI's relighting of what the camera does not see. (The sky is
-// not among them: the renderer's direct lighting already holds it, so GI is given no environment.)
-static std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene) {
-    std::vector<gi::Light> lights;
-    const scenes::Environment& env = scene.environment;
-    if (env.sunIrradiance.x > 0.0f || env.sunIrradiance.y > 0.0f || env.sunIrradiance.z > 0.0f) {
-        gi::Light sun;
-        sun.type = gi::LightType::Directional;
-        sun.direction = env.sunDirection;
-        sun.color = env.sunIrradiance;
-        lights.push_back(sun);
-    }
-    for (const scenes::PointLight& p : scene.pointLights) {
-        if (lights.size() == gi::kMaxLights) break;
-        gi::Light l;
-        const bool spot = p.outerConeRadians <= 3.14159265f;
-        l.type = spot ? gi::LightType::Spot : gi::LightType::Point;
-        l.position = p.position;
-        l.direction = p.direction;
-        l.color = p.intensity;
-        if (spot) {
-            l.spotOuterAngle = p.outerConeRadians;
-            l.spotInnerAngle = std::min(p.innerConeRadians, p.outerConeRadians);
-        }
-        lights.push_back(l);
-    }
-    return lights;
-}
 
 glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize) {
     return projectionMatrix(camera, aspect, sceneSize) * viewMatrix(camera);
@@ -134,87 +106,8 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     return r;
 }
 
-bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* error) {
-    auto fail = [&](const std::string& m) {
-        if (error) *error = "raster renderer: " + m;
-        return false;
-    };
-    const glm::vec3 extent = scene.boundsMax - scene.boundsMin;
-    const float side = std::max(extent.x, std::max(extent.y, extent.z));
-    sdf::SceneDesc sd;
-    sd.cascadeCount = options_.sdfCascades;
-    // The finest cascade holds the whole scene with a margin; coarser ones catch rays that leave it.
-    sd.finestVoxelSize = sdf::suggestVoxelSize(side * 1.1f, 1);
-    // Hybrid shadows: finer cascades in front, centred on the camera (raster_renderer_shadows.cpp).
-    const uint32_t finer = hybridShadowFinerCascades();
-    sd.cascadeCount += finer;
-    sd.finestVoxelSize /= float(1u << finer);
-    sd.budgets = options_.sdfBudgets;
-    sd.debugName = "render sdf";
-    sd.errorCallback = options_.errorCallback;
-    Error why;
-    sdf_ = sdf::SdfScene::create(device_, sd, &why);
-    if (!sdf_) return fail("the distance field for GI: " + why.message);
-    std::vector<sdf::MeshHandle> meshes;
-    for (const scenes::TriangleMesh& m : scene.meshes) {
-        sdf::MeshArrays a;
-        a.positions = m.positions.data();
-        a.vertexCount = uint32_t(m.positions.size() / 3);
-        a.indices = m.indices.data();
-        a.indexCount = uint32_t(m.indices.size());
-        a.name = m.name;
-        meshes.push_back(sdf_->createMesh(a));
-        if (!meshes.back()) return fail("the distance field rejected mesh '" + m.name + "': " + sdf_->lastError().message);
-    }
-    for (const scenes::MeshInstance& i : scene.instances) {
-        const bool alphaTested = scene.meshes[i.mesh].alphaTested();
-        sdfTransforms_.push_back(i.transform);
-        if (alphaTested && options_.foliage == FoliageMode::LeftOut) {
-            sdfInstances_.push_back({});  // not in the field (setScene skips it)
-            continue;
-        }
-        sdf::InstanceDesc id;
-        id.mesh = meshes[i.mesh];
-        id.transform = i.transform;
-        id.alphaTested = alphaTested && options_.foliage == FoliageMode::AlphaAware;
-        sdfInstances_.push_back(sdf_->addInstance(id));
-        if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError().message);
-    }
-    sdfCenter_ = sceneCenter_ = 0.5f * (scene.boundsMin + scene.boundsMax);
-    return true;
-}
 
-bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
-    if (!sdf_ && !createSdf(scene, error)) return false;
-    Error why;
-    gi::ContextDesc gd;
-    gd.displayWidth = options_.width;
-    gd.displayHeight = options_.height;
-    gd.internalResolution = options_.giResolution;
-    gd.radianceCacheBricks = options_.giCacheBricks;
-    gd.injectTile = options_.giInjectTile;
-    gd.probeTile = options_.giProbeTile;
-    gd.debugName = "render gi";
-    gd.errorCallback = options_.errorCallback;
-    if (alphaAwareFoliage()) gd.flags |= gi::ContextFlags::AlphaCache;
-    // Cards left out of the field are in the G-buffer all the same: the camera self-check would count them.
-    if (options_.foliage == FoliageMode::LeftOut && scene_->hasAlphaTested()) gd.flags |= gi::ContextFlags::NoCameraCheck;
-    gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
-    if (!gi_) {
-        if (error) *error = "raster renderer: " + why.message;
-        return false;
-    }
-    return !alphaAwareFoliage() || createAlphaPass(error);
-}
 
-void RasterRenderer::syncSdf(const scenes::SceneGeometry& scene) {
-    if (!sdf_) return;
-    for (size_t i = 0; i < scene.instances.size() && i < sdfInstances_.size(); ++i)
-        if (sdfInstances_[i] && scene.instances[i].transform != sdfTransforms_[i]) {
-            sdf_->setTransform(sdfInstances_[i], scene.instances[i].transform);
-            sdfTransforms_[i] = scene.instances[i].transform;
-        }
-}
 
 GBufferView RasterRenderer::gbuffer() const {
     GBufferView g;
@@ -259,16 +152,35 @@ bool RasterRenderer::setCamera(const scenes::Camera& camera, std::string* error)
         return false;
     }
     camera_ = camera;
-    previousViewProjection_ = viewProjection_;
-    previousView_ = view_;
-    previousProjection_ = projection_;
     view_ = viewMatrix(camera);
     projection_ = projectionMatrix(camera, float(options_.width) / float(options_.height), scene_->rayOffset() * 1e5f);
     viewProjection_ = projection_ * view_;
     return true;
 }
 
+// One frame, top to bottom: every pass in the order it is recorded. A pass whose technique is off records nothing
+// (RasterOptions says which are on); each technique's wiring lives in its own file.
 void RasterRenderer::render() {
+    const bool cut = cut_;  // a camera cut: every history restarts this frame
+    cut_ = false;
+    drawGBuffer();                                       // this file
+    buildDepthPyramid();                                 // this file (hybrid shadows' and reflections' screen-space steps)
+    renderShadowMaps();                                  // raster_renderer_shadows.cpp
+    updateDistanceField();                               // raster_renderer_sdf.cpp: the field, then the GI's alpha pass
+    const SceneLightConstants light = lightDirect();     // this file: emitters, sky and (without maps) the sun
+    classifyShadows();                                   // raster_renderer_shadows.cpp (hybrid)
+    lightSunFromShadowMaps(light);                       // raster_renderer_shadows.cpp (maps and hybrid)
+    voxelizeVct();                                       // raster_renderer_vct.cpp
+    dispatchGi(cut);                                     // raster_renderer_gi.cpp
+    traceReflections(cut);                               // raster_renderer_reflections.cpp
+    traceVct(cut);                                       // raster_renderer_vct.cpp
+    renderGlass();                                       // raster_renderer_glass.cpp
+    composite();                                         // this file
+    shiftCameraHistory();                                // this file
+}
+
+// The G-buffer: albedo and roughness, normal, emission, motion and world position, depth.
+void RasterRenderer::drawGBuffer() {
     struct {
         glm::mat4 viewProjection, previousViewProjection;
         glm::vec4 eye;
@@ -294,13 +206,16 @@ void RasterRenderer::render() {
     device_.beginMarker("gbuffer");
     device_.draw(d, args);
     device_.endMarker();
-    if (depthPyramid_) {
-        Error why;
-        if (!depthPyramid_->build(depth_, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
-    }
-    renderShadowMaps();
-    sdfUpdated_ = false;
+}
 
+void RasterRenderer::buildDepthPyramid() {
+    if (!depthPyramid_) return;
+    Error why;
+    if (!depthPyramid_->build(depth_, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
+}
+
+// Direct light through the BVH; returns the frame's light constants with the sun, for the shadow-map sun pass.
+SceneLightConstants RasterRenderer::lightDirect() {
     struct {
         glm::mat4 inverseViewProjection;
         glm::vec4 eye;
@@ -322,53 +237,11 @@ void RasterRenderer::render() {
     device_.beginMarker("direct light");
     device_.dispatch(s, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();
-    classifyShadows();
-    if (mapsOn()) lightSunFromShadowMaps(withSun);
+    return withSun;
+}
 
-    if (clipmap_) voxelizeVct();
-    if (gi_) {
-        if (!sdfUpdated_) {
-            device_.beginMarker("sdf update");
-            sdf_->update(sdfCenter_);
-            device_.endMarker();
-            runAlphaPass();
-        }
-        gi::DispatchDesc g;
-        g.camera.view = view_;
-        g.camera.projection = projection_;
-        g.camera.previousView = previousView_;
-        g.camera.previousProjection = previousProjection_;
-        g.cameraPosition = camera_.eye;
-        g.gbuffer.depth = depth_;
-        g.gbuffer.normals = normal_;
-        g.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
-        g.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
-        g.gbuffer.roughness = albedo_;
-        g.gbuffer.roughnessChannel = 3;
-        g.gbuffer.motionVectors = motion_;
-        g.previousLitOutput = lit_;
-        if (options_.giRelight) {
-            g.diffuseAlbedo = albedo_;  // base colour: metals' (small) diffuse part is overestimated off screen
-            // The lit image fed back leaves emission out (direct lighting samples the emitters): re-lit
-            // texels leave it out too, and their rays add it where they hit an emitter.
-            g.emission = emission_;
-            g.previousLitIncludesEmission = false;
-            g.lights = giLights_.data();
-            g.lightCount = uint32_t(giLights_.size());
-        }
-        g.outputDiffuse = giDiffuse_;
-        g.outputSpecular = giSpecular_;
-        g.trace = options_.giTrace;
-        g.roughnessThreshold = options_.giRoughnessThreshold;
-        g.resetHistory = cut_;
-        g.unseenLight = options_.giUnseenFromVct ? clipmap_.get() : nullptr;
-        const bool cut = cut_;
-        cut_ = false;
-        gi_->dispatch(g);
-        traceReflections(cut);
-    }
-    traceVct();
-    renderGlass();
+// Direct + GI (+ glass, reflections) into the combined image, and the lit image the next frame's GI feeds back.
+void RasterRenderer::composite() {
     struct {
         glm::vec4 eye;
         uint32_t size[4];
@@ -377,7 +250,7 @@ void RasterRenderer::render() {
     k.shader = composite_;
     k.label = "composite";
     k.bindings.constants.push(rhi::constants(0, c));
-    slot = 0;
+    uint8_t slot = 0;
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_, glassRadiance_, reflections_})
         k.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
     k.bindings.readBuffers.push({0, direct_, {}});
@@ -390,7 +263,10 @@ void RasterRenderer::render() {
     device_.beginMarker("composite");
     device_.dispatch(k, (options_.width + 7) / 8, (options_.height + 7) / 8, 1);
     device_.endMarker();
-    // The next frame's motion vectors and GI reprojection start from this camera.
+}
+
+// The next frame's motion vectors and GI reprojection start from this camera.
+void RasterRenderer::shiftCameraHistory() {
     previousViewProjection_ = viewProjection_;
     previousView_ = view_;
     previousProjection_ = projection_;
@@ -449,48 +325,8 @@ Image RasterRenderer::read(Aov aov) {
     return img;
 }
 
-Image RasterRenderer::readGi(rhi::TextureHandle t) {
-    Image img;
-    img.width = options_.width;
-    img.height = options_.height;
-    const size_t pixels = size_t(img.width) * img.height;
-    img.rgb.assign(pixels * 3, 0.0f);
-    std::vector<uint16_t> h(pixels * 4);
-    device_.readTexture(t, {}, h.data());
-    for (size_t i = 0; i < pixels; ++i)
-        for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = halfToFloat(h[4 * i + size_t(c)]);
-    return img;
-}
 
-Image RasterRenderer::readSpecularGi() { return readGi(giSpecular_); }
 
-Image RasterRenderer::giDebugView(gi::DebugMode mode, float exposure) {
-    Image img;
-    if (!gi_) return img;
-    rhi::TextureDesc d;
-    d.format = rhi::Format::RGBA8_UNORM;
-    d.width = options_.width;
-    d.height = options_.height;
-    d.usage = rhi::TextureUsage::Storage;
-    d.debugName = "gi debug view";
-    rhi::TextureHandle t = device_.createTexture(d);
-    if (!t) return img;
-    gi::DebugViewDesc desc;
-    desc.mode = mode;
-    desc.output = t;
-    desc.exposure = exposure;
-    if (gi_->debugView(desc)) {
-        std::vector<uint8_t> bytes(size_t(d.width) * d.height * 4);
-        device_.readTexture(t, {}, bytes.data());
-        img.width = d.width;
-        img.height = d.height;
-        img.rgb.resize(size_t(d.width) * d.height * 3);
-        for (size_t i = 0; i < img.rgb.size() / 3; ++i)
-            for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = float(bytes[4 * i + size_t(c)]) / 255.0f;
-    }
-    device_.destroy(t);
-    return img;
-}
 
 Image RasterRenderer::readMotion() {
     Image img;

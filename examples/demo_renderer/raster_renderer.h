@@ -134,7 +134,7 @@ public:
     // The scene of the next frame (an animated scene's next state): its vertices' previous positions are
     // this frame's, for motion vectors. Fails, changing nothing, on a bad scene.
     bool setScene(const scenes::SceneGeometry& scene, std::string* error);
-    void render();  // records the G-buffer draw, the direct lighting, GI and the composite
+    void render();  // records one frame: the ordered list of passes in raster_renderer.cpp
     // Combined (direct + GI), direct, indirect-diffuse (GI's diffuse output; zero without GI), albedo,
     // normal, depth.
     Image read(Aov aov);
@@ -201,11 +201,22 @@ public:
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
+    // The frame's passes not owned by a technique (raster_renderer.cpp).
+    void drawGBuffer();
+    void buildDepthPyramid();
+    SceneLightConstants lightDirect();
+    void composite();
+    void shiftCameraHistory();
+    // raster_renderer_sdf.cpp: the field, its one update a frame and the GI's alpha pass after it.
     bool createSdf(const scenes::SceneGeometry& scene, std::string* error);  // the distance field alone
+    void updateDistanceField();  // before the direct light: hybrid shadows, GI and SDF-stopped cones read it
+    // raster_renderer_gi.cpp
     bool createGi(const scenes::SceneGeometry& scene, std::string* error);   // the field (if not yet) and GI
-    bool createVct(const scenes::SceneGeometry& scene, std::string* error);  // raster_renderer_vct.cpp
-    void voxelizeVct();  // before GI, which may read the clip-map's light (giUnseenFromVct)
-    void traceVct();     // the cone tracer's passes, after GI's
+    void dispatchGi(bool cut);
+    // raster_renderer_vct.cpp
+    bool createVct(const scenes::SceneGeometry& scene, std::string* error);
+    void voxelizeVct();        // before GI, which may read the clip-map's light (giUnseenFromVct)
+    void traceVct(bool cut);   // the cone tracer's passes, after GI's
     bool giOn() const { return gi_ || (clipmap_ && options_.vctEmittance != vct::EmittanceMode::None); }
     // Glass (raster_renderer_glass.cpp): with a clip-map that holds light, meshes with transmission > 0 are left
     // out of the G-buffer and the voxelization and drawn by a forward pass that traces cones through them.
@@ -232,7 +243,6 @@ private:
     std::unique_ptr<shadows::ShadowDenoiser> shadowDenoiser_;
     float sunAngle_ = 0.0f;
     uint32_t softShadowFrames_ = 0;  // frames the denoiser has accumulated (0: its history starts over)
-    bool sdfUpdated_ = false;     // this frame's field update is done (Hybrid does it before the direct light)
     // shadow_sun.glsl's read buffer: the cascades of this frame and the sun.
     struct ShadowData {
         glm::mat4 viewProjection[kShadowCascades];
@@ -247,10 +257,10 @@ private:
     glm::vec3 sunDirection_{0.0f, 1.0f, 0.0f}, sunIrradiance_{0.0f};
     glm::vec3 sceneMin_{0.0f}, sceneMax_{0.0f};
     std::unique_ptr<gbuffer::DepthPyramid> depthPyramid_;
-    // raster_renderer_foliage.cpp
+    // raster_renderer_sdf.cpp: foliage's alpha pass
     bool alphaAwareFoliage() const;  // FoliageMode::AlphaAware in a scene with alpha-tested meshes
     bool createAlphaPass(std::string* error);
-    void runAlphaPass();  // right after the frame's field update: before the hybrid shadow rays and the GI
+    void runAlphaPass();  // right after the frame's field update (updateDistanceField)
     rhi::ShaderHandle alphaPassVertex_, alphaPassFragment_;
     // raster_renderer_reflections.cpp
     bool createReflections(std::string* error);
@@ -301,5 +311,8 @@ void depthTestAgainstCleared(rhi::DrawCallState& draw, rhi::TextureHandle depth)
 glm::mat4 viewMatrix(const scenes::Camera& camera);
 glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sceneSize);
 glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize);
+
+// The scene's sun and point/spot lights as the GI relights what the camera does not see (raster_renderer_gi.cpp).
+std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene);
 
 }  // namespace bricklight::render

@@ -188,6 +188,7 @@ void RasterRenderer::renderShadowMaps() {
 }
 
 void RasterRenderer::lightSunFromShadowMaps(const SceneLightConstants& light) {
+    if (!mapsOn()) return;
     ShadowData k{};
     for (uint32_t i = 0; i < kShadowCascades; ++i) {
         k.viewProjection[i] = cascades_[i].viewProjection;
@@ -257,13 +258,6 @@ uint32_t RasterRenderer::hybridShadowFinerCascades() const {
 // soft rays and the shadow denoiser's visibility).
 void RasterRenderer::classifyShadows() {
     if (options_.shadows != ShadowMode::Hybrid) return;
-    if (!sdfUpdated_) {
-        device_.beginMarker("sdf update");
-        sdf_->update(hybridShadowFinerCascades() > 0 ? camera_.eye : sdfCenter_);
-        device_.endMarker();
-        sdfUpdated_ = true;
-        if (gi_) runAlphaPass();  // the shadow rays read this frame's coverage (the field's bricks may have moved)
-    }
     shadows::ShadowClassifyDesc d;
     d.camera.view = view_;
     d.camera.projection = projection_;

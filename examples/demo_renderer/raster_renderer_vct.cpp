@@ -63,6 +63,7 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
 }
 
 void RasterRenderer::voxelizeVct() {
+    if (!clipmap_) return;
     device_.beginMarker("vct voxelize");
     Error why;
     if (!clipmap_->update(sceneCenter_, &why)) {
@@ -107,14 +108,9 @@ void RasterRenderer::voxelizeVct() {
     device_.endMarker();
 }
 
-void RasterRenderer::traceVct() {
+void RasterRenderer::traceVct(bool cut) {
     if (!coneTracer_) return;
     Error why;
-    if (options_.vctSdfOcclusion && !gi_) {  // GI updates the field itself when it runs
-        device_.beginMarker("sdf update");
-        sdf_->update(sdfCenter_);
-        device_.endMarker();
-    }
     vct::TraceDesc t;
     t.camera.view = view_;
     t.camera.projection = projection_;
@@ -132,8 +128,7 @@ void RasterRenderer::traceVct() {
     t.outputSpecular = options_.vctEmittance == vct::EmittanceMode::None ? rhi::TextureHandle{} : giSpecular_;
     t.params = options_.vctTrace;
     t.occlusionField = options_.vctSdfOcclusion ? sdf_.get() : nullptr;
-    t.resetHistory = cut_;
-    cut_ = false;
+    t.resetHistory = cut;
     if (!coneTracer_->dispatch(t, &why) && options_.errorCallback) options_.errorCallback(rhi::Severity::Error, why.message);
 }
 

@@ -16,7 +16,9 @@ namespace bricklight::gbuffer {
 struct Camera {
     glm::mat4 view{1.0f}, projection{1.0f};
     glm::mat4 previousView{1.0f}, previousProjection{1.0f};
-    bool reversedDepth = false;  // depth 1 near, 0 far (the classifiers and denoisers; GI and VCT read it from the projection)
+    // Depth 1 near, 0 far: read by the classifiers and denoisers. GI fixes it at creation
+    // (gi::ContextFlags::ReversedDepth); the cone tracer takes forward depth only.
+    bool reversedDepth = false;
 };
 
 // The G-buffer, at the technique's size unless its table says otherwise.
@@ -29,8 +31,9 @@ struct Inputs {
     rhi::TextureHandle roughness;  // any float/unorm texture; one channel is roughness
     uint32_t roughnessChannel = 0;    // 0..3
     bool roughnessPerceptual = true;  // true: the channel holds perceptual roughness; false: GGX α (its square)
-    // Optional: UV-space motion (current − previous) in xy, times motionVectorScale (previous UV = UV − motion).
-    // Without them the world is taken as still and the motion comes from depth and the two cameras.
+    // Optional: UV-space motion (current − previous) in xy, times motionVectorScale (previous UV = UV − motion;
+    // the cone tracer takes a scale of 1 only). Without them the world is taken as still and the motion comes
+    // from depth and the two cameras.
     rhi::TextureHandle motionVectors;
     glm::vec2 motionVectorScale{1.0f};
 };

@@ -1,0 +1,138 @@
+// The SDF GI in the demo renderer (RasterOptions::gi; docs/gi.md): the context on the renderer's field, its dispatch on
+// the G-buffer each frame, and what the tools read back.
+#include "raster_renderer.h"
+
+#include "bricklight/half.h"
+
+namespace bricklight::render {
+
+// The scene's sun and point/spot lights, for GI's relighting of what the camera does not see. (The sky is
+// not among them: the renderer's direct lighting already holds it, so GI is given no environment.)
+std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene) {
+    std::vector<gi::Light> lights;
+    const scenes::Environment& env = scene.environment;
+    if (env.sunIrradiance.x > 0.0f || env.sunIrradiance.y > 0.0f || env.sunIrradiance.z > 0.0f) {
+        gi::Light sun;
+        sun.type = gi::LightType::Directional;
+        sun.direction = env.sunDirection;
+        sun.color = env.sunIrradiance;
+        lights.push_back(sun);
+    }
+    for (const scenes::PointLight& p : scene.pointLights) {
+        if (lights.size() == gi::kMaxLights) break;
+        gi::Light l;
+        const bool spot = p.outerConeRadians <= 3.14159265f;
+        l.type = spot ? gi::LightType::Spot : gi::LightType::Point;
+        l.position = p.position;
+        l.direction = p.direction;
+        l.color = p.intensity;
+        if (spot) {
+            l.spotOuterAngle = p.outerConeRadians;
+            l.spotInnerAngle = std::min(p.innerConeRadians, p.outerConeRadians);
+        }
+        lights.push_back(l);
+    }
+    return lights;
+}
+
+bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
+    if (!sdf_ && !createSdf(scene, error)) return false;
+    Error why;
+    gi::ContextDesc gd;
+    gd.displayWidth = options_.width;
+    gd.displayHeight = options_.height;
+    gd.internalResolution = options_.giResolution;
+    gd.radianceCacheBricks = options_.giCacheBricks;
+    gd.injectTile = options_.giInjectTile;
+    gd.probeTile = options_.giProbeTile;
+    gd.debugName = "render gi";
+    gd.errorCallback = options_.errorCallback;
+    if (alphaAwareFoliage()) gd.flags |= gi::ContextFlags::AlphaCache;
+    // Cards left out of the field are in the G-buffer all the same: the camera self-check would count them.
+    if (options_.foliage == FoliageMode::LeftOut && scene_->hasAlphaTested()) gd.flags |= gi::ContextFlags::NoCameraCheck;
+    gi_ = gi::GiContext::create(device_, *sdf_, gd, &why);
+    if (!gi_) {
+        if (error) *error = "raster renderer: " + why.message;
+        return false;
+    }
+    return !alphaAwareFoliage() || createAlphaPass(error);
+}
+
+void RasterRenderer::dispatchGi(bool cut) {
+    if (!gi_) return;
+    gi::DispatchDesc g;
+    g.camera.view = view_;
+    g.camera.projection = projection_;
+    g.camera.previousView = previousView_;
+    g.camera.previousProjection = previousProjection_;
+    g.cameraPosition = camera_.eye;
+    g.gbuffer.depth = depth_;
+    g.gbuffer.normals = normal_;
+    g.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
+    g.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+    g.gbuffer.roughness = albedo_;
+    g.gbuffer.roughnessChannel = 3;
+    g.gbuffer.motionVectors = motion_;
+    g.previousLitOutput = lit_;
+    if (options_.giRelight) {
+        g.diffuseAlbedo = albedo_;  // base colour: metals' (small) diffuse part is overestimated off screen
+        // The lit image fed back leaves emission out (direct lighting samples the emitters): re-lit
+        // texels leave it out too, and their rays add it where they hit an emitter.
+        g.emission = emission_;
+        g.previousLitIncludesEmission = false;
+        g.lights = giLights_.data();
+        g.lightCount = uint32_t(giLights_.size());
+    }
+    g.outputDiffuse = giDiffuse_;
+    g.outputSpecular = giSpecular_;
+    g.trace = options_.giTrace;
+    g.roughnessThreshold = options_.giRoughnessThreshold;
+    g.resetHistory = cut;
+    g.unseenLight = options_.giUnseenFromVct ? clipmap_.get() : nullptr;
+    gi_->dispatch(g);
+}
+
+Image RasterRenderer::readGi(rhi::TextureHandle t) {
+    Image img;
+    img.width = options_.width;
+    img.height = options_.height;
+    const size_t pixels = size_t(img.width) * img.height;
+    img.rgb.assign(pixels * 3, 0.0f);
+    std::vector<uint16_t> h(pixels * 4);
+    device_.readTexture(t, {}, h.data());
+    for (size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = halfToFloat(h[4 * i + size_t(c)]);
+    return img;
+}
+
+Image RasterRenderer::readSpecularGi() { return readGi(giSpecular_); }
+
+Image RasterRenderer::giDebugView(gi::DebugMode mode, float exposure) {
+    Image img;
+    if (!gi_) return img;
+    rhi::TextureDesc d;
+    d.format = rhi::Format::RGBA8_UNORM;
+    d.width = options_.width;
+    d.height = options_.height;
+    d.usage = rhi::TextureUsage::Storage;
+    d.debugName = "gi debug view";
+    rhi::TextureHandle t = device_.createTexture(d);
+    if (!t) return img;
+    gi::DebugViewDesc desc;
+    desc.mode = mode;
+    desc.output = t;
+    desc.exposure = exposure;
+    if (gi_->debugView(desc)) {
+        std::vector<uint8_t> bytes(size_t(d.width) * d.height * 4);
+        device_.readTexture(t, {}, bytes.data());
+        img.width = d.width;
+        img.height = d.height;
+        img.rgb.resize(size_t(d.width) * d.height * 3);
+        for (size_t i = 0; i < img.rgb.size() / 3; ++i)
+            for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = float(bytes[4 * i + size_t(c)]) / 255.0f;
+    }
+    device_.destroy(t);
+    return img;
+}
+
+}  // namespace bricklight::render
