@@ -15,6 +15,7 @@
 
 #include "backend_test.h"
 #include "bricklight/shadows/classifier.h"
+#include "plate_scene.h"
 #include "test_device.h"
 
 using namespace bricklight;
@@ -27,46 +28,22 @@ constexpr float kPlateY = 2.0f;
 constexpr glm::vec2 kPlateMin(-2.0f, -1.0f), kPlateMax(2.0f, 1.0f);  // x, z
 constexpr uint32_t kMapW = 128, kMapH = 64;  // the shadow map over x −8..8, z −4..4: 8 texels per world unit
 
-struct Scene {
-    glm::mat4 view{1.0f}, projection{1.0f};
-    std::vector<float> depth;          // kWidth × kHeight, 1 = sky
-    std::vector<glm::vec4> normals;    // stored = world normal (unpack scale 1, offset 0)
-    std::vector<glm::vec2> ground;     // each pixel's ground point (x, z)
-    std::vector<float> shadowMap;      // kMapW × kMapH
-    glm::mat4 worldToShadow{1.0f};
-};
+using Scene = PlateScene;
 
-// Looking straight down from y = 10 with an orthographic camera over x −8..8, z −4..4 (row 0 at z = −4). Pixels
-// of columns 60..63 are sky; rows 28..31 of columns 0..7 face away from the sun.
+// Pixels of columns 60..63 are sky; rows 28..31 of columns 0..7 face away from the sun.
 Scene makeScene() {
-    Scene s;
-    s.view = glm::lookAtRH(glm::vec3(0.0f, 10.0f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
-    s.projection = glm::orthoRH_ZO(-8.0f, 8.0f, -4.0f, 4.0f, 0.1f, 20.0f);
-    s.projection[1][1] = -s.projection[1][1];  // NDC y −1 at the top row (the library's convention)
-    const glm::mat4 viewProjection = s.projection * s.view;
-    for (uint32_t y = 0; y < kHeight; ++y)
-        for (uint32_t x = 0; x < kWidth; ++x) {
-            const glm::vec2 ndc((float(x) + 0.5f) / kWidth * 2.0f - 1.0f, (float(y) + 0.5f) / kHeight * 2.0f - 1.0f);
-            const glm::vec4 w = glm::inverse(viewProjection) * glm::vec4(ndc, 0.5f, 1.0f);
-            const glm::vec2 g(w.x / w.w, w.z / w.w);
-            const glm::vec4 clip = viewProjection * glm::vec4(g.x, 0.0f, g.y, 1.0f);
-            s.ground.push_back(g);
-            s.depth.push_back(x >= 60 ? 1.0f : clip.z / clip.w);
-            s.normals.push_back(x < 8 && y >= 28 ? glm::vec4(0.0f, -1.0f, 0.0f, 0.0f) : glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
-        }
-    // The sun's map: u over x −8..8, v over z −4..4, depth 0 at y = 20 and 1 at y = 0 (range 20).
-    s.worldToShadow = glm::mat4(0.0f);
-    s.worldToShadow[0][0] = 1.0f / 16.0f;   // u = x / 16 + 0.5
-    s.worldToShadow[2][1] = 1.0f / 8.0f;    // v = z / 8 + 0.5
-    s.worldToShadow[1][2] = -1.0f / 20.0f;  // depth = (20 − y) / 20
-    s.worldToShadow[3] = glm::vec4(0.5f, 0.5f, 1.0f, 1.0f);
-    for (uint32_t v = 0; v < kMapH; ++v)
-        for (uint32_t u = 0; u < kMapW; ++u) {
-            const float x = (float(u) + 0.5f) / kMapW * 16.0f - 8.0f, z = (float(v) + 0.5f) / kMapH * 8.0f - 4.0f;
-            const bool plate = x > kPlateMin.x && x < kPlateMax.x && z > kPlateMin.y && z < kPlateMax.y;
-            s.shadowMap.push_back(plate ? (20.0f - kPlateY) / 20.0f : 1.0f);
-        }
-    return s;
+    PlateSceneDesc d;
+    d.width = kWidth;
+    d.height = kHeight;
+    d.skyFromColumn = 60;
+    d.awayCorner = true;
+    d.mapWidth = kMapW;
+    d.mapHeight = kMapH;
+    d.mapTop = 20.0f;
+    d.plateTop = kPlateY;
+    d.plateMin = kPlateMin;
+    d.plateMax = kPlateMax;
+    return makePlateScene(d);
 }
 
 // Signed distance from a ground point to the plate's outline (negative inside).

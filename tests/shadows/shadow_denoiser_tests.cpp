@@ -16,6 +16,7 @@
 #include "bricklight/shadows/classifier.h"
 #include "bricklight/half.h"
 #include "bricklight/shadows/denoiser.h"
+#include "plate_scene.h"
 #include "test_device.h"
 
 using namespace bricklight;
@@ -31,43 +32,21 @@ constexpr float kMapTop = 5.0f;               // the map's depth 0 (y), depth 1 
 constexpr float kSunAngle = 0.3f;
 constexpr uint32_t kFrames = 48;
 
-struct Scene {
-    glm::mat4 view{1.0f}, projection{1.0f};
-    std::vector<float> depth;        // kWidth × kHeight, 1 = sky (columns 124..127)
-    std::vector<glm::vec4> normals;  // world normals (unpack scale 1, offset 0)
-    std::vector<glm::vec2> ground;   // each pixel's ground point (x, z)
-    std::vector<float> shadowMap;    // kMapW × kMapH
-    glm::mat4 worldToShadow{1.0f};
-};
+using Scene = PlateScene;
 
+// Columns 124..127 are sky.
 Scene makeScene() {
-    Scene s;
-    s.view = glm::lookAtRH(glm::vec3(0.0f, 10.0f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
-    s.projection = glm::orthoRH_ZO(-8.0f, 8.0f, -4.0f, 4.0f, 0.1f, 20.0f);
-    s.projection[1][1] = -s.projection[1][1];  // NDC y −1 at the top row (the library's convention)
-    const glm::mat4 viewProjection = s.projection * s.view;
-    for (uint32_t y = 0; y < kHeight; ++y)
-        for (uint32_t x = 0; x < kWidth; ++x) {
-            const glm::vec2 ndc((float(x) + 0.5f) / kWidth * 2.0f - 1.0f, (float(y) + 0.5f) / kHeight * 2.0f - 1.0f);
-            const glm::vec4 w = glm::inverse(viewProjection) * glm::vec4(ndc, 0.5f, 1.0f);
-            const glm::vec2 g(w.x / w.w, w.z / w.w);
-            const glm::vec4 clip = viewProjection * glm::vec4(g.x, 0.0f, g.y, 1.0f);
-            s.ground.push_back(g);
-            s.depth.push_back(x >= 124 ? 1.0f : clip.z / clip.w);
-            s.normals.push_back(glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
-        }
-    s.worldToShadow = glm::mat4(0.0f);
-    s.worldToShadow[0][0] = 1.0f / 16.0f;      // u = x / 16 + 0.5
-    s.worldToShadow[2][1] = 1.0f / 8.0f;       // v = z / 8 + 0.5
-    s.worldToShadow[1][2] = -1.0f / kMapTop;   // depth = (top − y) / top
-    s.worldToShadow[3] = glm::vec4(0.5f, 0.5f, 1.0f, 1.0f);
-    for (uint32_t v = 0; v < kMapH; ++v)
-        for (uint32_t u = 0; u < kMapW; ++u) {
-            const float x = (float(u) + 0.5f) / kMapW * 16.0f - 8.0f, z = (float(v) + 0.5f) / kMapH * 8.0f - 4.0f;
-            const bool plate = x > kPlateMin.x && x < kPlateMax.x && z > kPlateMin.y && z < kPlateMax.y;
-            s.shadowMap.push_back(plate ? (kMapTop - kPlateTop) / kMapTop : 1.0f);
-        }
-    return s;
+    PlateSceneDesc d;
+    d.width = kWidth;
+    d.height = kHeight;
+    d.skyFromColumn = 124;
+    d.mapWidth = kMapW;
+    d.mapHeight = kMapH;
+    d.mapTop = kMapTop;
+    d.plateTop = kPlateTop;
+    d.plateMin = kPlateMin;
+    d.plateMax = kPlateMax;
+    return makePlateScene(d);
 }
 
 // Whether the ray from ground point g (y = 0) along d (d.y > 0) meets the plate's box (slabs).
