@@ -8,6 +8,7 @@
 
 #include "../common/core_shaders.h"
 #include "../common/finite_checks.h"
+#include "../common/memory_tally.h"
 
 namespace bricklight::vct {
 
@@ -484,6 +485,14 @@ bool VoxelScene::voxelize(Clipmap& clipmap, const rhi::Bindings& extra, Error* e
         ++lastDraws_;
     }
     return ok;
+}
+
+MemoryUse VoxelScene::memoryUse() const {
+    bricklight::detail::MemoryTally tally(device_);
+    for (const auto& mesh : meshes_)
+        if (mesh->owned) tally.add(mesh->positions).add(mesh->normals).add(mesh->indices);
+    tally.add(drawn_);
+    return tally.use();
 }
 
 }  // namespace bricklight::vct

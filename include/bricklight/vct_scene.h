@@ -128,6 +128,10 @@ public:
     void setVoxelizer(Voxelizer voxelizer, const ComputeVoxelizer& options = {});
     Voxelizer voxelizer() const { return voxelizer_; }
 
+    // The buffers the scene owns on the device: the meshes it uploaded (CPU arrays; an application's buffers are
+    // its own) and the compute voxelizer's triangle lists.
+    MemoryUse memoryUse() const;
+
 private:
     struct Mesh;
     struct Instance;

@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "backend_test.h"
+#include "image_metrics.h"
 #include "path_tracer.h"
 #include "raster_renderer.h"
 
@@ -73,6 +76,25 @@ inline bool allFinite(const std::vector<float>& v) {
     for (float x : v)
         if (!std::isfinite(x)) return false;
     return true;
+}
+
+// How close an image must come to a path-traced reference: relMSE below, SSIM above, its mean within
+// [minMean, maxMean] × the reference's. Only the bounds given are checked.
+struct ReferenceBounds {
+    std::optional<double> relMse, ssim, minMean, maxMean;
+};
+
+// The comparison of `image` with `reference` that the technique tests share: the metrics (named `what` in the
+// report) and the checks of `bounds`.
+inline render::ImageMetrics checkAgainstReference(const std::string& what, const render::Image& image, const render::Image& reference,
+                                                  const ReferenceBounds& bounds) {
+    const render::ImageMetrics m = render::compareImages(image, reference);
+    INFO(what << " relMSE " << m.relMse << " SSIM " << m.ssim << " mean " << m.meanA << " vs " << m.meanB);
+    if (bounds.relMse) CHECK(m.relMse < *bounds.relMse);
+    if (bounds.ssim) CHECK(m.ssim > *bounds.ssim);
+    if (bounds.minMean) CHECK(m.meanA > *bounds.minMean * m.meanB);
+    if (bounds.maxMean) CHECK(m.meanA < *bounds.maxMean * m.meanB);
+    return m;
 }
 
 // GI's inputs from the renderer's G-buffer (the renderer's own GI takes the same), into the given outputs.
