@@ -65,14 +65,19 @@ bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
     return false;
 }
 
-int64_t findQueueFamily(VkPhysicalDevice pd) {
+// One queue does everything: Bricklight needs graphics + compute in one stream, and presenting from the same
+// queue needs no ownership transfer of the swapchain image.
+int64_t findQueueFamily(VkPhysicalDevice pd, VkSurfaceKHR surface) {
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    for (uint32_t i = 0; i < n; ++i)
-        if ((families[i].queueFlags & need) == need) return i;
+    for (uint32_t i = 0; i < n; ++i) {
+        VkBool32 present = VK_TRUE;
+        if (surface) vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &present);
+        if ((families[i].queueFlags & need) == need && present) return i;
+    }
     return -1;
 }
 
@@ -100,30 +105,32 @@ std::string VulkanDevice::quoted(const char* label) {
     return label && *label ? std::string(" '") + label + "'" : std::string();
 }
 
-std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions& options) {
-    std::unique_ptr<VulkanDevice> dev(new VulkanDevice());
-    dev->reporter_->callback = options.errorCallback;
-    dev->ownsDevice_ = true;
-    const bool validation = options.enableValidation || envFlag("BRICKLIGHT_VK_VALIDATION");
-    const bool syncValidation = options.enableSyncValidation || envFlag("BRICKLIGHT_VK_SYNC_VALIDATION");
-
+// Bricklight's start-up (createDevice and createVulkanObjects): instance, messenger, surface, physical device,
+// queue family, device. Fills `out` as it goes (the caller destroys a partial result); failures go to `reporter`.
+// `statistics`: the pipeline executable properties extension and feature when the device has them (*statisticsOn).
+bool startVulkan(const StartupDesc& d, Reporter& reporter, bool statistics, VulkanObjects& out, bool* statisticsOn) {
+    auto fail = [&](const std::string& message) {
+        reporter.report(rhi::Severity::Error, message);
+        return false;
+    };
+    const bool validation = d.enableValidation || envFlag("BRICKLIGHT_VK_VALIDATION");
+    const bool syncValidation = d.enableSyncValidation || envFlag("BRICKLIGHT_VK_SYNC_VALIDATION");
     uint32_t apiVersion = VK_API_VERSION_1_0;
     vkEnumerateInstanceVersion(&apiVersion);
-    if (apiVersion < VK_API_VERSION_1_3) {
-        dev->fail("createDevice: the Vulkan loader supports version " + std::to_string(VK_API_VERSION_MAJOR(apiVersion)) +
-                  "." + std::to_string(VK_API_VERSION_MINOR(apiVersion)) + "; Vulkan 1.3 is required");
-        return nullptr;
-    }
+    if (apiVersion < VK_API_VERSION_1_3)
+        return fail("createDevice: the Vulkan loader supports version " + std::to_string(VK_API_VERSION_MAJOR(apiVersion)) + "." +
+                    std::to_string(VK_API_VERSION_MINOR(apiVersion)) + "; Vulkan 1.3 is required");
 
-    std::vector<const char*> layers, extensions;
+    std::vector<const char*> layers, extensions = d.instanceExtensions;
     if (validation) {
         if (hasInstanceLayer("VK_LAYER_KHRONOS_validation"))
             layers.push_back("VK_LAYER_KHRONOS_validation");
         else
-            dev->fail("createDevice: validation requested but VK_LAYER_KHRONOS_validation is not installed");
+            fail("createDevice: validation requested but VK_LAYER_KHRONOS_validation is not installed");
     }
-    dev->debugUtils_ = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    if (dev->debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    out.validationEnabled = !layers.empty();
+    out.debugUtilsEnabled = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (out.debugUtilsEnabled) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
     VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     messengerInfo.messageSeverity =
@@ -132,7 +139,7 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
                                 VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                                 VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     messengerInfo.pfnUserCallback = debugMessenger;
-    messengerInfo.pUserData = dev->reporter_.get();
+    messengerInfo.pUserData = &reporter;
 
     VkValidationFeatureEnableEXT syncFeature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
@@ -140,7 +147,7 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
     features.pEnabledValidationFeatures = &syncFeature;
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.pApplicationName = "bricklight";
+    app.pApplicationName = d.applicationName;
     app.pEngineName = "bricklight";
     app.apiVersion = VK_API_VERSION_1_3;
     VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
@@ -149,29 +156,32 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
     ici.ppEnabledLayerNames = layers.data();
     ici.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     ici.ppEnabledExtensionNames = extensions.data();
-    const bool useMessenger = dev->debugUtils_ && !layers.empty();
+    const bool useMessenger = out.debugUtilsEnabled && !layers.empty();
     if (useMessenger) {
-        ici.pNext = &messengerInfo;
+        ici.pNext = &messengerInfo;  // chained: instance creation is checked too
         if (syncValidation) messengerInfo.pNext = &features;
     }
-    if (VkResult r = vkCreateInstance(&ici, nullptr, &dev->instance_); r != VK_SUCCESS) {
-        dev->fail("createDevice: vkCreateInstance failed (VkResult " + std::to_string(r) + ")");
-        return nullptr;
-    }
+    if (VkResult r = vkCreateInstance(&ici, nullptr, &out.instance); r != VK_SUCCESS)
+        return fail("createDevice: vkCreateInstance failed (VkResult " + std::to_string(r) + ")");
     if (useMessenger) {
         messengerInfo.pNext = nullptr;
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(dev->instance_, "vkCreateDebugUtilsMessengerEXT"));
-        if (create) create(dev->instance_, &messengerInfo, nullptr, &dev->messenger_);
+            vkGetInstanceProcAddr(out.instance, "vkCreateDebugUtilsMessengerEXT"));
+        if (create) create(out.instance, &messengerInfo, nullptr, &out.messenger);
+    }
+    if (d.createSurface) {
+        if (VkResult r = d.createSurface(out.instance, &out.surface); r != VK_SUCCESS || !out.surface)
+            return fail("createDevice: the window's surface could not be created (VkResult " + std::to_string(r) + ")");
     }
 
-    // Pick the physical device: Vulkan 1.3, a graphics+compute queue, sync2 + dynamic rendering.
-    std::string filter = options.deviceNameContains;
+    // Pick the physical device: Vulkan 1.3, sync2 + dynamic rendering, the asked-for extensions, a graphics+compute
+    // queue (that presents to the surface).
+    std::string filter = d.deviceNameContains;
     if (const char* env = getenv("BRICKLIGHT_VK_DEVICE"); env && *env) filter = env;
     uint32_t count = 0;
-    vkEnumeratePhysicalDevices(dev->instance_, &count, nullptr);
+    vkEnumeratePhysicalDevices(out.instance, &count, nullptr);
     std::vector<VkPhysicalDevice> candidates(count);
-    vkEnumeratePhysicalDevices(dev->instance_, &count, candidates.data());
+    vkEnumeratePhysicalDevices(out.instance, &count, candidates.data());
     int bestScore = -1;
     std::string rejected;
     for (VkPhysicalDevice pd : candidates) {
@@ -184,54 +194,52 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
         std::string why;
         if (p.apiVersion < VK_API_VERSION_1_3) why = "Vulkan 1.3 not supported";
         else if (!f13.synchronization2 || !f13.dynamicRendering) why = "no synchronization2/dynamicRendering";
-        else if (findQueueFamily(pd) < 0) why = "no graphics+compute queue";
+        else if (findQueueFamily(pd, out.surface) < 0) why = out.surface ? "no graphics+compute queue that presents to the window" : "no graphics+compute queue";
         else if (!filter.empty() && std::string(p.deviceName).find(filter) == std::string::npos)
             why = "name does not contain '" + filter + "'";
+        for (const char* e : d.deviceExtensions)
+            if (why.empty() && !hasDeviceExtension(pd, e)) why = std::string("no ") + e;
         if (!why.empty()) {
             rejected += std::string(rejected.empty() ? "" : "; ") + p.deviceName + ": " + why;
             continue;
         }
-        int score = typeScore(p.deviceType, options.preferSoftware);
+        int score = typeScore(p.deviceType, d.preferSoftware);
         if (score > bestScore) {
             bestScore = score;
-            dev->physical_ = pd;
+            out.physicalDevice = pd;
         }
     }
-    if (!dev->physical_) {
-        dev->fail("createDevice: no usable Vulkan device" + (rejected.empty() ? std::string() : " (" + rejected + ")"));
-        return nullptr;
-    }
-    dev->queueFamily_ = static_cast<uint32_t>(findQueueFamily(dev->physical_));
+    if (!out.physicalDevice)
+        return fail("createDevice: no usable Vulkan device" + (rejected.empty() ? std::string() : " (" + rejected + ")"));
+    out.queueFamilyIndex = static_cast<uint32_t>(findQueueFamily(out.physicalDevice, out.surface));
 
     // Features: the required ones plus every optional one the contract can use.
-    VkPhysicalDeviceFeatures& en = dev->enabled_;
-    en = usefulFeatures(dev->physical_);
+    out.enabledFeatures = usefulFeatures(out.physicalDevice);
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.synchronization2 = VK_TRUE;
     f13.dynamicRendering = VK_TRUE;
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     f2.pNext = &f13;
-    f2.features = en;
+    f2.features = out.enabledFeatures;
 
-    std::vector<const char*> devExt;
+    std::vector<const char*> devExt = d.deviceExtensions;
     // Shader statistics for tuning (a diagnostic: the driver's register counts and the like per pipeline).
     VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableInfo{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
-    const bool statistics = envFlag("BRICKLIGHT_VK_SHADER_STATISTICS") &&
-                            hasDeviceExtension(dev->physical_, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    statistics = statistics && hasDeviceExtension(out.physicalDevice, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
     if (statistics) {
         executableInfo.pipelineExecutableInfo = VK_TRUE;
         f13.pNext = &executableInfo;
         devExt.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
     }
-    dev->barrierReuse_ = !(options.disableBarrierReuse || envFlag("BRICKLIGHT_VK_NO_BARRIER_REUSE"));
-    const bool noPush = options.disablePushDescriptors || envFlag("BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS");
-    dev->pushDescriptors_ = !noPush && hasDeviceExtension(dev->physical_, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
-    if (dev->pushDescriptors_) devExt.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    if (statisticsOn) *statisticsOn = statistics;
+    const bool noPush = d.disablePushDescriptors || envFlag("BRICKLIGHT_VK_NO_PUSH_DESCRIPTORS");
+    out.pushDescriptorEnabled = !noPush && hasDeviceExtension(out.physicalDevice, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    if (out.pushDescriptorEnabled) devExt.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    qci.queueFamilyIndex = dev->queueFamily_;
+    qci.queueFamilyIndex = out.queueFamilyIndex;
     qci.queueCount = 1;
     qci.pQueuePriorities = &priority;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
@@ -240,11 +248,37 @@ std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions
     dci.pQueueCreateInfos = &qci;
     dci.enabledExtensionCount = static_cast<uint32_t>(devExt.size());
     dci.ppEnabledExtensionNames = devExt.data();
-    if (VkResult r = vkCreateDevice(dev->physical_, &dci, nullptr, &dev->device_); r != VK_SUCCESS) {
-        dev->fail("createDevice: vkCreateDevice failed (VkResult " + std::to_string(r) + ")");
-        return nullptr;
-    }
-    vkGetDeviceQueue(dev->device_, dev->queueFamily_, 0, &dev->queue_);
+    if (VkResult r = vkCreateDevice(out.physicalDevice, &dci, nullptr, &out.device); r != VK_SUCCESS)
+        return fail("createDevice: vkCreateDevice failed (VkResult " + std::to_string(r) + ")");
+    vkGetDeviceQueue(out.device, out.queueFamilyIndex, 0, &out.queue);
+    return true;
+}
+
+std::unique_ptr<VulkanDevice> VulkanDevice::createStandalone(const DeviceOptions& options) {
+    std::unique_ptr<VulkanDevice> dev(new VulkanDevice());
+    dev->reporter_->callback = options.errorCallback;
+    dev->ownsDevice_ = true;
+    StartupDesc sd;
+    sd.enableValidation = options.enableValidation;
+    sd.enableSyncValidation = options.enableSyncValidation;
+    sd.preferSoftware = options.preferSoftware;
+    sd.deviceNameContains = options.deviceNameContains;
+    sd.disablePushDescriptors = options.disablePushDescriptors;
+    VulkanObjects o;
+    bool statistics = false;
+    const bool started = startVulkan(sd, *dev->reporter_, envFlag("BRICKLIGHT_VK_SHADER_STATISTICS"), o, &statistics);
+    // The device owns what was made, also on failure (its destructor destroys it).
+    dev->instance_ = o.instance;
+    dev->messenger_ = o.messenger;
+    dev->physical_ = o.physicalDevice;
+    dev->device_ = o.device;
+    dev->queue_ = o.queue;
+    dev->queueFamily_ = o.queueFamilyIndex;
+    dev->enabled_ = o.enabledFeatures;
+    dev->pushDescriptors_ = o.pushDescriptorEnabled;
+    dev->debugUtils_ = o.debugUtilsEnabled;
+    if (!started) return nullptr;
+    dev->barrierReuse_ = !(options.disableBarrierReuse || envFlag("BRICKLIGHT_VK_NO_BARRIER_REUSE"));
     if (statistics) {
         dev->executableProperties_ = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
             vkGetDeviceProcAddr(dev->device_, "vkGetPipelineExecutablePropertiesKHR"));
@@ -416,6 +450,46 @@ std::unique_ptr<rhi::IDevice> createDevice(const DeviceOptions& options) {
 }
 std::unique_ptr<rhi::IDevice> createEmbeddedDevice(const EmbeddedDesc& desc) {
     return VulkanDevice::createEmbedded(desc);
+}
+
+std::optional<VulkanObjects> createVulkanObjects(const StartupDesc& desc) {
+    auto reporter = std::make_shared<detail::Reporter>();
+    reporter->callback = desc.errorCallback;
+    VulkanObjects objects;
+    objects.messengerTarget = reporter;
+    if (!detail::startVulkan(desc, *reporter, false, objects, nullptr)) {
+        destroyVulkanObjects(objects);
+        return std::nullopt;
+    }
+    return objects;
+}
+
+void destroyVulkanObjects(VulkanObjects& o) {
+    if (o.device) vkDestroyDevice(o.device, nullptr);
+    if (o.instance) {
+        if (o.surface) vkDestroySurfaceKHR(o.instance, o.surface, nullptr);
+        if (o.messenger) {
+            auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+                vkGetInstanceProcAddr(o.instance, "vkDestroyDebugUtilsMessengerEXT"));
+            if (destroy) destroy(o.instance, o.messenger, nullptr);
+        }
+        vkDestroyInstance(o.instance, nullptr);
+    }
+    o = VulkanObjects{};
+}
+
+EmbeddedDesc embeddedDesc(const VulkanObjects& o, rhi::ErrorCallback errorCallback) {
+    EmbeddedDesc e;
+    e.instance = o.instance;
+    e.physicalDevice = o.physicalDevice;
+    e.device = o.device;
+    e.queue = o.queue;
+    e.queueFamilyIndex = o.queueFamilyIndex;
+    e.errorCallback = std::move(errorCallback);
+    e.enabledFeatures = &o.enabledFeatures;
+    e.pushDescriptorEnabled = o.pushDescriptorEnabled;
+    e.debugUtilsEnabled = o.debugUtilsEnabled;
+    return e;
 }
 
 VkPhysicalDeviceFeatures usefulFeatures(VkPhysicalDevice physicalDevice) {

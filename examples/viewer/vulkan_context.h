@@ -1,6 +1,7 @@
 // What bricklight-viewer owns of Vulkan below the swapchain, as an engine would: the instance (with the
 // validation layer and a debug messenger when asked), the window's surface, the physical device, the one
-// queue that does everything, and the logical device with the features Bricklight's embedded device uses.
+// queue that does everything, and the logical device with the features Bricklight's embedded device uses —
+// made by Bricklight's start-up (vulkan::createVulkanObjects), owned and destroyed here.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "bricklight/rhi.h"
+#include "bricklight/rhi_vulkan.h"
 
 struct GLFWwindow;
 
@@ -28,36 +30,20 @@ public:
     // Everything made on the device must be gone by now.
     void destroy();
 
-    VkInstance instance() const { return instance_; }
-    VkSurfaceKHR surface() const { return surface_; }
-    VkPhysicalDevice physicalDevice() const { return physical_; }
-    VkDevice device() const { return device_; }
-    VkQueue queue() const { return queue_; }
-    uint32_t queueFamily() const { return family_; }
-    // What an embedded Bricklight device must be told is on (vulkan::EmbeddedDesc).
-    const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabled_; }
-    bool pushDescriptors() const { return pushDescriptors_; }
-    bool debugUtils() const { return debugUtils_; }
+    VkInstance instance() const { return objects_.instance; }
+    VkSurfaceKHR surface() const { return objects_.surface; }
+    VkPhysicalDevice physicalDevice() const { return objects_.physicalDevice; }
+    VkDevice device() const { return objects_.device; }
+    VkQueue queue() const { return objects_.queue; }
+    uint32_t queueFamily() const { return objects_.queueFamilyIndex; }
+    const vulkan::VulkanObjects& objects() const { return objects_; }  // what vulkan::embeddedDesc takes
 
     // Records into a temporary command buffer from `pool`, submits it and waits for the queue. For set-up
     // work only (layouts, font upload): it stalls.
     bool submitNow(VkCommandPool pool, void (*record)(VkCommandBuffer, void*), void* user, std::string* error) const;
 
 private:
-    bool createInstance(GLFWwindow* window, bool validation, rhi::ErrorCallback* errors, std::string* error);
-    bool pickPhysicalDevice(std::string* error);
-    bool createDevice(std::string* error);
-
-    VkInstance instance_ = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
-    bool debugUtils_ = false;
-    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
-    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
-    uint32_t family_ = 0;
-    VkDevice device_ = VK_NULL_HANDLE;
-    VkQueue queue_ = VK_NULL_HANDLE;
-    VkPhysicalDeviceFeatures enabled_{};
-    bool pushDescriptors_ = false;
+    vulkan::VulkanObjects objects_;
 };
 
 }  // namespace bricklight::viewer

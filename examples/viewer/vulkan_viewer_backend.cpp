@@ -114,20 +114,11 @@ private:
 
 bool VulkanViewerBackend::createBricklightDevice(std::string* error) {
     std::string deviceError;
-    vulkan::EmbeddedDesc desc;
-    desc.instance = context_.instance();
-    desc.physicalDevice = context_.physicalDevice();
-    desc.device = context_.device();
-    desc.queue = context_.queue();
-    desc.queueFamilyIndex = context_.queueFamily();
-    desc.enabledFeatures = &context_.enabledFeatures();
-    desc.pushDescriptorEnabled = context_.pushDescriptors();
-    desc.debugUtilsEnabled = context_.debugUtils();
     // The device's creation errors are also what *error should say.
-    desc.errorCallback = [this, &deviceError](Severity s, const std::string& m) {
+    const vulkan::EmbeddedDesc desc = vulkan::embeddedDesc(context_.objects(), [this, &deviceError](Severity s, const std::string& m) {
         if (s == Severity::Error && deviceError.empty()) deviceError = m;
         errorCallback_(s, m);
-    };
+    });
     device_ = vulkan::createEmbeddedDevice(desc);
     if (!device_) return *error = "vulkan: createEmbeddedDevice failed: " + deviceError, false;
     device_->setErrorCallback(errorCallback_);

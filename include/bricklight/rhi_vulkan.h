@@ -6,9 +6,11 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bricklight/rhi.h"
 
@@ -37,6 +39,42 @@ struct DeviceOptions {
 // Standalone device; nullptr on failure (the reason goes to the callback, or stderr).
 std::unique_ptr<rhi::IDevice> createDevice(const DeviceOptions& options);
 
+// Bricklight's Vulkan start-up for an application that owns the objects and embeds Bricklight on them
+// (createEmbeddedDevice below): the instance (with the validation layer and a debug messenger when asked), the
+// window's surface when asked, the physical device, one graphics+compute queue (that can present to the surface)
+// and the device, with the features and extensions Bricklight uses. The standalone device starts the same way.
+struct StartupDesc {
+    const char* applicationName = "bricklight";
+    bool enableValidation = false;      // as DeviceOptions (also env BRICKLIGHT_VK_VALIDATION=1)
+    bool enableSyncValidation = false;  // (also env BRICKLIGHT_VK_SYNC_VALIDATION=1)
+    bool preferSoftware = false;
+    std::string deviceNameContains;     // env BRICKLIGHT_VK_DEVICE overrides
+    bool disablePushDescriptors = false;
+    std::vector<const char*> instanceExtensions;  // the application's own, e.g. glfwGetRequiredInstanceExtensions()
+    std::vector<const char*> deviceExtensions;    // e.g. VK_KHR_SWAPCHAIN_EXTENSION_NAME; a device without one is passed over
+    // Called once the instance exists, e.g. glfwCreateWindowSurface; the queue must then present to the surface.
+    std::function<VkResult(VkInstance, VkSurfaceKHR*)> createSurface;
+    rhi::ErrorCallback errorCallback;   // the start-up's failures and the validation messages; empty: stderr
+};
+
+// What createVulkanObjects made, the application's to use and to destroy (destroyVulkanObjects) once everything
+// made on the device is gone.
+struct VulkanObjects {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queueFamilyIndex = 0;
+    VkPhysicalDeviceFeatures enabledFeatures{};
+    bool pushDescriptorEnabled = false, debugUtilsEnabled = false, validationEnabled = false;
+    std::shared_ptr<void> messengerTarget;  // what the debug messenger reports to: kept alive with the objects
+};
+// Empty on failure, having reported why and destroyed what it made.
+std::optional<VulkanObjects> createVulkanObjects(const StartupDesc& desc);
+void destroyVulkanObjects(VulkanObjects& objects);  // safe on partly made or empty objects; leaves them empty
+
 // The application's objects. The device must be Vulkan 1.3 with synchronization2 and dynamicRendering
 // enabled; the queue must support graphics and compute. The optional fields say what else the
 // application enabled (the backend cannot query enabled features): leave them empty/false if unsure.
@@ -52,6 +90,8 @@ struct EmbeddedDesc {
     bool debugUtilsEnabled = false;      // VK_EXT_debug_utils enabled on the instance
 };
 std::unique_ptr<rhi::IDevice> createEmbeddedDevice(const EmbeddedDesc& desc);
+// The EmbeddedDesc of objects made by createVulkanObjects (`enabledFeatures` points into `objects`).
+EmbeddedDesc embeddedDesc(const VulkanObjects& objects, rhi::ErrorCallback errorCallback);
 // The core features the backend can use (geometry shaders, depth clamp, stores and atomics in every stage,
 // storage image formats, ...) that `physicalDevice` supports: what the standalone device enables. Enable
 // them on an application-owned device and pass them as EmbeddedDesc::enabledFeatures, so that the
