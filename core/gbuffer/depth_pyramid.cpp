@@ -6,6 +6,7 @@
 
 #include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
+#include "../common/refusal.h"
 
 namespace bricklight::gbuffer {
 
@@ -28,10 +29,7 @@ uint32_t depthPyramidMipCount(uint32_t width, uint32_t height) {
 
 std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, const DepthPyramidDesc& desc, Error* error) {
     const uint32_t width = desc.width, height = desc.height;
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "depth pyramid: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "depth pyramid");
     const uint32_t limit = std::min(detail::kMaxSize, device.capabilities().limits.maxTextureSize2D);
     if (width == 0 || height == 0 || width > limit || height > limit)
         return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(limit) +
@@ -68,10 +66,7 @@ DepthPyramid::~DepthPyramid() {
 }
 
 bool DepthPyramid::build(rhi::TextureHandle depth, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "depth pyramid: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "depth pyramid");
     const rhi::TextureDesc* d = depth ? device_.describe(depth) : nullptr;
     if (!d) return fail("the depth texture is null or destroyed", ErrorCode::InvalidHandle);
     const std::string name = d->debugName.empty() ? std::string("the depth texture") : "depth texture '" + d->debugName + "'";

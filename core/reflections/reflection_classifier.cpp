@@ -9,6 +9,7 @@
 #include "reflection_params.h"
 #include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
+#include "../common/refusal.h"
 
 namespace bricklight::reflections {
 
@@ -22,10 +23,7 @@ bool invertible(const glm::mat4& m) {
 
 std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice& device, const ReflectionClassifierDesc& desc, Error* error) {
     const uint32_t width = desc.width, height = desc.height;
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "reflection classifier: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "reflection classifier");
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ReflectionClassifier> c(new ReflectionClassifier(device));
     c->width_ = width;
@@ -104,10 +102,7 @@ bool ReflectionClassifier::writeParams(const void* bytes, size_t offset, size_t 
 }
 
 bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "reflection classifier: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "reflection classifier");
     using Kind = rhi::FormatInfo::Kind;
     // A live, sampled 2D texture of the classifier's size with a readable kind and enough channels.
     auto check = [&](rhi::TextureHandle t, const char* name, uint32_t channels, bool depth, bool signedFloat) -> bool {

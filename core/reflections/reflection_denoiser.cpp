@@ -6,6 +6,7 @@
 #include "bricklight/reflections/denoiser.h"
 #include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
+#include "../common/refusal.h"
 
 namespace bricklight::reflections {
 
@@ -23,10 +24,7 @@ static_assert(sizeof(ReflectionDenoiseParams) == 64 * 3 + 16 * 5);
 
 std::unique_ptr<ReflectionDenoiser> ReflectionDenoiser::create(rhi::IDevice& device, const ReflectionDenoiserDesc& desc, Error* error) {
     const uint32_t width = desc.width, height = desc.height;
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "reflection denoiser: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "reflection denoiser");
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ReflectionDenoiser> d(new ReflectionDenoiser(device));
     d->width_ = width;
@@ -70,10 +68,7 @@ ReflectionDenoiser::~ReflectionDenoiser() {
 }
 
 bool ReflectionDenoiser::denoise(const ReflectionDenoiseDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "reflection denoiser: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "reflection denoiser");
     // A sampled 2D input of the denoiser's size.
     auto input = [&](rhi::TextureHandle t, const char* name) -> bool {
         const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;

@@ -5,14 +5,12 @@
 
 #include "bricklight/reflections/classifier.h"
 #include "reflection_params.h"
+#include "../common/refusal.h"
 
 namespace bricklight::reflections {
 
 bool ReflectionClassifier::traceScreenSpace(const ReflectionTraceDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "reflection classifier: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "reflection classifier");
     if (!classified_ || !device_.describe(depth_) || !device_.describe(normals_) || !device_.describe(roughness_))
         return fail("traceScreenSpace() needs a classify() whose depth, normals and roughness are still live", ErrorCode::InvalidState);
     // A second trace would list the same misses again and count them twice in the tile counters.
@@ -81,10 +79,7 @@ bool ReflectionClassifier::traceScreenSpace(const ReflectionTraceDesc& d, Error*
 }
 
 bool ReflectionClassifier::debugView(rhi::TextureHandle output, ReflectionDebugMode mode, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "reflection classifier: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "reflection classifier");
     const rhi::TextureDesc* out = output ? device_.describe(output) : nullptr;
     if (!out || out->format != rhi::Format::RGBA8_UNORM || out->dimension != rhi::TextureDimension::Texture2D ||
         !(out->usage & rhi::TextureUsage::Storage) || out->width != width_ || out->height != height_)

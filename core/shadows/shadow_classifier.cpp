@@ -6,6 +6,7 @@
 #include "bricklight/shadows/classifier.h"
 #include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
+#include "../common/refusal.h"
 
 namespace bricklight::shadows {
 
@@ -30,10 +31,7 @@ static_assert(sizeof(ShadowClassifyParams) == kShadowParamsBytes);
 
 std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device, const ShadowClassifierDesc& desc, Error* error) {
     const uint32_t width = desc.width, height = desc.height;
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "shadow classifier: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "shadow classifier");
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ShadowClassifier> c(new ShadowClassifier(device));
     c->width_ = width;
@@ -91,10 +89,7 @@ ShadowClassifier::~ShadowClassifier() {
 }
 
 bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "shadow classifier: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "shadow classifier");
     auto sized = [&](rhi::TextureHandle t, const char* name, bool depth) -> bool {
         const rhi::TextureDesc* td = t ? device_.describe(t) : nullptr;
         if (!td) return fail(std::string(name) + " is missing or not a live texture", ErrorCode::MissingInput);

@@ -7,6 +7,7 @@
 #include "bricklight/shadows/denoiser.h"
 #include "../common/memory_tally.h"
 #include "../common/technique_setup.h"
+#include "../common/refusal.h"
 
 namespace bricklight::shadows {
 
@@ -24,10 +25,7 @@ static_assert(sizeof(ShadowDenoiseParams) == 272);
 
 std::unique_ptr<ShadowDenoiser> ShadowDenoiser::create(rhi::IDevice& device, const ShadowDenoiserDesc& desc, Error* error) {
     const uint32_t width = desc.width, height = desc.height;
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "shadow denoiser: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "shadow denoiser");
     if (const std::string problem = detail::sizeProblem(width, height); !problem.empty()) return fail(problem);
     std::unique_ptr<ShadowDenoiser> d(new ShadowDenoiser(device));
     d->width_ = width;
@@ -85,10 +83,7 @@ ShadowDenoiser::~ShadowDenoiser() {
 }
 
 bool ShadowDenoiser::denoise(const ShadowClassifier& classifier, const ShadowDenoiseDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "shadow denoiser: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "shadow denoiser");
     const std::string size = std::to_string(width_) + "x" + std::to_string(height_);
     if (classifier.width() != width_ || classifier.height() != height_)
         return fail("the shadow classifier is " + std::to_string(classifier.width()) + "x" + std::to_string(classifier.height()) + ", the denoiser " + size);

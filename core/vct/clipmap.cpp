@@ -6,15 +6,13 @@
 
 #include "bricklight/vct.h"
 #include "../common/core_shaders.h"
+#include "../common/refusal.h"
 #include "clipmap_regions.h"
 
 namespace bricklight::vct {
 
 bool checkVoxelMaterial(const VoxelMaterial& m, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "voxel material: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "voxel material");
     if (!(m.thickness >= 0.0f && m.thickness <= 2.0f))
         return fail("thickness " + std::to_string(m.thickness) + " is outside 0..2 voxels");
     if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) return fail("opacity " + std::to_string(m.opacity) + " is outside 0..1");
@@ -32,10 +30,7 @@ struct BoxConstants {
 }  // namespace
 
 std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc& desc, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "clip-map: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "clip-map");
     std::optional<ClipmapPlacement> placement = ClipmapPlacement::create(desc, error);
     if (!placement) return nullptr;
     const rhi::Limits& limits = device.capabilities().limits;
@@ -360,10 +355,7 @@ void Clipmap::buildMips() {
 }
 
 bool Clipmap::debugView(const DebugViewDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "clip-map debug view: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "clip-map debug view");
     if (uint32_t(d.mode) > uint32_t(DebugMode::Rewritten)) return fail("mode " + std::to_string(uint32_t(d.mode)) + " is not a DebugMode");
     const int32_t lastLevel = int32_t(desc().levels - 1 + clipmapMipLevels(desc()));  // the coarsest level's mips follow it
     if (d.level < -1 || d.level > lastLevel)

@@ -5,6 +5,7 @@
 
 #include "bricklight/vct.h"
 #include "clipmap_regions.h"
+#include "../common/refusal.h"
 
 namespace bricklight::vct {
 
@@ -24,10 +25,7 @@ uint64_t VoxelBox::voxelCount() const {
 }
 
 bool checkClipmapDesc(const ClipmapDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "clip-map: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "clip-map");
     if (d.levels < kMinLevels || d.levels > kMaxLevels)
         return fail("levels " + std::to_string(d.levels) + " is outside " + std::to_string(kMinLevels) + ".." + std::to_string(kMaxLevels));
     if (!isPowerOfTwo(d.resolution) || d.resolution < 32 || d.resolution > 256)

@@ -5,6 +5,7 @@
 
 #include "bricklight/vct.h"
 #include "../common/core_shaders.h"
+#include "../common/refusal.h"
 
 namespace bricklight::vct {
 
@@ -17,10 +18,7 @@ constexpr uint64_t kRecordBytes = kHeaderBytes + uint64_t(kRecordedCones) * kMax
 }  // namespace
 
 bool ConeTracer::debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "cone tracer: cone samples: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "cone tracer: cone samples");
     if (!latest_) return fail("nothing traced yet (call dispatch first)", ErrorCode::InvalidState);
     if (x >= width_ || y >= height_)
         return fail("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the tracer's " + std::to_string(width_) + "x" +

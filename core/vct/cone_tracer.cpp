@@ -6,14 +6,12 @@
 
 #include "bricklight/vct.h"
 #include "../common/core_shaders.h"
+#include "../common/refusal.h"
 
 namespace bricklight::vct {
 
 bool checkConeTraceParams(const ConeTraceParams& p, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "cone trace parameters: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "cone trace parameters");
     auto within = [](float v, float lo, float hi) { return v >= lo && v <= hi; };  // false for NaN
     if (p.diffuseCones < 1 || p.diffuseCones > 32) return fail("diffuseCones " + std::to_string(p.diffuseCones) + " is outside 1..32");
     if (!within(p.diffuseConeAngle, 0.0f, 3.0f)) return fail("diffuseConeAngle " + std::to_string(p.diffuseConeAngle) + " is outside 0..3 radians");
@@ -62,10 +60,7 @@ const uint32_t kNoGuide = 0x7FC00000u;  // NO_GUIDE in trace_common.glsl
 std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipmap& clipmap, const ConeTracerDesc& desc,
                                                Error* error) {
     const uint32_t width = desc.width, height = desc.height;
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "cone tracer: " + why};
-        return nullptr;
-    };
+    const bricklight::detail::Refusal fail(error, "cone tracer");
     if (width == 0 || height == 0 || width > device.capabilities().limits.maxTextureSize2D || height > device.capabilities().limits.maxTextureSize2D)
         return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is zero or exceeds the device's 2D texture size", ErrorCode::WrongSize);
     shaders::link_bricklight_vct();
@@ -133,10 +128,7 @@ bool ConeTracer::bindLowResolution(uint32_t sparsity, Error* error) {
 }
 
 bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
-    auto fail = [&](const std::string& why, ErrorCode code = ErrorCode::InvalidArgument) {
-        if (error) *error = {code, "cone tracer: " + why};
-        return false;
-    };
+    const bricklight::detail::Refusal fail(error, "cone tracer");
     if (!checkConeTraceParams(d.params, error)) return false;
     struct Input {
         const char* name;

@@ -9,6 +9,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "bricklight/rhi.h"
+
 namespace bricklight::testing {
 
 struct PlateSceneDesc {
@@ -22,6 +24,7 @@ struct PlateSceneDesc {
 };
 
 struct PlateScene {
+    uint32_t width = 0, height = 0, mapWidth = 0, mapHeight = 0;
     glm::mat4 view{1.0f}, projection{1.0f};
     std::vector<float> depth;        // width × height, 1 = sky
     std::vector<glm::vec4> normals;  // stored = world normal (unpack scale 1, offset 0)
@@ -32,6 +35,10 @@ struct PlateScene {
 
 inline PlateScene makePlateScene(const PlateSceneDesc& d) {
     PlateScene s;
+    s.width = d.width;
+    s.height = d.height;
+    s.mapWidth = d.mapWidth;
+    s.mapHeight = d.mapHeight;
     s.view = glm::lookAtRH(glm::vec3(0.0f, 10.0f, 0.0f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
     s.projection = glm::orthoRH_ZO(-8.0f, 8.0f, -4.0f, 4.0f, 0.1f, 20.0f);
     s.projection[1][1] = -s.projection[1][1];  // NDC y −1 at the top row (the library's convention)
@@ -60,6 +67,32 @@ inline PlateScene makePlateScene(const PlateSceneDesc& d) {
             s.shadowMap.push_back(plate ? (d.mapTop - d.plateTop) / d.mapTop : 1.0f);
         }
     return s;
+}
+
+// The scene as sampled textures: depth (R32_FLOAT), normals (RGBA32_FLOAT) and the shadow map (R32_FLOAT); null
+// handles where the device refuses one.
+struct PlateTextures {
+    rhi::TextureHandle depth, normals, shadowMap;
+};
+
+inline PlateTextures uploadPlateScene(rhi::IDevice& device, const PlateScene& s) {
+    PlateTextures t;
+    rhi::TextureDesc d;
+    d.width = s.width;
+    d.height = s.height;
+    d.format = rhi::Format::R32_FLOAT;
+    d.usage = rhi::TextureUsage::Sampled;
+    d.debugName = "test depth";
+    t.depth = device.createTexture(d, s.depth.data());
+    d.format = rhi::Format::RGBA32_FLOAT;
+    d.debugName = "test normals";
+    t.normals = device.createTexture(d, s.normals.data());
+    d.width = s.mapWidth;
+    d.height = s.mapHeight;
+    d.format = rhi::Format::R32_FLOAT;
+    d.debugName = "test shadow map";
+    t.shadowMap = device.createTexture(d, s.shadowMap.data());
+    return t;
 }
 
 }  // namespace bricklight::testing

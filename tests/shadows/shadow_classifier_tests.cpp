@@ -53,27 +53,10 @@ float plateDistance(glm::vec2 g) {
     return glm::length(glm::max(q, glm::vec2(0.0f))) + std::min(std::max(q.x, q.y), 0.0f);
 }
 
-struct Inputs {
-    rhi::TextureHandle depth, normals, shadowMap;
-};
+using Inputs = PlateTextures;
 
 Inputs upload(TestDevice& td, const Scene& s) {
-    Inputs in;
-    rhi::TextureDesc d;
-    d.width = kWidth;
-    d.height = kHeight;
-    d.format = rhi::Format::R32_FLOAT;
-    d.usage = rhi::TextureUsage::Sampled;
-    d.debugName = "test depth";
-    in.depth = td.device->createTexture(d, s.depth.data());
-    d.format = rhi::Format::RGBA32_FLOAT;
-    d.debugName = "test normals";
-    in.normals = td.device->createTexture(d, s.normals.data());
-    d.width = kMapW;
-    d.height = kMapH;
-    d.format = rhi::Format::R32_FLOAT;
-    d.debugName = "test shadow map";
-    in.shadowMap = td.device->createTexture(d, s.shadowMap.data());
+    const Inputs in = uploadPlateScene(*td.device, s);
     REQUIRE(in.depth);
     REQUIRE(in.normals);
     REQUIRE(in.shadowMap);

@@ -134,26 +134,17 @@ struct Fixture {
 
     explicit Fixture(const std::string& backend) : td(makeDevice(backend)) {
         REQUIRE(td.device);
+        const PlateTextures in = uploadPlateScene(*td.device, s);
+        depth = in.depth;
+        normals = in.normals;
+        shadowMap = in.shadowMap;
         rhi::TextureDesc d;
         d.width = kWidth;
         d.height = kHeight;
-        d.format = rhi::Format::R32_FLOAT;
-        d.usage = rhi::TextureUsage::Sampled;
-        d.debugName = "test depth";
-        depth = td.device->createTexture(d, s.depth.data());
-        d.format = rhi::Format::RGBA32_FLOAT;
-        d.debugName = "test normals";
-        normals = td.device->createTexture(d, s.normals.data());
         d.format = rhi::Format::R16_FLOAT;
         d.usage = rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage;
         d.debugName = "test visibility";
         output = td.device->createTexture(d);
-        d.width = kMapW;
-        d.height = kMapH;
-        d.format = rhi::Format::R32_FLOAT;
-        d.usage = rhi::TextureUsage::Sampled;
-        d.debugName = "test shadow map";
-        shadowMap = td.device->createTexture(d, s.shadowMap.data());
         REQUIRE((depth && normals && output && shadowMap));
         sdf::SceneDesc sd;
         sd.cascadeCount = 3;
