@@ -2,13 +2,10 @@
 // the finiteness checks of their descriptions (core/common/finite_checks.h), and the creation of their passes' shaders.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <string>
 #include <utility>
-
-#include <glm/glm.hpp>
 
 #include "bricklight/rhi.h"
 #include "core_shaders.h"
@@ -17,8 +14,6 @@
 namespace bricklight::detail {
 
 constexpr uint32_t kMaxSize = 16384;  // pixels per side
-
-
 
 // "" for a size of 1..kMaxSize on each side, else what is wrong with it.
 inline std::string sizeProblem(uint32_t width, uint32_t height) {
@@ -31,11 +26,7 @@ inline std::string sizeProblem(uint32_t width, uint32_t height) {
 inline void createShaders(rhi::IDevice& device, void (*linkShaders)(),
                           std::initializer_list<std::pair<const char*, rhi::ShaderHandle*>> shaders) {
     linkShaders();
-    for (auto [name, shader] : shaders) {
-        rhi::ShaderDesc sd;
-        sd.blob = rhi::findShader(name);
-        *shader = sd.blob ? device.createShader(sd) : rhi::ShaderHandle{};
-    }
+    for (auto [name, shader] : shaders) *shader = bricklight::shaders::createCoreShader(device, name);
 }
 
 }  // namespace bricklight::detail

@@ -265,6 +265,27 @@ void RasterRenderer::composite() {
     device_.endMarker();
 }
 
+gbuffer::Camera RasterRenderer::frameCamera() const {
+    gbuffer::Camera c;
+    c.view = view_;
+    c.projection = projection_;
+    c.previousView = previousView_;
+    c.previousProjection = previousProjection_;
+    return c;
+}
+
+gbuffer::Inputs RasterRenderer::frameGBuffer() const {
+    gbuffer::Inputs g;
+    g.depth = depth_;
+    g.normals = normal_;
+    g.normalsUnpackScale = glm::vec3(1.0f);  // float normals
+    g.normalsUnpackOffset = glm::vec3(0.0f);
+    g.roughness = albedo_;
+    g.roughnessChannel = 3;
+    g.motionVectors = motion_;
+    return g;
+}
+
 // The next frame's motion vectors and GI reprojection start from this camera.
 void RasterRenderer::shiftCameraHistory() {
     previousViewProjection_ = viewProjection_;

@@ -201,6 +201,10 @@ public:
 
 private:
     explicit RasterRenderer(rhi::IDevice& device) : device_(device) {}
+    // This frame's camera (and the previous one) and G-buffer as every technique's description takes them
+    // (bricklight/gbuffer/inputs.h): float normals, roughness in the albedo target's alpha, UV motion.
+    gbuffer::Camera frameCamera() const;
+    gbuffer::Inputs frameGBuffer() const;
     // The frame's passes not owned by a technique (raster_renderer.cpp).
     void drawGBuffer();
     void buildDepthPyramid();

@@ -61,18 +61,9 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
 void RasterRenderer::dispatchGi(bool cut) {
     if (!gi_) return;
     gi::DispatchDesc g;
-    g.camera.view = view_;
-    g.camera.projection = projection_;
-    g.camera.previousView = previousView_;
-    g.camera.previousProjection = previousProjection_;
+    g.camera = frameCamera();
+    g.gbuffer = frameGBuffer();
     g.cameraPosition = camera_.eye;
-    g.gbuffer.depth = depth_;
-    g.gbuffer.normals = normal_;
-    g.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
-    g.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
-    g.gbuffer.roughness = albedo_;
-    g.gbuffer.roughnessChannel = 3;
-    g.gbuffer.motionVectors = motion_;
     g.previousLitOutput = lit_;
     if (options_.giRelight) {
         g.diffuseAlbedo = albedo_;  // base colour: metals' (small) diffuse part is overestimated off screen

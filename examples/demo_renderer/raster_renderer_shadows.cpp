@@ -259,12 +259,8 @@ uint32_t RasterRenderer::hybridShadowFinerCascades() const {
 void RasterRenderer::classifyShadows() {
     if (options_.shadows != ShadowMode::Hybrid) return;
     shadows::ShadowClassifyDesc d;
-    d.camera.view = view_;
-    d.camera.projection = projection_;
-    d.gbuffer.depth = depth_;
-    d.gbuffer.normals = normal_;
-    d.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
-    d.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+    d.camera = frameCamera();
+    d.gbuffer = frameGBuffer();
     d.sunDirection = sunDirection_;
     d.shadowMap = shadowMap_;
     d.cascadeCount = kShadowCascades;
@@ -313,14 +309,8 @@ void RasterRenderer::classifyShadows() {
     device_.endMarker();
     if (soft) {
         shadows::ShadowDenoiseDesc n;
-        n.camera.view = view_;
-        n.camera.projection = projection_;
-        n.camera.previousView = previousView_;
-        n.camera.previousProjection = previousProjection_;
-        n.gbuffer.depth = depth_;
-        n.gbuffer.normals = normal_;
-        n.gbuffer.normalsUnpackScale = glm::vec3(1.0f);
-        n.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
+        n.camera = frameCamera();
+        n.gbuffer = frameGBuffer();
         n.output = sunMask_;
         n.resetHistory = softShadowFrames_ == 0;
         device_.beginMarker("shadow denoise");

@@ -112,18 +112,9 @@ void RasterRenderer::traceVct(bool cut) {
     if (!coneTracer_) return;
     Error why;
     vct::TraceDesc t;
-    t.camera.view = view_;
-    t.camera.projection = projection_;
-    t.camera.previousView = previousView_;
-    t.camera.previousProjection = previousProjection_;
+    t.camera = frameCamera();
+    t.gbuffer = frameGBuffer();
     t.cameraPosition = camera_.eye;
-    t.gbuffer.depth = depth_;
-    t.gbuffer.normals = normal_;
-    t.gbuffer.normalsUnpackScale = glm::vec3(1.0f);  // float normals
-    t.gbuffer.normalsUnpackOffset = glm::vec3(0.0f);
-    t.gbuffer.roughness = albedo_;
-    t.gbuffer.roughnessChannel = 3;
-    t.gbuffer.motionVectors = motion_;
     t.outputDiffuse = giDiffuse_;
     t.outputSpecular = options_.vctEmittance == vct::EmittanceMode::None ? rhi::TextureHandle{} : giSpecular_;
     t.params = options_.vctTrace;
