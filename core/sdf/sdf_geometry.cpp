@@ -146,12 +146,20 @@ InstanceHandle SdfSceneImpl::addInstance(const InstanceDesc& in) {
         return fail(ErrorCode::OverBudget, what + ": the scene already holds maxInstances (" + std::to_string(desc_.maxInstances) + ") instances"),
                InstanceHandle{};
     if (!checkTransform(in.transform, what)) return {};
+    if (in.material) {
+        const SurfaceMaterial& m = *in.material;
+        if (!finite(m.albedo) || glm::any(glm::lessThan(m.albedo, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.albedo, glm::vec3(1.0f))))
+            return fail(ErrorCode::InvalidArgument, what + ": material albedo must be finite and in [0, 1]"), InstanceHandle{};
+        if (!finite(m.emission) || glm::any(glm::lessThan(m.emission, glm::vec3(0.0f))))
+            return fail(ErrorCode::InvalidArgument, what + ": material emission must be finite and >= 0"), InstanceHandle{};
+    }
     Instance inst;
     inst.mesh = in.mesh;
     inst.transform = in.transform;
     inst.dynamic = in.dynamic;
     inst.maxCascade = std::min(in.maxCascade, desc_.cascadeCount - 1);
     inst.alphaTested = in.alphaTested;
+    inst.material = in.material;
     inst.bounds = worldBounds(mesh->second, in.transform);
     if (!finite(inst.bounds.min) || !finite(inst.bounds.max)) return fail(ErrorCode::InvalidArgument, what + ": world bounds overflow"), InstanceHandle{};
     if (!inst.dynamic) markDirty(inst.bounds, inst.maxCascade);

@@ -20,6 +20,11 @@ constexpr uint32_t kAabbNone = 0xFFFFFFFFu;
 constexpr uint32_t kAabbAlphaTested = 1u << 30;
 static_assert(kAabbAlphaTested == FieldSnapshot::kAabbAlphaTested);
 constexpr uint32_t kOpaqueCellWords = 2;
+// Then two words per brick: its surface material (albedo RGBA8, emission RGB9E5; FieldSnapshot::brickMaterials).
+constexpr uint32_t kMaterialWords = 2;
+constexpr uint32_t kBrickInfoWords = 1 + kOpaqueCellWords + kMaterialWords;  // per brick, in the AABB buffer
+// Per-update material table: two vec4 per gathered instance (albedo, emission), indexed by the triangles' tag.
+constexpr uint32_t kMaterialTableBytesPerInstance = 32;
 // Brick owner entries: cascade << 24 | allocation generation << 18 | physical voxel index.
 constexpr uint32_t kNoOwner = 0xFFFFFFFFu;
 constexpr uint32_t kOwnerGenerationShift = 18;

@@ -53,7 +53,7 @@ SdfSceneImpl::~SdfSceneImpl() {
             device_.destroy(m.indexBuffer);
         }
     for (rhi::BufferHandle b : {cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
-                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, overlays_})
+                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
         if (b) device_.destroy(b);
     if (atlas_) device_.destroy(atlas_);
     if (atlasSampler_) device_.destroy(atlasSampler_);
@@ -174,10 +174,12 @@ bool SdfSceneImpl::init(Error* error) {
     brickMaps_ = makeBuffer("brickMaps", mapEntries * 4, rw, unbuilt.data());
     std::vector<uint32_t> emptyTrees(size_t(d.cascadeCount) * layout::kTreeStride, 0);
     trees_ = makeBuffer("trees", emptyTrees.size() * 4, rw, emptyTrees.data());
-    std::vector<uint32_t> none(size_t(capacity) * (1 + layout::kOpaqueCellWords), layout::kAabbNone);
-    brickAabbs_ = makeBuffer("brickAabbs", none.size() * 4, rw, none.data());
+    // Boxes and opaque cells start as "none", materials as "unknown" (0).
+    std::vector<uint32_t> brickInfo(size_t(capacity) * layout::kBrickInfoWords, 0u);
+    std::fill(brickInfo.begin(), brickInfo.begin() + size_t(capacity) * (1 + layout::kOpaqueCellWords), layout::kAabbNone);
+    brickAabbs_ = makeBuffer("brickAabbs", brickInfo.size() * 4, rw, brickInfo.data());
     static_assert(layout::kNoOwner == layout::kAabbNone, "one fill serves both");
-    brickOwners_ = makeBuffer("brickOwners", uint64_t(capacity) * 4, rw, none.data());
+    brickOwners_ = makeBuffer("brickOwners", uint64_t(capacity) * 4, rw, brickInfo.data());
     std::vector<uint32_t> stack(capacity);
     std::iota(stack.begin(), stack.end(), 0u);
     freeStack_ = makeBuffer("freeStack", uint64_t(capacity) * 4, rw, stack.data());
@@ -194,11 +196,12 @@ bool SdfSceneImpl::init(Error* error) {
     references_ = makeBuffer("references", uint64_t(b.maxReferencesPerUpdate) * 12, rw);
     sortedReferences_ = makeBuffer("sortedReferences", uint64_t(b.maxReferencesPerUpdate) * 4, rw);
     touched_ = makeBuffer("touchedVoxels", uint64_t(touchedCapacity_) * 16, rw);
+    materialTable_ = makeBuffer("materialTable", uint64_t(std::max(1u, d.maxInstances)) * layout::kMaterialTableBytesPerInstance, ShaderRead);
     jobTable_ = makeBuffer("jobTable", (layout::kJobTableHeadInts + 4ull * b.maxJobsPerUpdate) * 16, ShaderRead);
     overlays_ = makeBuffer("debugOverlays", 32ull * std::max(1u, d.maxBoundsOverlays), ShaderRead);
 
     for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
-                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, overlays_})
+                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the field's buffers (see the device's messages)");
     if (!atlas_ || !atlasSampler_) return bad(ErrorCode::DeviceFailure, "the device could not create the brick atlas (see the device's messages)");
 
@@ -218,11 +221,11 @@ MemoryUse SdfSceneImpl::memoryUse() const {
     const uint64_t side = uint64_t(desc_.atlasBricksPerAxis) * kBrickResolution;
     add("atlas (R8_UNORM 3D)", side * side * side);
     for (auto [name, h] : std::initializer_list<std::pair<const char*, rhi::BufferHandle>>{
-             {"brickMaps", brickMaps_}, {"trees", trees_}, {"brickAabbs", brickAabbs_}, {"brickOwners", brickOwners_},
+             {"brickMaps", brickMaps_}, {"trees", trees_}, {"brickAabbs (boxes, cells, materials)", brickAabbs_}, {"brickOwners", brickOwners_},
              {"freeStack", freeStack_}, {"voxelReferenceCounts", voxelRefs_}, {"cascadeTable", cascadeTable_},
              {"counters+args", counters_}, {"triangles (scratch)", triangles_}, {"references (scratch)", references_},
              {"sortedReferences (scratch)", sortedReferences_}, {"touchedVoxels (scratch)", touched_},
-             {"jobTable", jobTable_}, {"debugOverlays", overlays_}}) {
+             {"jobTable", jobTable_}, {"materialTable", materialTable_}, {"debugOverlays", overlays_}}) {
         const rhi::BufferDesc* bd = device_.describe(h);
         add(name, bd ? bd->size : 0);
     }
@@ -248,6 +251,9 @@ FieldSnapshot SdfSceneImpl::readField() {
     device_.readBuffer(brickAabbs_, 0, s.brickAabbs.size() * 4, s.brickAabbs.data());
     s.brickOpaqueCells.resize(size_t(brickCapacity()) * layout::kOpaqueCellWords);
     device_.readBuffer(brickAabbs_, uint64_t(brickCapacity()) * 4, s.brickOpaqueCells.size() * 4, s.brickOpaqueCells.data());
+    s.brickMaterials.resize(size_t(brickCapacity()) * layout::kMaterialWords);
+    device_.readBuffer(brickAabbs_, uint64_t(brickCapacity()) * 4 * (1 + layout::kOpaqueCellWords), s.brickMaterials.size() * 4,
+                       s.brickMaterials.data());
     std::vector<uint32_t> maps(size_t(desc_.cascadeCount) * layout::kCascadeVoxels);
     device_.readBuffer(brickMaps_, 0, maps.size() * 4, maps.data());
     for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {

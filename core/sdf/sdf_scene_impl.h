@@ -42,6 +42,7 @@ struct Instance {
     bool dynamic = false;
     uint32_t maxCascade = 0;
     bool alphaTested = false;
+    std::optional<SurfaceMaterial> material;
     WorldBox bounds;       // of the current transform
     WorldBox builtBounds;  // what the field holds of it (dynamic: last update)
     bool built = false;
@@ -146,7 +147,7 @@ private:
     rhi::BufferHandle cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_;
     rhi::BufferHandle voxelRefs_;
     // Per-update scratch, sized by the budgets.
-    rhi::BufferHandle triangles_, references_, sortedReferences_, touched_, jobTable_, overlays_;
+    rhi::BufferHandle triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_;
     uint32_t touchedCapacity_ = 0;
 
     std::map<uint32_t, Mesh> meshes_;

@@ -126,8 +126,19 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
     if (plan.jobs.empty()) return;
 
     {
+        // The gathered instances' materials, indexed by the tag gather gives their triangles (0: none).
+        std::vector<glm::vec4> materials;
+        for (uint32_t id : plan.instances) {
+            const Instance& inst = instances_.at(id);
+            if (!inst.material) continue;
+            materials.push_back(glm::vec4(inst.material->albedo, 1.0f));
+            materials.push_back(glm::vec4(inst.material->emission, 0.0f));
+        }
+        if (!materials.empty()) device_.writeBuffer(materialTable_, 0, materials.data(), materials.size() * sizeof(glm::vec4));
+    }
+    {
         Marker m(device_, "gather");
-        uint32_t first = 0;
+        uint32_t first = 0, materialTag = 0;
         for (uint32_t id : plan.instances) {
             const Instance& inst = instances_.at(id);
             const Mesh& mesh = meshes_.at(inst.mesh.id);
@@ -156,6 +167,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
             p.index[3] = first;
             p.misc[0] = inst.maxCascade;
             p.misc[1] = inst.alphaTested ? 1u : 0u;
+            p.misc[2] = inst.material ? ++materialTag : 0u;
             rhi::DispatchState s;
             s.shader = shaders_.gather;
             s.label = "sdf gather triangles";
@@ -235,6 +247,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         s.bindings.readBuffers.push({1, sortedReferences_, {}});
         s.bindings.readBuffers.push({2, touched_, {}});
         s.bindings.readBuffers.push({3, cascadeTable_, {}});
+        s.bindings.readBuffers.push({4, materialTable_, {}});
         s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
         s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::Write});
         s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});

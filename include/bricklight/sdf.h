@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,14 @@ struct MeshBuffers {
     std::string name;
 };
 
+// How a surface looks to light the camera never saw: the field keeps it per brick (the surface-area-weighted
+// mean of the materials of the triangles in the brick), and GI lights surfaces no view has shown from it
+// (docs/gi.md, "Surfaces the camera never saw"). Linear values: albedo in [0, 1], emitted radiance >= 0.
+struct SurfaceMaterial {
+    glm::vec3 albedo{0.8f};
+    glm::vec3 emission{0.0f};
+};
+
 struct InstanceDesc {
     MeshHandle mesh;
     glm::mat4 transform{1.0f};  // affine (last row 0,0,0,1)
@@ -105,6 +114,9 @@ struct InstanceDesc {
     // A tracer that knows the surfaces' coverage (gi::GiContext's alpha cache, docs/gi.md "Foliage") goes on
     // past the cut-out parts; others see the cards as solid. Fixed at registration.
     bool alphaTested = false;
+    // The instance's material (one per instance; fixed at registration). None: the field holds no material
+    // for its surfaces, and GI knows them only once the camera has seen them.
+    std::optional<SurfaceMaterial> material;
 };
 
 // GPU counters of one update, read back without stalling (a few updates late).
@@ -175,6 +187,9 @@ struct FieldSnapshot {
     // Per brick, two words: bit (z·4 + y)·4 + x set where an opaque (not alpha-tested) surface reaches that
     // 4³ cell of the voxel. Meaningful for bricks flagged kAabbAlphaTested.
     std::vector<uint32_t> brickOpaqueCells;
+    // Per brick, two words: the surface material's albedo as RGBA8 (alpha 255: known, 0: no instance with a
+    // material reaches the brick) and its emission as RGB9E5 (bricklight/rgb9e5.glsl).
+    std::vector<uint32_t> brickMaterials;
     static constexpr uint32_t kAabbAlphaTested = 1u << 30;
 
     // Brick id, kEmpty or kUnbuilt of a logical voxel (0..63 per axis).

@@ -32,6 +32,9 @@
 // The AABB buffer then continues, after header.z (the capacity) words, with two words per brick: bit
 // (z·4 + y)·4 + x set where an opaque surface reaches that 4³ cell of the voxel (hits there are opaque).
 #define BL_SDF_AABB_ALPHA_TESTED 0x40000000u
+#define BL_SDF_OPAQUE_CELL_WORDS 2u
+// After the cells, two words per brick: the surface material (sdf::FieldSnapshot::brickMaterials).
+#define BL_SDF_MATERIAL_WORDS 2u
 
 // AABB tree of one cascade, in a uint array with this stride per cascade:
 //   [0, 4096)      bottom nodes 16³ (4³ voxels each): 5-bit min/max per axis in brixel intervals (0..28)

@@ -125,6 +125,13 @@ bool blSdfCellAlphaTested(uint brick, vec3 uvw) {
     return (opaque & (1u << (bit & 31u))) == 0u;
 }
 
+// The surface material the field holds for a brick (sdf::InstanceDesc::material): x = albedo RGBA8 (alpha 255
+// known, 0 none), y = emission RGB9E5 (bricklight/rgb9e5.glsl).
+uvec2 blSdfBrickMaterial(uint brick) {
+    uint at = blSdfTable.header.z * (1u + BL_SDF_OPAQUE_CELL_WORDS) + BL_SDF_MATERIAL_WORDS * brick;
+    return uvec2(blSdfBrickAabbs[at], blSdfBrickAabbs[at + 1u]);
+}
+
 // A ray that goes on past a hit judged transparent (a cut-out texel of an alpha-tested card): it restarts
 // beyond the hit, far enough along that the card's own thin shell of distances below the hit epsilon is
 // behind it (2.5 epsilons off the surface, at most 3 brixel intervals along a grazing ray). Its tMin moves

@@ -83,7 +83,7 @@ vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight
         if (v == 0u) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(o));
         float w = w3.x * w3.y * w3.z + 1e-4;
-        sum += giDecodeRgb9e5(v) * w;
+        sum += blDecodeRgb9e5(v) * w;
         weight += w;
     }
     return weight > 0.0 ? sum / weight : vec3(0.0);

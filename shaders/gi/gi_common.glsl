@@ -3,6 +3,8 @@
 #ifndef BRICKLIGHT_GI_COMMON_GLSL
 #define BRICKLIGHT_GI_COMMON_GLSL
 
+#include "bricklight/rgb9e5.glsl"
+
 #define GI_PI 3.14159265358979
 
 BL_CONSTANTS(0) uniform GiCamera {
@@ -113,25 +115,6 @@ uint giPackSurface(vec3 n, float roughness) {
 }
 vec3 giSurfaceNormal(uint s) { return giOctDecode(vec2(uvec2(s, s >> 12) & 4095u) / 4095.0 * 2.0 - 1.0); }
 float giSurfaceRoughness(uint s) { return float(s >> 24) / 255.0; }
-
-// Shared-exponent RGB (9-9-9-5) in a uint; 0 is kept for "never written" (black is stored as 1).
-uint giEncodeRgb9e5(vec3 c) {
-    c = clamp(c, vec3(0.0), vec3(65408.0));
-    float m = max(c.r, max(c.g, c.b));
-    int e = max(-16, int(floor(log2(max(m, 1e-30))))) + 16;  // biased exponent (bias 15) + 1
-    float scale = exp2(float(e - 24));
-    if (floor(m / scale + 0.5) >= 512.0) {
-        e += 1;
-        scale *= 2.0;
-    }
-    uvec3 q = uvec3(min(floor(c / scale + 0.5), vec3(511.0)));
-    uint bits = q.r | (q.g << 9) | (q.b << 18) | (uint(clamp(e, 0, 31)) << 27);
-    return bits == 0u ? 1u : bits;
-}
-vec3 giDecodeRgb9e5(uint v) {
-    float scale = exp2(float(int(v >> 27) - 24));
-    return vec3(uvec3(v, v >> 9, v >> 18) & 511u) * scale;
-}
 
 // Basis around a unit normal (Duff et al. 2017).
 void giBasis(vec3 n, out vec3 t, out vec3 b) {

@@ -125,8 +125,8 @@ void main() {
             float texelSize = 0.25 * giVoxelSize(c);
             float perFrame = texelSize * texelSize / (footprint * footprint * float(GI_INJECT_TILE * GI_INJECT_TILE << level));
             float alpha = clamp(0.25 / perFrame, 1.0 / 256.0, 0.9);
-            vec3 value = olds[k] == 0u ? lit : mix(giDecodeRgb9e5(olds[k]), lit, alpha);
-            imageStore(giRadianceCache, giInjectTexel(texels[k]), uvec4(giEncodeRgb9e5(value)));
+            vec3 value = olds[k] == 0u ? lit : mix(blDecodeRgb9e5(olds[k]), lit, alpha);
+            imageStore(giRadianceCache, giInjectTexel(texels[k]), uvec4(blEncodeRgb9e5(value)));
             if (learn) {
                 // The brick's material: a running mean over one in four of the pixels that reach it (racing
                 // writers lose an update now and then, which a mean can afford): every pixel writing the
@@ -138,7 +138,7 @@ void main() {
                     brickMaterial[m] = packUnorm4x8(vec4(known.a > 0.5 ? mix(known.rgb, albedo, 0.125) : albedo, 1.0));
                     if ((giFrame.relight.y & GI_RELIGHT_EMISSION) != 0u) {
                         uint e = brickMaterial[m + 1u];
-                        brickMaterial[m + 1u] = giEncodeRgb9e5(e != 0u ? mix(giDecodeRgb9e5(e), emitted, 0.125) : emitted);
+                        brickMaterial[m + 1u] = blEncodeRgb9e5(e != 0u ? mix(blDecodeRgb9e5(e), emitted, 0.125) : emitted);
                     }
                 }
                 brickMaterial[m + 2u] = giFrameIndex() + 1u;

@@ -151,7 +151,7 @@ void main() {
             if (!hit.hit) bounce = vec4(giEnvironment(d), 1.0);
             else if (giRadianceAtSide(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0), radiance)) {
                 uint e = brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u];
-                bounce = vec4(radiance + (emissionInRays && e != 0u ? giDecodeRgb9e5(e) : vec3(0.0)), 1.0);
+                bounce = vec4(radiance + (emissionInRays && e != 0u ? blDecodeRgb9e5(e) : vec3(0.0)), 1.0);
             }
         }
         irradiance = giLightIrradiance(p, n, side, GI_RELIGHT_HALVES);
@@ -167,8 +167,8 @@ void main() {
     uint m = brick * GI_MATERIAL_WORDS;
     vec3 albedo = unpackUnorm4x8(brickMaterial[m]).rgb;
     // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
-    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? giDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
+    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? blDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
     vec3 target = emitted + albedo * (irradiance / GI_PI + (bounce.w > 0.0 ? bounce.rgb / bounce.w : vec3(0.0)));
     if (!giFinite(target)) return;
-    imageStore(giRadianceCache, texel, uvec4(giEncodeRgb9e5(old == 0u ? target : mix(giDecodeRgb9e5(old), target, GI_RELIGHT_BLEND))));
+    imageStore(giRadianceCache, texel, uvec4(blEncodeRgb9e5(old == 0u ? target : mix(blDecodeRgb9e5(old), target, GI_RELIGHT_BLEND))));
 }

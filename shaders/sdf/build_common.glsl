@@ -36,7 +36,8 @@
 // sorted reference, w = brick (or BL_SDF_UNBUILT when none was allocated).
 
 // Triangle scratch: 3 vec4 per triangle, world space; v0.w = max cascade, or -1 for a rejected triangle;
-// v1.w = 1 for an alpha-tested instance's triangle.
+// v1.w = 1 for an alpha-tested instance's triangle; v2.w = the instance's material tag: 1 + its index in the
+// update's material table (two vec4 per instance: albedo, emission), 0 for an instance without a material.
 
 float blDot2(vec3 v) { return dot(v, v); }
 

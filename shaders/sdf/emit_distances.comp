@@ -9,6 +9,7 @@
 #endif
 #include "bricklight/bindings.glsl"
 #include "build_common.glsl"
+#include "bricklight/rgb9e5.glsl"
 // One group per allocated brick. With many references (dense meshes) each thread takes references in turn
 // and, for its triangle, visits only the brixels within the band of the triangle's box, keeping the
 // smallest exact squared point-triangle distance per brixel with a shared-memory atomic minimum (squared
@@ -22,11 +23,17 @@
 // within an interval of an opaque triangle are listed, so that a trace knows where a hit may be a cut-out
 // texel of a card and where an opaque surface (the ground the grass stands on) is there for sure. The two
 // minima cost no more atomics than one: each triangle updates only its own kind's.
+// The brick's surface material (sdf::InstanceDesc::material) is the mean over the pairs (triangle with a
+// material, brixel within one interval of it), each weighted 1 − distance / interval — a surface-area-weighted
+// mean of the materials in the voxel, and continuous in the distances (a wall on a lattice plane has a row of
+// brixels exactly one interval away: a step weight would count them or not by rounding) — summed per thread
+// alongside the distances (no second distance evaluation) and then over the group.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };
 BL_READ_BUFFER(1) SortedReferences { uint sortedReferences[]; };
 BL_READ_BUFFER(2) Touched { uvec4 touched[]; };
 BL_READ_BUFFER(3) CascadeTable { BL_SDF_CASCADE_TABLE_BODY } table;
+BL_READ_BUFFER(4) MaterialTable { vec4 materialTable[]; };  // per tag - 1: albedo, emission
 BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
 BL_STORAGE_BUFFER(1) BrickAabbs { uint brickAabbs[]; };
 BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
@@ -36,6 +43,15 @@ BL_IMAGE(0, r8) uniform writeonly image3D atlas;
 shared uint best[512];       // squared distance to the nearest opaque triangle (float bits)
 shared uint bestAlpha[512];  // ... to the nearest alpha-tested triangle
 shared uint boxMin[3], boxMax[3], keep, alphaTested, opaqueCells[2];
+shared vec4 albedoSum[256];    // rgb: albedo · pairs, w: pairs
+shared vec3 emissionSum[256];
+
+// Adds `pairs` (triangle, brixel) pairs of the triangle with material tag `tag` to a thread's sums.
+void addMaterial(uint tag, float pairs, inout vec4 albedo, inout vec3 emission) {
+    if (tag == 0u || pairs == 0.0) return;
+    albedo += vec4(materialTable[2u * (tag - 1u)].rgb, 1.0) * pairs;
+    emission += materialTable[2u * (tag - 1u) + 1u].rgb * pairs;
+}
 
 void main() {
     uint t = gl_WorkGroupID.y * BL_SDF_WIDE_GROUPS + gl_WorkGroupID.x;
@@ -67,24 +83,29 @@ void main() {
     barrier();
 
     ivec3 own = ivec3(gl_LocalInvocationID);
+    vec4 albedo = vec4(0.0);
+    vec3 emission = vec3(0.0);
+    float near2 = brixel * brixel;  // a brixel within one interval of a triangle is on its surface
     if (entry.y <= 32u) {
         // Few references (large triangles): every brixel evaluates all of them, so all threads work.
         vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
         float d2 = band * band, d2Alpha = band * band;
         for (uint r = 0u; r < entry.y; ++r) {
             uint tri = sortedReferences[entry.z + r];
-            vec4 b = triangles[3u * tri + 1u];
-            float e2 = blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, b.xyz, triangles[3u * tri + 2u].xyz);
+            vec4 b = triangles[3u * tri + 1u], c = triangles[3u * tri + 2u];
+            float e2 = blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, b.xyz, c.xyz);
             if (b.w > 0.5) d2Alpha = min(d2Alpha, e2);
             else d2 = min(d2, e2);
+            if (e2 < near2) addMaterial(uint(c.w), 1.0 - sqrt(e2) / brixel, albedo, emission);
         }
         best[lane] = floatBitsToUint(d2);
         bestAlpha[lane] = floatBitsToUint(d2Alpha);
     } else {
         for (uint r = lane; r < entry.y; r += 512u) {
             uint tri = sortedReferences[entry.z + r];
-            vec4 bw = triangles[3u * tri + 1u];
-            vec3 a = triangles[3u * tri].xyz, b = bw.xyz, c = triangles[3u * tri + 2u].xyz;
+            vec4 bw = triangles[3u * tri + 1u], cw = triangles[3u * tri + 2u];
+            vec3 a = triangles[3u * tri].xyz, b = bw.xyz, c = cw.xyz;
+            float pairs = 0.0;
             bool alphaTri = bw.w > 0.5;
             // Brixels whose lattice point lies within the band of the triangle's box.
             vec3 lo = (min(a, min(b, c)) - band - voxelMin) / brixel;
@@ -102,12 +123,14 @@ void main() {
                         if (blDot2(p - centre) > reach * reach) continue;
                         uint index = uint((z * 8 + y) * 8 + x);
                         float d2 = blPointTriangleDistanceSq(p, a, b, c);
+                        if (d2 < near2) pairs += 1.0 - sqrt(d2) / brixel;
                         if (alphaTri) {
                             if (floatBitsToUint(d2) < bestAlpha[index]) SHARED_ATOMIC_MIN(bestAlpha[index], floatBitsToUint(d2));
                         } else if (floatBitsToUint(d2) < best[index]) {
                             SHARED_ATOMIC_MIN(best[index], floatBitsToUint(d2));
                         }
                     }
+            addMaterial(uint(cw.w), pairs, albedo, emission);
         }
     }
     barrier();
@@ -131,8 +154,30 @@ void main() {
         uint bit = (cell.z * 4u + cell.y) * 4u + cell.x;
         atomicOr(opaqueCells[bit >> 5], 1u << (bit & 31u));
     }
+    // The material sums over the group: the upper half folds onto the lower, then a tree.
+    if (lane >= 256u) {
+        albedoSum[lane - 256u] = albedo;
+        emissionSum[lane - 256u] = emission;
+    }
     barrier();
+    if (lane < 256u) {
+        albedoSum[lane] += albedo;
+        emissionSum[lane] += emission;
+    }
+    barrier();
+    for (uint stride = 128u; stride > 0u; stride >>= 1) {
+        if (lane < stride) {
+            albedoSum[lane] += albedoSum[lane + stride];
+            emissionSum[lane] += emissionSum[lane + stride];
+        }
+        barrier();
+    }
     if (lane != 0u) return;
+    uint materialAt = table.header.z * (1u + BL_SDF_OPAQUE_CELL_WORDS) + BL_SDF_MATERIAL_WORDS * entry.w;
+    vec4 total = albedoSum[0];
+    bool known = keep != 0u && total.w > 0.0;
+    brickAabbs[materialAt] = known ? packUnorm4x8(vec4(clamp(total.rgb / total.w, 0.0, 1.0), 1.0)) : 0u;
+    brickAabbs[materialAt + 1u] = known ? blEncodeRgb9e5(emissionSum[0] / total.w) : 0u;
     uint key = cascade * BL_SDF_CASCADE_VOXELS + physical;
     if (keep == 0u) {
         brickMaps[key] = BL_SDF_EMPTY;

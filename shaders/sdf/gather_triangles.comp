@@ -13,7 +13,7 @@ BL_CONSTANTS(0) uniform Params {
     vec4 boundsMax;
     uvec4 vertex;          // x: byte offset, y: stride, z: format (0 f32x3, 1 f16x4), w: vertex count
     uvec4 index;           // x: byte offset, y: format (0 u16, 1 u32), z: triangle count, w: first output triangle
-    uvec4 misc;            // x: max cascade, y: 1 for an alpha-tested instance
+    uvec4 misc;            // x: max cascade, y: 1 for an alpha-tested instance, z: material tag (0: none)
 } params;
 BL_READ_BUFFER(0) Vertices { uint vertexWords[]; };
 BL_READ_BUFFER(1) Indices { uint indexWords[]; };
@@ -56,7 +56,7 @@ void main() {
     for (int k = 0; k < 3; ++k) {
         vec4 h = vec4(p[k], 1.0);
         vec3 w = vec3(dot(params.rows[0], h), dot(params.rows[1], h), dot(params.rows[2], h));
-        float tag = k == 0 ? (ok ? float(params.misc.x) : -1.0) : (k == 1 ? float(params.misc.y) : 0.0);
+        float tag = k == 0 ? (ok ? float(params.misc.x) : -1.0) : (k == 1 ? float(params.misc.y) : float(params.misc.z));
         triangles[out0 + uint(k)] = vec4(w, tag);
     }
     if (!ok) atomicAdd(counters[C_TRIANGLES_REJECTED], 1u);

@@ -158,6 +158,7 @@ LoadedScene loadIntoSdf(rhi::IDevice& device, const scenes::SceneGeometry& geome
         d.mesh = out.meshes[i.mesh];
         d.transform = i.transform;
         d.alphaTested = geometry.meshes[i.mesh].alphaTested();
+        d.material = sdf::SurfaceMaterial{geometry.meshes[i.mesh].albedo, geometry.meshes[i.mesh].emission};
         out.instances.push_back(out.scene->addInstance(d));
     }
     return out;
