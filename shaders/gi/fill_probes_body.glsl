@@ -10,7 +10,8 @@
 // keeps the others, a new one leaves them empty until their turn. A hit with no
 // cached radiance anywhere is marked "hit, unknown" (alpha, see gi_common.glsl) for project_probes to fill
 // from the known hits of its neighbouring texels or the probe's — not left out, which would weigh the
-// misses (the environment) too much.
+// misses (the environment) too much — and its brick is marked wanted, to be lit from the field's material
+// (clear_freed_bricks.comp, relight_cache.comp) if the camera never saw it.
 layout(local_size_x = 64) in;
 // Weight of a retraced texel's new sample in a reprojected probe. 1: the texel keeps one sample, the
 // newest; averaging over frames is the interpolation pass's job. (An average here, 0.35, biased probes
@@ -19,6 +20,7 @@ layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_IMAGE(0, rgba16f) uniform image2D probes;
 BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
+BL_STORAGE_BUFFER(0) BrickMaterial { uint giBrickMaterial[]; };
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
 #include "gi_bricks.glsl"
@@ -27,6 +29,14 @@ BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
 #define BL_CONE_TRACE_FRAME_SLOT 1
 #include "bricklight/cone_trace.glsl"
 #endif
+
+// A probe ray found no light cached at its hit in `brick`: with relighting on and a material in the field, the brick
+// is wanted (a flag beside the frame it was last seen; injection clears it by storing that frame).
+void giWantBrick(uint brick) {
+    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || (blSdfBrickMaterial(brick).x >> 24) == 0u) return;
+    uint at = brick * GI_MATERIAL_WORDS + 2u;
+    if (giBrickMaterial[at] == 0u) atomicOr(giBrickMaterial[at], GI_BRICK_WANTED);
+}
 
 // One texel: trace its ray (jittered within the texel) and store or blend the result.
 void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool reprojected, vec4 old) {
@@ -49,7 +59,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     if (!hit.hit) {
         radiance = giEnvironment(d);
         kind = GI_TEXEL_MISS;
-    } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0),
+    } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.normal,
                                  radiance)) {
 #ifdef GI_UNSEEN_FROM_VCT
         // The clip-map's voxels hold the light of surfaces the camera never saw (voxelized from the app's draws).
@@ -63,8 +73,9 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
         }
 #endif
         // A surface no view has lit yet: marked for the projection pass to fill from the probe's known
-        // hits. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
+        // hits, and wanted. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
         // come through another probe's directions, often a miss.)
+        giWantBrick(hit.brickId);
         imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
         return;
     }

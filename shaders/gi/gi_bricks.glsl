@@ -65,8 +65,10 @@ BL_READ_BUFFER(3) CacheSlots { uint giCacheSlots[]; };
 #endif
 
 // Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight). With
-// `side` (a unit normal; zero for none), only the texels whose centre lies on that side of the surface through uvw:
-// a thin card's two sides share texels, and injection writes the side the camera sees (gi_alpha.glsl).
+// `side` (a unit normal facing the reader; zero for none), only the texels whose centre lies on that side of the
+// surface through uvw (a fifth of a texel of slack: a hit stops a little in front of its surface): a thin wall's or
+// card's two sides share texels, and each side's light must stay on its side (gi_alpha.glsl; relight_cache.comp
+// lights both sides of surfaces no view has lit).
 vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight) {
     weight = 0.0;
     uint slot = giCacheSlots[brick];
@@ -78,7 +80,7 @@ vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight
     vec3 sum = vec3(0.0);
     for (int k = 0; k < 8; ++k) {
         ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
-        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) < 0.0) continue;
+        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) < -0.05) continue;
         uint v = imageLoad(giRadianceCache, base + i0 + o).r;
         if (v == 0u) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(o));
@@ -107,9 +109,6 @@ bool giRadianceAtSide(vec3 p, uint brick, vec3 uvw, uint cascade, vec3 side, out
         if (w > 0.0) return true;
     }
     return false;
-}
-bool giRadianceAt(vec3 p, uint brick, vec3 uvw, uint cascade, out vec3 radiance) {
-    return giRadianceAtSide(p, brick, uvw, cascade, vec3(0.0), radiance);
 }
 #endif
 
@@ -162,6 +161,29 @@ float giWorldCacheCorners(vec3 p, vec3 n, out uint bricks[8], out float weights[
     return 0.0;
 }
 
+// The mean normal of the probes a brick's SH holds (alpha of coefficients 1..3): each probe saw only the
+// hemisphere around its normal, so the SH holds no light from the directions below it.
+vec3 giLoadBrickCoverage(uint brick) {
+    return vec3(unpackHalf2x16(giBrickSH[brick * 9u + 1u].y).y, unpackHalf2x16(giBrickSH[brick * 9u + 2u].y).y,
+                unpackHalf2x16(giBrickSH[brick * 9u + 3u].y).y);
+}
+#ifdef GI_WRITES_BRICK_SH  // the passes that write the cache (gi_sh.glsl included first)
+// Stores SH `s`, the sample weight and the coverage normal of a brick.
+void giStoreBrickSH(uint brick, GiSH s, float weight, vec3 coverage) {
+    for (int i = 0; i < 9; ++i) {
+        float w = i == 0 ? weight : (i <= 3 ? coverage[i - 1] : 0.0);
+        giBrickSH[brick * 9u + uint(i)] = uvec2(packHalf2x16(s.c[i].rg), packHalf2x16(vec2(s.c[i].b, w)));
+    }
+}
+#endif
+// What makes up for the directions no probe of the world cache saw, for a surface of normal n: 1 / the
+// cosine-weighted share of n's hemisphere that the probes' hemispheres cover. For one probe of normal m the
+// share is (1 + n·m) / 2 (exact at 0°, 90° and 180°, the L1 projection of the hemisphere's indicator under the
+// cosine lobe); for several, their mean normal stands in. The SH's own light is the covered part's, so the
+// quotient assumes the uncovered directions send the same on average — as the projection of a probe assumes
+// for its untraced texels. Bounded at 4 (a share of a quarter): below that the SH says little about n.
+float giCoverageScale(vec3 n, vec3 coverage) { return 1.0 / max(0.5 * (1.0 + dot(n, coverage)), 0.25); }
+
 // Coefficient i of the world cache's SH at the corners found by giWorldCacheCorners (total > 0).
 vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int i) {
     vec3 sum = vec3(0.0);
@@ -170,6 +192,13 @@ vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int 
         uvec2 v = giBrickSH[bricks[k] * 9u + uint(i)];
         sum += vec3(unpackHalf2x16(v.x), unpackHalf2x16(v.y).x) * weights[k];
     }
+    return sum / total;
+}
+// Coverage normal (giLoadBrickCoverage) of the world cache at those corners.
+vec3 giWorldCacheCoverage(uint bricks[8], float weights[8], float total) {
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 8; ++k)
+        if (weights[k] > 0.0) sum += giLoadBrickCoverage(bricks[k]) * weights[k];
     return sum / total;
 }
 #endif

@@ -28,15 +28,20 @@ BL_CONSTANTS(1) uniform GiFrame {
     uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
     vec4 traceLimits;    // x iterations per cascade of every GI ray, y diffuse rays' coarsen-after voxels
     uvec4 probes;        // x probe tile side in internal pixels (8 or 16; ContextDesc::probeTile)
-    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp)
+    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp),
+                         // y slots kept for the screen when bricks no view has lit take one (relight_cache.comp)
 } giFrame;
 
 #define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)
 #define GI_RELIGHT_EMISSION 2u  // ...and their emission
 #define GI_RELIGHT_EMISSION_IN_RAYS 4u  // the lit image leaves emission out: relight rays add it at their hits
+#define GI_RELIGHT_DIRECT_ONLY 8u  // re-lit texels hold direct light only: relight rays take the emission at their hits
 // Per-brick material (GI_MATERIAL_WORDS uints per brick): albedo RGBA8 (a = 1 once learnt), emission
-// RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never).
+// RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never), or-ed with
+// GI_BRICK_WANTED while the camera never saw it: a probe ray hit it and found no light cached
+// (fill_probes_body.glsl), so clear_freed_bricks.comp lists it to be lit from the field's material.
 #define GI_MATERIAL_WORDS 3u
+#define GI_BRICK_WANTED 0x80000000u
 // Relighting (relight_cache.comp): a brick out of view that the camera has not seen for GI_RELIGHT_AFTER
 // frames (twice the injection's rotation through its 2×2 tiles; × 2^k in the k-th cascade above the
 // start) — or any brick not seen for GI_RELIGHT_STALE (× 2^k) frames — is re-lit every
@@ -49,6 +54,9 @@ BL_CONSTANTS(1) uniform GiFrame {
 // A relight list entry's flag: a brick holding cards (alpha-tested surfaces) listed while in view, for its cards'
 // sides the camera does not see (relight_cache.comp); whole bricks are listed without it.
 #define GI_RELIGHT_CARD_SIDES 0x80000000u
+// Relight list flag: a brick no view has lit (its light comes from the field's material and the lights alone);
+// relight_cache.comp gives it a cache slot if it has none and lights every texel near its surface.
+#define GI_RELIGHT_UNSEEN 0x40000000u
 // How often such a brick is listed: every 2nd frame made the relight pass of the foliage scene about ten times
 // slower.
 #define GI_RELIGHT_CARD_PERIOD 8u
