@@ -243,6 +243,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 3, lights_);
         storageBuffer(s.bindings, 0, slotOfBrick_, Access::Atomic);  // slots for bricks no view has lit
         storageBuffer(s.bindings, 1, freeSlots_, Access::Atomic);
+        texture(s.bindings, 0, depth_[cur], point_);  // texels the camera sees are the screen's
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         addTrace(s.bindings);
         addAlphaCache(s.bindings);

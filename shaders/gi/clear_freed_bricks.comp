@@ -98,22 +98,24 @@ void main() {
         return;
     }
     if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == BL_SDF_NO_OWNER) return;
-    uint seen = brickMaterial[m + 2u] & ~GI_BRICK_WANTED;
+    uint word = brickMaterial[m + 2u];
+    bool wanted = (word & GI_BRICK_WANTED) != 0u;
+    uint seen = wanted ? 0u : word;
     if (seen == 0u) {
-        // Never seen: lit from the field's material, first when a probe ray wanted it (the relight pass gives it a
-        // slot: a pop from the free stack here could meet this pass's pushes), then every period while it has one.
+        // Never seen: lit from the field's material on the sides probe rays wanted it from (the relight pass gives it
+        // a slot: a pop from the free stack here could meet this pass's pushes), and every period while it has one.
         uint slot = giCacheSlots[brick];
-        bool wanted = (brickMaterial[m + 2u] & GI_BRICK_WANTED) != 0u;
         if (wanted) brickMaterial[m + 2u] = 0u;
         if ((blSdfBrickMaterial(brick).x >> 24) == 0u || slot == GI_SLOT_PENDING) return;
-        if (slot == GI_SLOT_NONE ? !wanted : (brick + giFrameIndex()) % GI_RELIGHT_PERIOD != 0u) return;
+        if (!wanted && (slot == GI_SLOT_NONE || (brick + giFrameIndex()) % GI_UNSEEN_PERIOD != 0u)) return;
         uint at = atomicAdd(relightList[3], 1u);
         if (at >= GI_RELIGHT_BUDGET) return;
-        relightList[4u + at] = brick | GI_RELIGHT_UNSEEN;
+        relightList[4u + at] = brick | GI_RELIGHT_UNSEEN | ((wanted ? word & GI_SIDE_BITS : 0u) << GI_RELIGHT_SIDES_SHIFT);
         atomicMax(relightList[0], at + 1u);
         return;
     }
-    if ((brickMaterial[m] >> 24) == 0u) return;  // no albedo learnt
+    // No albedo learnt nor in the field: nothing to re-light with.
+    if ((brickMaterial[m] >> 24) == 0u && (blSdfBrickMaterial(brick).x >> 24) == 0u) return;
     // Coarser cascades are injected by every 2^k-th pixel only (inject_radiance.comp), so a brick there
     // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
     uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);

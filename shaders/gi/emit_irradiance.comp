@@ -16,7 +16,6 @@ BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_READ_BUFFER(1) ProbeSH { vec4 probeSH[]; };
 BL_STORAGE_BUFFER(0) BrickSH { uvec2 giBrickSH[]; };
 #define GI_USES_BRICK_SH
-#define GI_WRITES_BRICK_SH
 #include "gi_bricks.glsl"
 
 void main() {
@@ -38,7 +37,8 @@ void main() {
         GiSH old = giLoadBrickSH(brick, weight);
         float alpha = max(1.0 / (1.0 + weight), 1.0 / 16.0);
         GiSH result = giShMix(old, probe, alpha);
-        vec3 coverage = mix(weight > 0.0 ? giLoadBrickCoverage(brick) : n, n, alpha);
-        giStoreBrickSH(brick, result, min(weight + 1.0, 16.0), coverage);
+        float w = min(weight + 1.0, 16.0);
+        for (int i = 0; i < 9; ++i)
+            giBrickSH[brick * 9u + uint(i)] = uvec2(packHalf2x16(result.c[i].rg), packHalf2x16(vec2(result.c[i].b, i == 0 ? w : 0.0)));
     }
 }

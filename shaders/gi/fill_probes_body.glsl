@@ -30,12 +30,17 @@ BL_STORAGE_BUFFER(0) BrickMaterial { uint giBrickMaterial[]; };
 #include "bricklight/cone_trace.glsl"
 #endif
 
-// A probe ray found no light cached at its hit in `brick`: with relighting on and a material in the field, the brick
-// is wanted (a flag beside the frame it was last seen; injection clears it by storing that frame).
-void giWantBrick(uint brick) {
-    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || (blSdfBrickMaterial(brick).x >> 24) == 0u) return;
+// A probe ray (direction d) found no light cached at its hit in `brick`: with relighting on and a material in the
+// field, the brick is wanted from the side the ray met (in the word of the frame it was last seen, while it was
+// never seen; injection overwrites it with that frame).
+void giWantBrick(uint brick, vec3 d) {
+    // Bricks that hold cards have their own relighting of the sides the camera does not see (GI_RELIGHT_CARD_SIDES):
+    // lit here too (their other cells), the grass took sun that the field's shadow rays let through (2.5× the path
+    // tracer's light).
+    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || (blSdfBrickMaterial(brick).x >> 24) == 0u || giBrickHoldsCards(brick)) return;
     uint at = brick * GI_MATERIAL_WORDS + 2u;
-    if (giBrickMaterial[at] == 0u) atomicOr(giBrickMaterial[at], GI_BRICK_WANTED);
+    uint word = giBrickMaterial[at], want = GI_BRICK_WANTED | giSideBits(-d);
+    if ((word == 0u || (word & GI_BRICK_WANTED) != 0u) && (word & want) != want) atomicOr(giBrickMaterial[at], want);
 }
 
 // One texel: trace its ray (jittered within the texel) and store or blend the result.
@@ -75,7 +80,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
         // A surface no view has lit yet: marked for the projection pass to fill from the probe's known
         // hits, and wanted. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
         // come through another probe's directions, often a miss.)
-        giWantBrick(hit.brickId);
+        giWantBrick(hit.brickId, d);
         imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
         return;
     }

@@ -66,9 +66,10 @@ BL_READ_BUFFER(3) CacheSlots { uint giCacheSlots[]; };
 
 // Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight). With
 // `side` (a unit normal facing the reader; zero for none), only the texels whose centre lies on that side of the
-// surface through uvw (a fifth of a texel of slack: a hit stops a little in front of its surface): a thin wall's or
-// card's two sides share texels, and each side's light must stay on its side (gi_alpha.glsl; relight_cache.comp
-// lights both sides of surfaces no view has lit).
+// surface (found from uvw, a hit up to the hit epsilon in front of it, by the field's distance there), with a fifth
+// of a texel of slack: a thin wall's or card's two sides share texels, and each side's light must stay on its side
+// (gi_alpha.glsl; relight_cache.comp lights both sides of surfaces no view has lit; injection writes texels whose
+// centre lies in front of the surface).
 vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight) {
     weight = 0.0;
     uint slot = giCacheSlots[brick];
@@ -78,9 +79,11 @@ vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight
     ivec3 i0 = min(ivec3(floor(q)), ivec3(2));
     vec3 f = q - vec3(i0);
     vec3 sum = vec3(0.0);
+    // The surface lies this far (uvw units) behind uvw along `side`.
+    float behind = side == vec3(0.0) ? 0.0 : blSdfSampleBrick(brick, uvw) * (BL_SDF_BAND_BRIXELS / 7.0);
     for (int k = 0; k < 8; ++k) {
         ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
-        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) < -0.05) continue;
+        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) + behind < -0.05) continue;
         uint v = imageLoad(giRadianceCache, base + i0 + o).r;
         if (v == 0u) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(o));
@@ -161,29 +164,6 @@ float giWorldCacheCorners(vec3 p, vec3 n, out uint bricks[8], out float weights[
     return 0.0;
 }
 
-// The mean normal of the probes a brick's SH holds (alpha of coefficients 1..3): each probe saw only the
-// hemisphere around its normal, so the SH holds no light from the directions below it.
-vec3 giLoadBrickCoverage(uint brick) {
-    return vec3(unpackHalf2x16(giBrickSH[brick * 9u + 1u].y).y, unpackHalf2x16(giBrickSH[brick * 9u + 2u].y).y,
-                unpackHalf2x16(giBrickSH[brick * 9u + 3u].y).y);
-}
-#ifdef GI_WRITES_BRICK_SH  // the passes that write the cache (gi_sh.glsl included first)
-// Stores SH `s`, the sample weight and the coverage normal of a brick.
-void giStoreBrickSH(uint brick, GiSH s, float weight, vec3 coverage) {
-    for (int i = 0; i < 9; ++i) {
-        float w = i == 0 ? weight : (i <= 3 ? coverage[i - 1] : 0.0);
-        giBrickSH[brick * 9u + uint(i)] = uvec2(packHalf2x16(s.c[i].rg), packHalf2x16(vec2(s.c[i].b, w)));
-    }
-}
-#endif
-// What makes up for the directions no probe of the world cache saw, for a surface of normal n: 1 / the
-// cosine-weighted share of n's hemisphere that the probes' hemispheres cover. For one probe of normal m the
-// share is (1 + n·m) / 2 (exact at 0°, 90° and 180°, the L1 projection of the hemisphere's indicator under the
-// cosine lobe); for several, their mean normal stands in. The SH's own light is the covered part's, so the
-// quotient assumes the uncovered directions send the same on average — as the projection of a probe assumes
-// for its untraced texels. Bounded at 4 (a share of a quarter): below that the SH says little about n.
-float giCoverageScale(vec3 n, vec3 coverage) { return 1.0 / max(0.5 * (1.0 + dot(n, coverage)), 0.25); }
-
 // Coefficient i of the world cache's SH at the corners found by giWorldCacheCorners (total > 0).
 vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int i) {
     vec3 sum = vec3(0.0);
@@ -192,13 +172,6 @@ vec3 giWorldCacheCoefficient(uint bricks[8], float weights[8], float total, int 
         uvec2 v = giBrickSH[bricks[k] * 9u + uint(i)];
         sum += vec3(unpackHalf2x16(v.x), unpackHalf2x16(v.y).x) * weights[k];
     }
-    return sum / total;
-}
-// Coverage normal (giLoadBrickCoverage) of the world cache at those corners.
-vec3 giWorldCacheCoverage(uint bricks[8], float weights[8], float total) {
-    vec3 sum = vec3(0.0);
-    for (int k = 0; k < 8; ++k)
-        if (weights[k] > 0.0) sum += giLoadBrickCoverage(bricks[k]) * weights[k];
     return sum / total;
 }
 #endif

@@ -65,8 +65,7 @@ float giWorldCache(vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 l
     float weights[8];
     float total = giWorldCacheCorners(p, n, bricks, weights);
     if (total <= 0.0) return 0.0;
-    float scale = giCoverageScale(n, giWorldCacheCoverage(bricks, weights, total));
-    for (int i = 0; i < 9; ++i) giShRead(reads, i, giWorldCacheCoefficient(bricks, weights, total, i) * scale, 1.0, diffuse, lobe);
+    for (int i = 0; i < 9; ++i) giShRead(reads, i, giWorldCacheCoefficient(bricks, weights, total, i), 1.0, diffuse, lobe);
     return total;
 }
 

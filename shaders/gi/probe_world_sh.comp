@@ -24,14 +24,13 @@ void main() {
     uvec4 info = probeInfo[index];
     uint bricks[8];
     float weights[8];
-    float total = 0.0, scale = 1.0;
+    float total = 0.0;
     if ((info.w & GI_PROBE_VALID) != 0u) {
         vec3 p = giWorldPosition(giPixelUv(giProbePixel(info)), uintBitsToFloat(info.y), giCamera.inverseViewProjection);
         total = giWorldCacheCorners(p, giProbeNormal(info), bricks, weights);
-        if (total > 0.0) scale = giCoverageScale(giProbeNormal(info), giWorldCacheCoverage(bricks, weights, total));
     }
     for (int i = 0; i < 9; ++i) {
-        vec3 c = total > 0.0 ? giWorldCacheCoefficient(bricks, weights, total, i) * scale : vec3(0.0);
+        vec3 c = total > 0.0 ? giWorldCacheCoefficient(bricks, weights, total, i) : vec3(0.0);
         probeWorldSH[index * 9u + uint(i)] = vec4(c, i == 0 ? total : 0.0);
     }
 }

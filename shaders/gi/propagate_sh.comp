@@ -14,7 +14,6 @@ BL_CONSTANTS(2) uniform Pass { uvec4 cascade; } pass;  // x: the cascade of this
 BL_READ_BUFFER(0) BrickOwners { uint brickOwners[]; };
 BL_STORAGE_BUFFER(0) BrickSH { uvec2 giBrickSH[]; };
 #define GI_USES_BRICK_SH
-#define GI_WRITES_BRICK_SH
 #include "gi_bricks.glsl"
 
 bool giSegmentClear(vec3 a, vec3 b, uint cascade) {
@@ -45,7 +44,6 @@ void main() {
     float selfWeight;
     GiSH self = giLoadBrickSH(brick, selfWeight);
     GiSH sum = giShZero();
-    vec3 coverage = vec3(0.0);
     float count = 0.0;
     for (int f = 0; f < 6; ++f) {
         ivec3 offset = ivec3(0);
@@ -57,13 +55,13 @@ void main() {
         if (w <= 0.0) continue;
         if (!giSegmentClear(centre, centre + vec3(offset) * voxelSize, cascade)) continue;
         for (int i = 0; i < 9; ++i) sum.c[i] += s.c[i];
-        coverage += giLoadBrickCoverage(other);
         count += 1.0;
     }
     if (count == 0.0) return;
     for (int i = 0; i < 9; ++i) sum.c[i] /= count;
     float t = selfWeight <= 0.0 ? 1.0 : 0.125 / (1.0 + selfWeight);
     GiSH result = giShMix(self, sum, t);
-    vec3 selfCoverage = selfWeight <= 0.0 ? vec3(0.0) : giLoadBrickCoverage(brick);
-    giStoreBrickSH(brick, result, selfWeight <= 0.0 ? 0.5 : selfWeight, mix(selfCoverage, coverage / count, t));
+    float weight = selfWeight <= 0.0 ? 0.5 : selfWeight;
+    for (int i = 0; i < 9; ++i)
+        giBrickSH[brick * 9u + uint(i)] = uvec2(packHalf2x16(result.c[i].rg), packHalf2x16(vec2(result.c[i].b, i == 0 ? weight : 0.0)));
 }

@@ -14,10 +14,13 @@
 // one more bounce each time, as the screen's feedback gives on screen. Albedo and emission are the brick's
 // (learnt by inject_radiance.comp where the camera saw it, else the field's: sdf::InstanceDesc::material): one
 // value per brick, so texels of a brick that spans two materials get their mean.
-// Bricks no view has lit (GI_RELIGHT_UNSEEN: a probe ray found no light at them) take a cache slot here, and all
-// their texels within GI_UNSEEN_TEXEL_REACH of a surface are lit, on whichever side of it they lie (the field is
-// unsigned: each texel's side has its own normal), blended more slowly (GI_UNSEEN_BLEND: nothing on screen
-// corrects them).
+// Bricks no view has lit (GI_RELIGHT_UNSEEN: a probe ray found no light at them; docs/gi.md, "Surfaces the camera
+// never saw") take a cache slot here, and their texels facing a side rays wanted them from (leaning the same way
+// along some axis: outside a closed room no ray wants them) whose centre lies between GI_UNSEEN_TEXEL_NEAREST and
+// GI_UNSEEN_TEXEL_REACH off a surface are lit, on whichever side of it they lie (the field is unsigned: each
+// texel's side has its own normal), blended more slowly (GI_UNSEEN_BLEND: their two rays are all they get). A
+// texel nearer the surface has no side: lit as either, it would hand one side's light to the other. Texels the
+// camera sees now are left to injection (giTexelOnScreen).
 // One group per listed brick, two threads per texel: each traces one cosine-weighted ray and half of the
 // lights' shadow rays, and the two halves meet in shared memory. (One thread per texel tracing all of them
 // in series was slower: the pass's time is that of its longest thread.)
@@ -25,10 +28,12 @@ layout(local_size_x = 128) in;
 #define GI_RELIGHT_HALVES 2u
 // How far a re-lit texel moves towards the new value (a brick is re-lit every GI_RELIGHT_PERIOD frames).
 #define GI_RELIGHT_BLEND 0.75
-#define GI_UNSEEN_BLEND 0.5
+#define GI_UNSEEN_BLEND 0.25
 // Texels of a brick no view has lit that are lit: those whose centre is within this many texels of a surface
 // (the texels a hit's trilinear read weighs lie within one texel of the surface).
-#define GI_UNSEEN_TEXEL_REACH 0.75
+#define GI_UNSEEN_TEXEL_REACH 1.25
+// In brixel intervals: beyond the 0.2-texel slack of the readers' side test (giSampleRadianceCacheSide).
+#define GI_UNSEEN_TEXEL_NEAREST 0.5
 BL_READ_BUFFER(0) RelightList { uint relightList[]; };
 BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
 BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
@@ -36,6 +41,7 @@ BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 3 per light (core/gi/gi_const
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
 coherent BL_STORAGE_BUFFER(0) CacheSlots { uint giCacheSlots[]; };  // slots for bricks no view has lit
 BL_STORAGE_BUFFER(1) FreeSlots { int freeSlotCount; uint freeSlots[]; };  // a stack: popped here and by injection
+BL_TEXTURE(0) uniform sampler2D internalDepth;  // this frame's (downsample.comp)
 #define GI_CACHE_SLOTS_DECLARED
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
@@ -108,6 +114,23 @@ uint giTakeSlot(uint brick) {
     return slot;
 }
 
+// Whether the camera sees the surface a texel of a brick no view has lit stands for (its centre q, the surface's
+// normal n facing q): the surface faces the camera, q projects into the view, and the depth buffer there holds a
+// surface within a texel's reach (`reach`) of q's distance. Such a texel is the screen's: injection will write
+// it, and a value lit here beside the injected ones would stay unrefreshed while the brick is in view.
+bool giTexelOnScreen(vec3 q, vec3 n, float reach) {
+    vec3 toCamera = giFrame.camera.xyz - q;
+    if (dot(n, toCamera) <= 0.0) return false;
+    vec4 c = giCamera.viewProjection * vec4(q, 1.0);
+    if (c.w <= 0.0) return false;
+    vec2 uv = c.xy / c.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
+    float depth = texelFetch(internalDepth, ivec2(uv * vec2(giFrame.size.xy)), 0).r;
+    if (giIsSky(depth)) return false;
+    float visible = length(giWorldPosition(uv, depth, giCamera.inverseViewProjection) - giFrame.camera.xyz);
+    return visible > length(toCamera) - reach;
+}
+
 // Irradiance from the frame's lights first, first + stride, ... at p (normal n), shadowed through the field.
 vec3 giLightIrradiance(vec3 p, vec3 n, uint first, uint stride) {
     vec3 sum = vec3(0.0);
@@ -142,9 +165,10 @@ void main() {
     uint slot = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
     if (slot >= min(relightList[3], GI_RELIGHT_BUDGET)) return;
     uint entry = relightList[4u + slot];
-    uint brick = entry & ~(GI_RELIGHT_CARD_SIDES | GI_RELIGHT_UNSEEN);
+    uint brick = entry & ((1u << GI_RELIGHT_SIDES_SHIFT) - 1u);
     bool cardSidesOnly = (entry & GI_RELIGHT_CARD_SIDES) != 0u;
     bool unseen = (entry & GI_RELIGHT_UNSEEN) != 0u;
+    uint wantedSides = (entry >> GI_RELIGHT_SIDES_SHIFT) & GI_SIDE_BITS;
     uint owner = brickOwners[brick];
     if (owner == BL_SDF_NO_OWNER) return;
     if (gl_LocalInvocationIndex == 0u) {
@@ -176,7 +200,10 @@ void main() {
     // through: the grass's light was 1.9× the path tracer's instead of 1.8×, relMSE 0.113 instead of 0.083.)
     bool cards = giBrickHoldsCards(brick) && blSdfCellAlphaTested(brick, uvw);
     bool relit = (cardSidesOnly ? cards : old != 0u || cards || unseen) && giSurfaceNear(brick, uvw, info.voxelSize.w, n, distance);
-    if (relit && unseen && old == 0u) relit = distance <= GI_UNSEEN_TEXEL_REACH * 0.25 * info.voxelSize.x;
+    if (relit && unseen && old == 0u)
+        relit = (giSideBits(n) & wantedSides) != 0u && distance >= GI_UNSEEN_TEXEL_NEAREST * info.voxelSize.x / 7.0 &&
+                distance <= GI_UNSEEN_TEXEL_REACH * 0.25 * info.voxelSize.x;
+    if (relit && unseen) relit = !giTexelOnScreen((vec3(voxel) + uvw) * info.voxelSize.x, n, 0.5 * info.voxelSize.x);
     vec3 q = (vec3(voxel) + uvw) * info.voxelSize.x;
     if (relit && cardSidesOnly) relit = dot(n, giFrame.camera.xyz - q) < 0.0;
     vec3 p = vec3(0.0);
@@ -216,7 +243,9 @@ void main() {
     vec3 albedo = giBrickAlbedo(brick);
     // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
     vec3 emitted = emissionInRays ? vec3(0.0) : giBrickEmission(brick);
-    vec3 target = emitted + albedo * (irradiance / GI_PI + (bounce.w > 0.0 ? bounce.rgb / bounce.w : vec3(0.0)));
+    // Without a vote the light from the other surfaces is unknown, not black: the texel keeps what it has.
+    if (bounce.w == 0.0) return;
+    vec3 target = emitted + albedo * (irradiance / GI_PI + bounce.rgb / bounce.w);
     if (!giFinite(target)) return;
     float blend = unseen ? GI_UNSEEN_BLEND : GI_RELIGHT_BLEND;
     imageStore(giRadianceCache, texel, uvec4(blEncodeRgb9e5(old == 0u ? target : mix(blDecodeRgb9e5(old), target, blend))));

@@ -25,26 +25,12 @@ glm::dvec3 mean(const render::Image& img) {
     return sum / double(size_t(img.width) * img.height);
 }
 
-// A closed sphere seen from inside: albedo rho, every surface emitting Le towards the inside.
-scenes::SceneGeometry furnace(float rho, float emission) {
-    scenes::SceneGeometry s;
-    scenes::TriangleMesh sphere = scenes::icosphere(3);
-    for (size_t i = 0; i < sphere.indices.size(); i += 3) std::swap(sphere.indices[i + 1], sphere.indices[i + 2]);  // face inwards
-    sphere.albedo = glm::vec3(rho);
-    sphere.emission = glm::vec3(emission);
-    s.meshes.push_back(sphere);
-    s.instances.push_back({0, glm::mat4(1.0f)});
-    s.camera = {glm::vec3(0.1f, -0.2f, 0.3f), glm::vec3(0.5f, 0.2f, -1.0f), glm::vec3(0, 1, 0), 90.0f};
-    s.computeBounds();
-    return s;
-}
-
 // Tolerances: 32x32 pixels x 256 samples = 262k paths per image; the means below are within 1 %.
 void whiteFurnace(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     const float rho = 0.5f, le = 1.0f;
-    auto pt = traced(td, furnace(rho, le), 32, 256);
+    auto pt = traced(td, emittingSphere(rho, le), 32, 256);
     // Radiance everywhere Le / (1 - rho); direct = Le + rho Le; indirect (irradiance / pi of light that
     // bounced) = rho Le / (1 - rho).
     const glm::dvec3 combined = mean(pt->read(render::Aov::Combined));
@@ -55,6 +41,15 @@ void whiteFurnace(const std::string& backend) {
     CHECK(combined.y == Approx(le / (1 - rho)).epsilon(0.01));
     CHECK(direct.x == Approx(le + rho * le).epsilon(0.01));
     CHECK(indirect.x == Approx(rho * le / (1 - rho)).epsilon(0.02));
+    // Bounce by bounce: with maxBounces = n, L = Le · Σ_{k ≤ n + 1} rhoᵏ (vertex n still takes its direct light).
+    for (uint32_t n : {0u, 1u, 2u}) {
+        auto bounded = traced(td, emittingSphere(rho, le), 32, 64, true, 1, n);
+        double expected = 0.0;
+        for (uint32_t k = 0; k <= n + 1; ++k) expected += le * std::pow(rho, double(k));
+        const double got = mean(bounded->read(render::Aov::Combined)).x;
+        INFO("maxBounces " << n << ": combined " << got << ", expected " << expected);
+        CHECK(got == Approx(expected).epsilon(0.01));
+    }
     REQUIRE_NO_MESSAGES(td);
 }
 

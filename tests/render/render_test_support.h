@@ -128,6 +128,22 @@ inline scenes::TriangleMesh groundPlane(float half, glm::vec3 albedo) {
     return plane;
 }
 
+// A closed sphere seen from inside (radius 1): albedo rho, every surface emitting radiance `emission` towards
+// the inside. Its light is known in closed form: after n bounces L = emission · Σ_{k ≤ n} rhoᵏ, converged
+// emission / (1 − rho), the same everywhere.
+inline scenes::SceneGeometry emittingSphere(float rho, float emission) {
+    scenes::SceneGeometry s;
+    scenes::TriangleMesh sphere = scenes::icosphere(3);
+    for (size_t i = 0; i < sphere.indices.size(); i += 3) std::swap(sphere.indices[i + 1], sphere.indices[i + 2]);  // face inwards
+    sphere.albedo = glm::vec3(rho);
+    sphere.emission = glm::vec3(emission);
+    s.meshes.push_back(sphere);
+    s.instances.push_back({0, glm::mat4(1.0f)});
+    s.camera = {glm::vec3(0.1f, -0.2f, 0.3f), glm::vec3(0.5f, 0.2f, -1.0f), glm::vec3(0, 1, 0), 90.0f};
+    s.computeBounds();
+    return s;
+}
+
 // A white furnace: `mesh` alone at the origin under a uniform sky of radiance 1, seen from 4 units away.
 inline scenes::SceneGeometry furnace(const scenes::TriangleMesh& mesh) {
     scenes::SceneGeometry s;
