@@ -239,7 +239,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         rhi::DispatchState s;
         readBuffer(s.bindings, 0, relightList_[cur]);
         readBuffer(s.bindings, 1, owners);
-        readBuffer(s.bindings, 2, brickMaterial_);
+        storageBuffer(s.bindings, 2, brickMaterial_, Access::Atomic);  // relight rays mark unknown hits wanted
         readBuffer(s.bindings, 3, lights_);
         storageBuffer(s.bindings, 0, slotOfBrick_, Access::Atomic);  // slots for bricks no view has lit
         storageBuffer(s.bindings, 1, freeSlots_, Access::Atomic);

@@ -23,25 +23,13 @@ BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
 BL_STORAGE_BUFFER(0) BrickMaterial { uint giBrickMaterial[]; };
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
+#define GI_WANTS_BRICKS
 #include "gi_bricks.glsl"
 #ifdef GI_UNSEEN_FROM_VCT  // hits no view has lit read a voxel clip-map's light (DispatchDesc::unseenLight)
 #define BL_CONE_TRACE_TEXTURE_BASE 0  // 0..6 (13..15 are the environment and the field's atlas)
 #define BL_CONE_TRACE_FRAME_SLOT 1
 #include "bricklight/cone_trace.glsl"
 #endif
-
-// A probe ray (direction d) found no light cached at its hit in `brick`: with relighting on and a material in the
-// field, the brick is wanted from the side the ray met (in the word of the frame it was last seen, while it was
-// never seen; injection overwrites it with that frame).
-void giWantBrick(uint brick, vec3 d) {
-    // Bricks that hold cards have their own relighting of the sides the camera does not see (GI_RELIGHT_CARD_SIDES):
-    // lit here too (their other cells), the grass took sun that the field's shadow rays let through (2.5× the path
-    // tracer's light).
-    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || (blSdfBrickMaterial(brick).x >> 24) == 0u || giBrickHoldsCards(brick)) return;
-    uint at = brick * GI_MATERIAL_WORDS + 2u;
-    uint word = giBrickMaterial[at], want = GI_BRICK_WANTED | giSideBits(-d);
-    if ((word == 0u || (word & GI_BRICK_WANTED) != 0u) && (word & want) != want) atomicOr(giBrickMaterial[at], want);
-}
 
 // One texel: trace its ray (jittered within the texel) and store or blend the result.
 void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool reprojected, vec4 old) {

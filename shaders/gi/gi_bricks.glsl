@@ -115,6 +115,22 @@ bool giRadianceAtSide(vec3 p, uint brick, vec3 uvw, uint cascade, vec3 side, out
 }
 #endif
 
+#ifdef GI_WANTS_BRICKS  // the including pass declares giBrickMaterial (GI_MATERIAL_WORDS per brick) writable
+// A ray (direction d) found no light cached at its hit in `brick` (probe rays, relight rays): with relighting on and a material in the
+// field, the brick is wanted from the side the ray met (in the word of the frame it was last seen, while it was
+// never seen; injection overwrites it with that frame).
+void giWantBrick(uint brick, vec3 d) {
+    // Bricks that hold cards have their own relighting of the sides the camera does not see (GI_RELIGHT_CARD_SIDES):
+    // lit here too (their other cells), the grass took sun that the field's shadow rays let through (2.5× the path
+    // tracer's light).
+    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || (blSdfBrickMaterial(brick).x >> 24) == 0u || giBrickHoldsCards(brick)) return;
+    uint at = brick * GI_MATERIAL_WORDS + 2u;
+    uint word = giBrickMaterial[at], want = GI_BRICK_WANTED | giSideBits(-d);
+    if ((word == 0u || (word & GI_BRICK_WANTED) != 0u) && (word & want) != want) atomicOr(giBrickMaterial[at], want);
+}
+
+#endif
+
 #ifdef GI_USES_BRICK_SH
 GiSH giLoadBrickSH(uint brick, out float weight) {
     GiSH s;

@@ -36,7 +36,8 @@ layout(local_size_x = 128) in;
 #define GI_UNSEEN_TEXEL_NEAREST 0.5
 BL_READ_BUFFER(0) RelightList { uint relightList[]; };
 BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
-BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
+BL_STORAGE_BUFFER(2) BrickMaterial { uint brickMaterial[]; };  // read; relight rays mark unknown hits wanted
+#define giBrickMaterial brickMaterial
 BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 3 per light (core/gi/gi_constants.h: GpuLight)
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
 coherent BL_STORAGE_BUFFER(0) CacheSlots { uint giCacheSlots[]; };  // slots for bricks no view has lit
@@ -45,6 +46,7 @@ BL_TEXTURE(0) uniform sampler2D internalDepth;  // this frame's (downsample.comp
 #define GI_CACHE_SLOTS_DECLARED
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
+#define GI_WANTS_BRICKS
 #include "gi_bricks.glsl"
 
 // Outward unit normal and distance (world) of the surface near brick-local uvw. The field is unsigned, so
@@ -228,6 +230,8 @@ void main() {
             else if ((giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) != 0u) bounce = vec4(giBrickEmission(hit.brickId), 1.0);
             else if (giRadianceAtSide(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.normal, radiance)) {
                 bounce = vec4(radiance + (emissionInRays ? giBrickEmission(hit.brickId) : vec3(0.0)), 1.0);
+            } else {
+                giWantBrick(hit.brickId, d);  // lit in turn, so that light reaches off-screen surfaces in hops
             }
         }
         irradiance = giLightIrradiance(p, n, side, GI_RELIGHT_HALVES);
