@@ -36,7 +36,7 @@ struct GpuFrame {  // BL_CONSTANTS(1)
     uint32_t relight[4];    // light count, relight flags (RelightFlags), unused, unused
     glm::vec4 traceLimits;  // iterations per cascade of every GI ray, diffuse rays' coarsenAfterVoxels (TraceParams)
     uint32_t probes[4];     // probe tile side in internal pixels, unused, unused, unused
-    uint32_t cache[4];      // radiance cache slots kept for injections that carry light, kept for the screen, unused, unused
+    uint32_t cache[4];      // radiance cache slots kept for injections that carry light, unused, unused, unused
 };
 static_assert(sizeof(GpuFrame) == 224);
 
@@ -44,7 +44,6 @@ enum RelightFlags : uint32_t {
     RelightAlbedo = 1u,    // DispatchDesc::diffuseAlbedo given: bricks learn their albedo, unseen texels are re-lit
     RelightEmission = 2u,  // DispatchDesc::emission given
     RelightEmissionInRays = 4u,  // the lit image leaves emission out: relight rays add it at their hits
-    RelightDirectOnly = 8u,      // DispatchDesc::relightBounces false: relight rays take emission only
 };
 
 // One light in the lights buffer (std430, 3 × vec4).

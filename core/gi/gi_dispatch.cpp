@@ -111,11 +111,9 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.traceLimits = glm::vec4(float(d.trace.maxIterationsPerCascade), d.trace.coarsenAfterVoxels, 0.0f, 0.0f);
     frame_.relight[0] = d.lightCount;
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
-                        (!d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u) |
-                        (!d.relightBounces ? uint32_t(RelightDirectOnly) : 0u);
+                        (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
     frame_.probes[0] = probeTile_;
     frame_.cache[0] = cacheSlots_ / 4;  // inject_radiance.comp: the last quarter goes to bricks that receive light
-    frame_.cache[1] = cacheSlots_ / 2;  // relight_cache.comp: bricks no view has lit take slots from the first half
 }
 
 void GiContextImpl::uploadLights(const DispatchDesc& d) {
@@ -239,11 +237,9 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         rhi::DispatchState s;
         readBuffer(s.bindings, 0, relightList_[cur]);
         readBuffer(s.bindings, 1, owners);
-        storageBuffer(s.bindings, 2, brickMaterial_, Access::Atomic);  // relight rays mark unknown hits wanted
+        readBuffer(s.bindings, 2, brickMaterial_);
         readBuffer(s.bindings, 3, lights_);
-        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Atomic);  // slots for bricks no view has lit
-        storageBuffer(s.bindings, 1, freeSlots_, Access::Atomic);
-        texture(s.bindings, 0, depth_[cur], point_);  // texels the camera sees are the screen's
+        storageBuffer(s.bindings, 0, slotOfBrick_, Access::Read);
         image(s.bindings, 0, radianceCache_, Access::ReadWrite);
         addTrace(s.bindings);
         addAlphaCache(s.bindings);
@@ -278,7 +274,6 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, probes_[cur], Access::ReadWrite);
         image(s.bindings, 1, radianceCache_, Access::Read);
         readBuffer(s.bindings, 3, slotOfBrick_);
-        storageBuffer(s.bindings, 0, brickMaterial_, Access::Atomic);  // marks bricks no view has lit as wanted
         addTrace(s.bindings);
         addAlphaCache(s.bindings);
         addEnvironment(s.bindings, d);

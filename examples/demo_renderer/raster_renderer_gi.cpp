@@ -73,7 +73,6 @@ void RasterRenderer::dispatchGi(bool cut) {
         g.previousLitIncludesEmission = false;
         g.lights = giLights_.data();
         g.lightCount = uint32_t(giLights_.size());
-        g.relightBounces = options_.giFeedback;  // without feedback, one bounce: off screen too
     }
     g.outputDiffuse = giDiffuse_;
     g.outputSpecular = giSpecular_;

@@ -154,11 +154,6 @@ struct DispatchDesc {
     // renderer whose direct lighting samples the emitters, so the lit image fed back leaves them out):
     // re-lit texels leave it out too, and their rays add the emission of the bricks they hit.
     bool previousLitIncludesEmission = true;
-    // Whether the light GI computes for surfaces off screen (re-lit texels) includes the light other surfaces
-    // send them (read from the cache: one more bounce each time they are re-lit), as the fed-back lit image does
-    // on screen. False for an application that feeds back direct light only (one bounce of indirect light:
-    // re-lit texels then hold their direct light, from the lights and the emitters their rays meet).
-    bool relightBounces = true;
     const Light* lights = nullptr;        // lightCount entries, at most kMaxLights
     uint32_t lightCount = 0;
 

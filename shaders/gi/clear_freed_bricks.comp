@@ -15,10 +15,7 @@
 // atomics: a full rebuild of the Cornell box gave a few of its 10710 bricks back to their voxels.)
 // With relighting on, a brick whose albedo is known, that the camera has not seen for GI_RELIGHT_AFTER
 // frames and that is out of view (giBrickInView) — or that it has not seen for GI_RELIGHT_STALE frames —
-// is appended, every GI_RELIGHT_PERIOD-th frame, to this frame's relight list; so is a brick the camera never
-// saw but the field knows the material of (sdf::InstanceDesc::material), once a probe ray wanted it
-// (GI_BRICK_WANTED) and then every GI_RELIGHT_PERIOD-th frame while it holds a cache slot, flagged
-// GI_RELIGHT_UNSEEN (docs/gi.md, "Surfaces the camera never saw"). Words 0..2 of a list are the
+// is appended, every GI_RELIGHT_PERIOD-th frame, to this frame's relight list: words 0..2 are the
 // indirect dispatch's arguments (x = bricks listed, one group each), word 3 counts the candidates, the
 // bricks follow. The frames alternate between two lists; this pass also empties the other one (0, 1, 1,
 // 0) for the next frame, so that the host uploads nothing per frame.
@@ -98,24 +95,8 @@ void main() {
         return;
     }
     if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == BL_SDF_NO_OWNER) return;
-    uint word = brickMaterial[m + 2u];
-    bool wanted = (word & GI_BRICK_WANTED) != 0u;
-    uint seen = wanted ? 0u : word;
-    if (seen == 0u) {
-        // Never seen: lit from the field's material on the sides probe rays wanted it from (the relight pass gives it
-        // a slot: a pop from the free stack here could meet this pass's pushes), and every period while it has one.
-        uint slot = giCacheSlots[brick];
-        if (wanted) brickMaterial[m + 2u] = 0u;
-        if ((blSdfBrickMaterial(brick).x >> 24) == 0u || slot == GI_SLOT_PENDING) return;
-        if (!wanted && (slot == GI_SLOT_NONE || (brick + giFrameIndex()) % GI_UNSEEN_PERIOD != 0u)) return;
-        uint at = atomicAdd(relightList[3], 1u);
-        if (at >= GI_RELIGHT_BUDGET) return;
-        relightList[4u + at] = brick | GI_RELIGHT_UNSEEN | ((wanted ? word & GI_SIDE_BITS : 0u) << GI_RELIGHT_SIDES_SHIFT);
-        atomicMax(relightList[0], at + 1u);
-        return;
-    }
-    // No albedo learnt nor in the field: nothing to re-light with.
-    if ((brickMaterial[m] >> 24) == 0u && (blSdfBrickMaterial(brick).x >> 24) == 0u) return;
+    uint seen = brickMaterial[m + 2u];
+    if (seen == 0u || (brickMaterial[m] >> 24) == 0u) return;  // never seen, or no albedo learnt
     // Coarser cascades are injected by every 2^k-th pixel only (inject_radiance.comp), so a brick there
     // that the camera sees can go unreached for a few frames by chance: it must be unseen for longer.
     uint level = min((owner >> 24) - min(owner >> 24, giFrame.cascades.x), 4u);

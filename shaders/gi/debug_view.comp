@@ -44,7 +44,7 @@ void main() {
         if (hit.hit) {
             if (mode == 0u) {
                 vec3 radiance;
-                if (giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.normal, radiance)) colour = radiance;
+                if (giRadianceAt(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) colour = radiance;
                 else colour = vec3(0.3, 0.0, 0.3) / pass.exposure.x;  // no data: magenta
             } else {
                 float w;

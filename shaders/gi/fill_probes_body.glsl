@@ -10,8 +10,7 @@
 // keeps the others, a new one leaves them empty until their turn. A hit with no
 // cached radiance anywhere is marked "hit, unknown" (alpha, see gi_common.glsl) for project_probes to fill
 // from the known hits of its neighbouring texels or the probe's — not left out, which would weigh the
-// misses (the environment) too much — and its brick is marked wanted, to be lit from the field's material
-// (clear_freed_bricks.comp, relight_cache.comp) if the camera never saw it.
+// misses (the environment) too much.
 layout(local_size_x = 64) in;
 // Weight of a retraced texel's new sample in a reprojected probe. 1: the texel keeps one sample, the
 // newest; averaging over frames is the interpolation pass's job. (An average here, 0.35, biased probes
@@ -20,10 +19,8 @@ layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_IMAGE(0, rgba16f) uniform image2D probes;
 BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
-BL_STORAGE_BUFFER(0) BrickMaterial { uint giBrickMaterial[]; };
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
-#define GI_WANTS_BRICKS
 #include "gi_bricks.glsl"
 #ifdef GI_UNSEEN_FROM_VCT  // hits no view has lit read a voxel clip-map's light (DispatchDesc::unseenLight)
 #define BL_CONE_TRACE_TEXTURE_BASE 0  // 0..6 (13..15 are the environment and the field's atlas)
@@ -52,7 +49,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     if (!hit.hit) {
         radiance = giEnvironment(d);
         kind = GI_TEXEL_MISS;
-    } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.normal,
+    } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0),
                                  radiance)) {
 #ifdef GI_UNSEEN_FROM_VCT
         // The clip-map's voxels hold the light of surfaces the camera never saw (voxelized from the app's draws).
@@ -66,9 +63,8 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
         }
 #endif
         // A surface no view has lit yet: marked for the projection pass to fill from the probe's known
-        // hits, and wanted. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
+        // hits. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
         // come through another probe's directions, often a miss.)
-        giWantBrick(hit.brickId, d);
         imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
         return;
     }

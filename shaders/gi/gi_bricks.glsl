@@ -65,11 +65,8 @@ BL_READ_BUFFER(3) CacheSlots { uint giCacheSlots[]; };
 #endif
 
 // Radiance at brick-local uvw: trilinear over the brick's written texels (unwritten ones carry no weight). With
-// `side` (a unit normal facing the reader; zero for none), only the texels whose centre lies on that side of the
-// surface (found from uvw, a hit up to the hit epsilon in front of it, by the field's distance there), with a fifth
-// of a texel of slack: a thin wall's or card's two sides share texels, and each side's light must stay on its side
-// (gi_alpha.glsl; relight_cache.comp lights both sides of surfaces no view has lit; injection writes texels whose
-// centre lies in front of the surface).
+// `side` (a unit normal; zero for none), only the texels whose centre lies on that side of the surface through uvw:
+// a thin card's two sides share texels, and injection writes the side the camera sees (gi_alpha.glsl).
 vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight) {
     weight = 0.0;
     uint slot = giCacheSlots[brick];
@@ -79,11 +76,9 @@ vec3 giSampleRadianceCacheSide(uint brick, vec3 uvw, vec3 side, out float weight
     ivec3 i0 = min(ivec3(floor(q)), ivec3(2));
     vec3 f = q - vec3(i0);
     vec3 sum = vec3(0.0);
-    // The surface lies this far (uvw units) behind uvw along `side`.
-    float behind = side == vec3(0.0) ? 0.0 : blSdfSampleBrick(brick, uvw) * (BL_SDF_BAND_BRIXELS / 7.0);
     for (int k = 0; k < 8; ++k) {
         ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
-        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) + behind < -0.05) continue;
+        if (dot((vec3(i0 + o) + 0.5) * 0.25 - uvw, side) < 0.0) continue;
         uint v = imageLoad(giRadianceCache, base + i0 + o).r;
         if (v == 0u) continue;
         vec3 w3 = mix(1.0 - f, f, vec3(o));
@@ -113,22 +108,9 @@ bool giRadianceAtSide(vec3 p, uint brick, vec3 uvw, uint cascade, vec3 side, out
     }
     return false;
 }
-#endif
-
-#ifdef GI_WANTS_BRICKS  // the including pass declares giBrickMaterial (GI_MATERIAL_WORDS per brick) writable
-// A ray (direction d) found no light cached at its hit in `brick` (probe rays, relight rays): with relighting on and a material in the
-// field, the brick is wanted from the side the ray met (in the word of the frame it was last seen, while it was
-// never seen; injection overwrites it with that frame).
-void giWantBrick(uint brick, vec3 d) {
-    // Bricks that hold cards have their own relighting of the sides the camera does not see (GI_RELIGHT_CARD_SIDES):
-    // lit here too (their other cells), the grass took sun that the field's shadow rays let through (2.5× the path
-    // tracer's light).
-    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || (blSdfBrickMaterial(brick).x >> 24) == 0u || giBrickHoldsCards(brick)) return;
-    uint at = brick * GI_MATERIAL_WORDS + 2u;
-    uint word = giBrickMaterial[at], want = GI_BRICK_WANTED | giSideBits(-d);
-    if ((word == 0u || (word & GI_BRICK_WANTED) != 0u) && (word & want) != want) atomicOr(giBrickMaterial[at], want);
+bool giRadianceAt(vec3 p, uint brick, vec3 uvw, uint cascade, out vec3 radiance) {
+    return giRadianceAtSide(p, brick, uvw, cascade, vec3(0.0), radiance);
 }
-
 #endif
 
 #ifdef GI_USES_BRICK_SH

@@ -28,31 +28,15 @@ BL_CONSTANTS(1) uniform GiFrame {
     uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
     vec4 traceLimits;    // x iterations per cascade of every GI ray, y diffuse rays' coarsen-after voxels
     uvec4 probes;        // x probe tile side in internal pixels (8 or 16; ContextDesc::probeTile)
-    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp),
-                         // y slots kept for the screen when bricks no view has lit take one (relight_cache.comp)
+    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp)
 } giFrame;
 
 #define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)
 #define GI_RELIGHT_EMISSION 2u  // ...and their emission
 #define GI_RELIGHT_EMISSION_IN_RAYS 4u  // the lit image leaves emission out: relight rays add it at their hits
-#define GI_RELIGHT_DIRECT_ONLY 8u  // re-lit texels hold direct light only: relight rays take the emission at their hits
 // Per-brick material (GI_MATERIAL_WORDS uints per brick): albedo RGBA8 (a = 1 once learnt), emission
-// RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never) — or, while the
-// camera never saw it, GI_BRICK_WANTED | the sides probe rays met it from: a probe ray hit it and found no light
-// cached (fill_probes_body.glsl), so clear_freed_bricks.comp lists it to be lit from the field's material.
+// RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never).
 #define GI_MATERIAL_WORDS 3u
-#define GI_BRICK_WANTED 0x80000000u
-// Sides (6 bits, giSideBits): bit 2a set where the surface faces +axis a, 2a + 1 where it faces −axis a.
-#define GI_SIDE_BITS 0x3Fu
-// The sides a unit vector v faces: each axis along which it leans more than GI_SIDE_LEAN (a vector leans
-// more than 1/√3 along at least one axis, so some bit is always set).
-#define GI_SIDE_LEAN 0.3
-uint giSideBits(vec3 v) {
-    uint bits = 0u;
-    for (int a = 0; a < 3; ++a)
-        if (abs(v[a]) > GI_SIDE_LEAN) bits |= 1u << (2 * a + (v[a] < 0.0 ? 1 : 0));
-    return bits;
-}
 // Relighting (relight_cache.comp): a brick out of view that the camera has not seen for GI_RELIGHT_AFTER
 // frames (twice the injection's rotation through its 2×2 tiles; × 2^k in the k-th cascade above the
 // start) — or any brick not seen for GI_RELIGHT_STALE (× 2^k) frames — is re-lit every
@@ -61,17 +45,10 @@ uint giSideBits(vec3 v) {
 #define GI_RELIGHT_AFTER 4u
 #define GI_RELIGHT_STALE 8u
 #define GI_RELIGHT_PERIOD 2u
-// Bricks lit from the field's material (GI_RELIGHT_UNSEEN) are re-lit every GI_UNSEEN_PERIOD-th frame.
-#define GI_UNSEEN_PERIOD 2u
 #define GI_RELIGHT_BUDGET 2048u
 // A relight list entry's flag: a brick holding cards (alpha-tested surfaces) listed while in view, for its cards'
 // sides the camera does not see (relight_cache.comp); whole bricks are listed without it.
 #define GI_RELIGHT_CARD_SIDES 0x80000000u
-// Relight list flag: a brick no view has lit (its light comes from the field's material and the lights alone);
-// relight_cache.comp gives it a cache slot if it has none and lights every texel near its surface.
-#define GI_RELIGHT_UNSEEN 0x40000000u
-// Beside GI_RELIGHT_UNSEEN, the sides wanted (GI_SIDE_BITS) at this shift; none: re-light the written texels only.
-#define GI_RELIGHT_SIDES_SHIFT 24u
 // How often such a brick is listed: every 2nd frame made the relight pass of the foliage scene about ten times
 // slower.
 #define GI_RELIGHT_CARD_PERIOD 8u

@@ -52,7 +52,7 @@ void main() {
             result = vec4(0.0);  // no answer: the composite keeps the GI's specular here
         } else if (!hit.hit) {
             result = vec4(giEnvironment(d), 1.0);
-        } else if (giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.normal, radiance)) {
+        } else if (giRadianceAt(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) {
             result = vec4(radiance, 1.0);
         }
     }

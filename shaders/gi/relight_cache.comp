@@ -12,15 +12,8 @@
 //   radiance = emission + albedo · (E_lights / π + mean of GI_RELIGHT_HALVES cosine-weighted rays' radiance)
 // with the lights shadowed through the field and the rays reading the cache (the environment on a miss):
 // one more bounce each time, as the screen's feedback gives on screen. Albedo and emission are the brick's
-// (learnt by inject_radiance.comp where the camera saw it, else the field's: sdf::InstanceDesc::material): one
-// value per brick, so texels of a brick that spans two materials get their mean.
-// Bricks no view has lit (GI_RELIGHT_UNSEEN: a probe ray found no light at them; docs/gi.md, "Surfaces the camera
-// never saw") take a cache slot here, and their texels facing a side rays wanted them from (leaning the same way
-// along some axis: outside a closed room no ray wants them) whose centre lies between GI_UNSEEN_TEXEL_NEAREST and
-// GI_UNSEEN_TEXEL_REACH off a surface are lit, on whichever side of it they lie (the field is unsigned: each
-// texel's side has its own normal), blended more slowly (GI_UNSEEN_BLEND: their two rays are all they get). A
-// texel nearer the surface has no side: lit as either, it would hand one side's light to the other. Texels the
-// camera sees now are left to injection (giTexelOnScreen).
+// (learnt by inject_radiance.comp where the camera saw it): one value per brick, so texels of a brick
+// that spans two materials get their mean.
 // One group per listed brick, two threads per texel: each traces one cosine-weighted ray and half of the
 // lights' shadow rays, and the two halves meet in shared memory. (One thread per texel tracing all of them
 // in series was slower: the pass's time is that of its longest thread.)
@@ -28,25 +21,15 @@ layout(local_size_x = 128) in;
 #define GI_RELIGHT_HALVES 2u
 // How far a re-lit texel moves towards the new value (a brick is re-lit every GI_RELIGHT_PERIOD frames).
 #define GI_RELIGHT_BLEND 0.75
-#define GI_UNSEEN_BLEND 0.25
-// Texels of a brick no view has lit that are lit: those whose centre is within this many texels of a surface
-// (the texels a hit's trilinear read weighs lie within one texel of the surface).
-#define GI_UNSEEN_TEXEL_REACH 1.25
-// In brixel intervals: beyond the 0.2-texel slack of the readers' side test (giSampleRadianceCacheSide).
-#define GI_UNSEEN_TEXEL_NEAREST 0.5
 BL_READ_BUFFER(0) RelightList { uint relightList[]; };
 BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
-BL_STORAGE_BUFFER(2) BrickMaterial { uint brickMaterial[]; };  // read; relight rays mark unknown hits wanted
-#define giBrickMaterial brickMaterial
+BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
 BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 3 per light (core/gi/gi_constants.h: GpuLight)
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
-coherent BL_STORAGE_BUFFER(0) CacheSlots { uint giCacheSlots[]; };  // slots for bricks no view has lit
-BL_STORAGE_BUFFER(1) FreeSlots { int freeSlotCount; uint freeSlots[]; };  // a stack: popped here and by injection
-BL_TEXTURE(0) uniform sampler2D internalDepth;  // this frame's (downsample.comp)
+BL_STORAGE_BUFFER(0) CacheSlots { uint giCacheSlots[]; };  // read only here (the read-buffer slots are taken)
 #define GI_CACHE_SLOTS_DECLARED
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
-#define GI_WANTS_BRICKS
 #include "gi_bricks.glsl"
 
 // Outward unit normal and distance (world) of the surface near brick-local uvw. The field is unsigned, so
@@ -84,55 +67,6 @@ bool giShadowed(vec3 p, vec3 l, float distance) {
     return hit.hit || hit.gaveUp;  // no answer: in shadow, the safer guess (no light from nowhere)
 }
 
-// Albedo (rgb) and emission of a brick: learnt from the screen where the camera saw it, else the field's (zero if
-// neither knows it).
-vec3 giBrickAlbedo(uint brick) {
-    uint learnt = brickMaterial[brick * GI_MATERIAL_WORDS];
-    if ((learnt >> 24) != 0u) return unpackUnorm4x8(learnt).rgb;
-    uint field = blSdfBrickMaterial(brick).x;
-    return (field >> 24) != 0u ? unpackUnorm4x8(field).rgb : vec3(0.0);
-}
-vec3 giBrickEmission(uint brick) {
-    uint m = brick * GI_MATERIAL_WORDS;
-    bool learnt = (giFrame.relight.y & GI_RELIGHT_EMISSION) != 0u && (brickMaterial[m] >> 24) != 0u;
-    uint e = learnt ? brickMaterial[m + 1u] : blSdfBrickMaterial(brick).y;
-    return e != 0u ? blDecodeRgb9e5(e) : vec3(0.0);
-}
-
-// A cache slot for a brick no view has lit, popped from the free stack while more than giFrame.cache.y slots are
-// left for the screen (GI_SLOT_NONE if none). Injection pops too: the compare-and-swap makes one of them the
-// allocator, as in inject_radiance.comp.
-uint giTakeSlot(uint brick) {
-    if (freeSlotCount <= int(giFrame.cache.y)) return GI_SLOT_NONE;
-    if (atomicCompSwap(giCacheSlots[brick], GI_SLOT_NONE, GI_SLOT_PENDING) != GI_SLOT_NONE) return GI_SLOT_NONE;
-    int top = atomicAdd(freeSlotCount, -1);
-    if (top <= int(giFrame.cache.y)) {
-        atomicAdd(freeSlotCount, 1);
-        atomicExchange(giCacheSlots[brick], GI_SLOT_NONE);
-        return GI_SLOT_NONE;
-    }
-    uint slot = freeSlots[top - 1];
-    atomicExchange(giCacheSlots[brick], slot);
-    return slot;
-}
-
-// Whether the camera sees the surface a texel of a brick no view has lit stands for (its centre q, the surface's
-// normal n facing q): the surface faces the camera, q projects into the view, and the depth buffer there holds a
-// surface within a texel's reach (`reach`) of q's distance. Such a texel is the screen's: injection will write
-// it, and a value lit here beside the injected ones would stay unrefreshed while the brick is in view.
-bool giTexelOnScreen(vec3 q, vec3 n, float reach) {
-    vec3 toCamera = giFrame.camera.xyz - q;
-    if (dot(n, toCamera) <= 0.0) return false;
-    vec4 c = giCamera.viewProjection * vec4(q, 1.0);
-    if (c.w <= 0.0) return false;
-    vec2 uv = c.xy / c.w * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return false;
-    float depth = texelFetch(internalDepth, ivec2(uv * vec2(giFrame.size.xy)), 0).r;
-    if (giIsSky(depth)) return false;
-    float visible = length(giWorldPosition(uv, depth, giCamera.inverseViewProjection) - giFrame.camera.xyz);
-    return visible > length(toCamera) - reach;
-}
-
 // Irradiance from the frame's lights first, first + stride, ... at p (normal n), shadowed through the field.
 vec3 giLightIrradiance(vec3 p, vec3 n, uint first, uint stride) {
     vec3 sum = vec3(0.0);
@@ -161,24 +95,16 @@ vec3 giLightIrradiance(vec3 p, vec3 n, uint first, uint stride) {
 // What the second thread of each texel hands over: its ray (rgb; w 1 if it voted) and its lights.
 shared vec4 halfBounce[64];
 shared vec3 halfIrradiance[64];
-shared uint groupSlot;
 
 void main() {
     uint slot = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
     if (slot >= min(relightList[3], GI_RELIGHT_BUDGET)) return;
     uint entry = relightList[4u + slot];
-    uint brick = entry & ((1u << GI_RELIGHT_SIDES_SHIFT) - 1u);
+    uint brick = entry & ~GI_RELIGHT_CARD_SIDES;
     bool cardSidesOnly = (entry & GI_RELIGHT_CARD_SIDES) != 0u;
-    bool unseen = (entry & GI_RELIGHT_UNSEEN) != 0u;
-    uint wantedSides = (entry >> GI_RELIGHT_SIDES_SHIFT) & GI_SIDE_BITS;
     uint owner = brickOwners[brick];
     if (owner == BL_SDF_NO_OWNER) return;
-    if (gl_LocalInvocationIndex == 0u) {
-        uint s = giCacheSlots[brick];
-        groupSlot = unseen && s == GI_SLOT_NONE ? giTakeSlot(brick) : s;
-    }
-    barrier();
-    uint cacheSlot = groupSlot;
+    uint cacheSlot = giCacheSlots[brick];
     if (cacheSlot >= GI_SLOT_PENDING) return;
     // Every return above is the whole group's (one brick); below, threads only go idle until the barrier.
     uint t = gl_LocalInvocationIndex % 64u, side = gl_LocalInvocationIndex / 64u;
@@ -201,11 +127,7 @@ void main() {
     // too — parts of cards hidden behind other cards — lit them with sun that the field's coarse shadow rays let
     // through: the grass's light was 1.9× the path tracer's instead of 1.8×, relMSE 0.113 instead of 0.083.)
     bool cards = giBrickHoldsCards(brick) && blSdfCellAlphaTested(brick, uvw);
-    bool relit = (cardSidesOnly ? cards : old != 0u || cards || unseen) && giSurfaceNear(brick, uvw, info.voxelSize.w, n, distance);
-    if (relit && unseen && old == 0u)
-        relit = (giSideBits(n) & wantedSides) != 0u && distance >= GI_UNSEEN_TEXEL_NEAREST * info.voxelSize.x / 7.0 &&
-                distance <= GI_UNSEEN_TEXEL_REACH * 0.25 * info.voxelSize.x;
-    if (relit && unseen) relit = !giTexelOnScreen((vec3(voxel) + uvw) * info.voxelSize.x, n, 0.5 * info.voxelSize.x);
+    bool relit = (cardSidesOnly ? cards : old != 0u || cards) && giSurfaceNear(brick, uvw, info.voxelSize.w, n, distance);
     vec3 q = (vec3(voxel) + uvw) * info.voxelSize.x;
     if (relit && cardSidesOnly) relit = dot(n, giFrame.camera.xyz - q) < 0.0;
     vec3 p = vec3(0.0);
@@ -227,11 +149,9 @@ void main() {
         // No answer, or a surface of unknown radiance: no vote.
         if (!hit.gaveUp) {
             if (!hit.hit) bounce = vec4(giEnvironment(d), 1.0);
-            else if ((giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) != 0u) bounce = vec4(giBrickEmission(hit.brickId), 1.0);
-            else if (giRadianceAtSide(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.normal, radiance)) {
-                bounce = vec4(radiance + (emissionInRays ? giBrickEmission(hit.brickId) : vec3(0.0)), 1.0);
-            } else {
-                giWantBrick(hit.brickId, d);  // lit in turn, so that light reaches off-screen surfaces in hops
+            else if (giRadianceAtSide(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0), radiance)) {
+                uint e = brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u];
+                bounce = vec4(radiance + (emissionInRays && e != 0u ? blDecodeRgb9e5(e) : vec3(0.0)), 1.0);
             }
         }
         irradiance = giLightIrradiance(p, n, side, GI_RELIGHT_HALVES);
@@ -244,13 +164,11 @@ void main() {
     if (side == 1u || !relit) return;
     bounce += halfBounce[t];
     irradiance += halfIrradiance[t];
-    vec3 albedo = giBrickAlbedo(brick);
+    uint m = brick * GI_MATERIAL_WORDS;
+    vec3 albedo = unpackUnorm4x8(brickMaterial[m]).rgb;
     // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
-    vec3 emitted = emissionInRays ? vec3(0.0) : giBrickEmission(brick);
-    // Without a vote the light from the other surfaces is unknown, not black: the texel keeps what it has.
-    if (bounce.w == 0.0) return;
-    vec3 target = emitted + albedo * (irradiance / GI_PI + bounce.rgb / bounce.w);
+    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? blDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
+    vec3 target = emitted + albedo * (irradiance / GI_PI + (bounce.w > 0.0 ? bounce.rgb / bounce.w : vec3(0.0)));
     if (!giFinite(target)) return;
-    float blend = unseen ? GI_UNSEEN_BLEND : GI_RELIGHT_BLEND;
-    imageStore(giRadianceCache, texel, uvec4(blEncodeRgb9e5(old == 0u ? target : mix(blDecodeRgb9e5(old), target, blend))));
+    imageStore(giRadianceCache, texel, uvec4(blEncodeRgb9e5(old == 0u ? target : mix(blDecodeRgb9e5(old), target, GI_RELIGHT_BLEND))));
 }

@@ -64,7 +64,7 @@ void main() {
                     }
                     if (dist < eps) {
                         vec3 radiance;
-                        if (giRadianceAtSide(o + d * s, brick, uvw, cascade, -d, radiance)) result = vec4(radiance, 1.0);
+                        if (giRadianceAt(o + d * s, brick, uvw, cascade, radiance)) result = vec4(radiance, 1.0);
                         break;
                     }
                     s += dist;

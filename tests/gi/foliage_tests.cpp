@@ -148,13 +148,7 @@ void giFoliageVariants(const std::string& backend) {
                 CHECK(f[0].grass.relMse < 0.9 * f[naive].grass.relMse);
                 CHECK(meanError(f[0].whole) < meanError(f[naive].whole));
             }
-            // The grass's mean: since surfaces no view has lit are lit from the field's material (docs/gi.md), the
-            // left-out cards' ground beneath the grass is lit that way, while bricks that hold cards are left to the
-            // card-side relighting (lit from the field as well, the grass took 2.5× the path tracer's light): the
-            // alpha-aware grass mean is 14–15 % low against the left-out cards' 10 % (0.0389 and 0.0410 against
-            // 0.0454, Vulkan). It must stay within 20 % and beat the solid cards.
-            CHECK(meanError(f[0].grass) < 0.2);
-            CHECK(meanError(f[0].grass) < meanError(f[1].grass));
+            CHECK(meanError(f[0].grass) < meanError(f[2].grass));
         }
     }
     REQUIRE_NO_MESSAGES(td);
