@@ -53,8 +53,8 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
         id.mesh = meshes[i.mesh];
         id.transform = i.transform;
         id.alphaTested = alphaTested && options_.foliage == FoliageMode::AlphaAware;
-        // What GI lights the surfaces the camera never saw with: the diffuse share of the base colour
-        // (textures are not averaged: their factor stands for them) and the emission.
+        // The field's material: the diffuse share of the base colour (textures are not averaged: their factor
+        // stands for them) and the emission.
         const scenes::TriangleMesh& mesh = scene.meshes[i.mesh];
         id.material = sdf::SurfaceMaterial{
             glm::clamp(mesh.albedo * (1.0f - mesh.metalness) * (1.0f - mesh.transmission), glm::vec3(0.0f), glm::vec3(1.0f)), mesh.emission};

@@ -94,9 +94,9 @@ struct MeshBuffers {
     std::string name;
 };
 
-// How a surface looks to light the camera never saw: the field keeps it per brick (the surface-area-weighted
-// mean of the materials of the triangles in the brick), and GI lights surfaces no view has shown from it
-// (docs/gi.md, "Surfaces the camera never saw"). Linear values: albedo in [0, 1], emitted radiance >= 0.
+// How a surface looks, kept by the field per brick (the surface-area-weighted mean of the materials of the
+// triangles in the brick; docs/sdf.md, "Surface materials"), for light the camera never saw. Linear values:
+// albedo in [0, 1], emitted radiance >= 0.
 struct SurfaceMaterial {
     glm::vec3 albedo{0.8f};
     glm::vec3 emission{0.0f};
@@ -115,7 +115,7 @@ struct InstanceDesc {
     // past the cut-out parts; others see the cards as solid. Fixed at registration.
     bool alphaTested = false;
     // The instance's material (one per instance; fixed at registration). None: the field holds no material
-    // for its surfaces, and GI knows them only once the camera has seen them.
+    // for its surfaces (blSdfBrickMaterial reads unknown there).
     std::optional<SurfaceMaterial> material;
 };
 
