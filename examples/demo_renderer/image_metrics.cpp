@@ -51,6 +51,20 @@ double meanSsim(const Image& a, const Image& b) {
 
 }  // namespace
 
+double imageGrain(const Image& img) {
+    if (img.width < 3 || img.height < 3 || img.rgb.size() != size_t(img.width) * img.height * 3) return 0.0;
+    const uint32_t w = img.width, h = img.height;
+    std::vector<double> l(size_t(w) * h);
+    for (size_t p = 0; p < l.size(); ++p) l[p] = displayLuminance(img, p);
+    double sum = 0.0;
+    for (uint32_t y = 1; y + 1 < h; ++y)
+        for (uint32_t x = 1; x + 1 < w; ++x) {
+            const size_t p = size_t(y) * w + x;
+            sum += std::abs(4.0 * l[p] - l[p - 1] - l[p + 1] - l[p - w] - l[p + w]);
+        }
+    return sum / (double(w - 2) * double(h - 2));
+}
+
 ImageMetrics compareImages(const Image& a, const Image& b, const std::vector<uint8_t>* mask) {
     ImageMetrics m;
     if (a.width != b.width || a.height != b.height || a.rgb.size() != b.rgb.size()) {
@@ -80,6 +94,8 @@ ImageMetrics compareImages(const Image& a, const Image& b, const std::vector<uin
     m.meanA = sumA / double(n);
     m.meanB = sumB / double(n);
     m.ssim = meanSsim(a, b);
+    m.grainA = imageGrain(a);
+    m.grainB = imageGrain(b);
     return m;
 }
 

@@ -13,7 +13,12 @@ struct ImageMetrics {
     double psnr = 0.0;    // dB, peak 1 (of linear values clamped to [0, 1])
     double ssim = 1.0;    // mean SSIM of display luminance (see below)
     double meanA = 0.0, meanB = 0.0;
+    double grainA = 0.0, grainB = 0.0;  // imageGrain of each (whole images)
 };
+
+// Grain: the mean absolute Laplacian (4 neighbours) of display luminance over the interior pixels. Noise raises
+// it, edges and texture set its floor: compare it with a converged reference's (the ratio), not with zero.
+double imageGrain(const Image& img);
 
 // The images must have equal sizes; `mask` (optional, width*height) selects the pixels compared (SSIM is
 // always over the whole image).

@@ -91,6 +91,7 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
         return fail("the device could not create the G-buffer or the lighting pass (see its messages)");
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
+    if (!r->createDirectHistory(error)) return nullptr;
     if (!r->createGlass(error)) return nullptr;
     if (!r->createShadows(scene, error)) return nullptr;
     const bool vct = options.gi && options.giTechnique == GiTechnique::Vct;
@@ -129,6 +130,7 @@ GBufferView RasterRenderer::gbuffer() const {
 RasterRenderer::~RasterRenderer() {
     destroyReflections();
     destroyShadows();
+    destroyDirectHistory();
     gi_.reset();
     sdf_.reset();
     coneTracer_.reset();
@@ -170,6 +172,7 @@ void RasterRenderer::render() {
     const SceneLightConstants light = lightDirect();     // this file: emitters, sky and (without maps) the sun
     classifyShadows();                                   // raster_renderer_shadows.cpp (hybrid)
     lightSunFromShadowMaps(light);                       // raster_renderer_shadows.cpp (maps and hybrid)
+    accumulateDirectLight(light, cut);                   // raster_renderer_direct_history.cpp
     voxelizeVct();                                       // raster_renderer_vct.cpp
     dispatchGi(cut);                                     // raster_renderer_gi.cpp
     traceReflections(cut);                               // raster_renderer_reflections.cpp
@@ -253,7 +256,7 @@ void RasterRenderer::composite() {
     uint8_t slot = 0;
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_, glassRadiance_, reflections_})
         k.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
-    k.bindings.readBuffers.push({0, direct_, {}});
+    k.bindings.readBuffers.push({0, directMean_, {}});
     k.bindings.storageBuffers.push({0, combined_, {}, rhi::Access::Write});
     rhi::StorageImageBinding li;
     li.slot = 0;
@@ -302,6 +305,7 @@ bool RasterRenderer::setScene(const scenes::SceneGeometry& scene, std::string* e
     }
     next->continueCountOf(*scene_);
     scene_ = std::move(next);
+    sceneMoved_ = true;
     giLights_ = giLightsOf(scene);
     setSun(scene);
     syncSdf(scene);
@@ -320,7 +324,7 @@ Image RasterRenderer::read(Aov aov) {
     };
     if (aov == Aov::Combined || aov == Aov::Direct) {
         std::vector<glm::vec4> v(pixels);
-        device_.readBuffer(aov == Aov::Combined ? combined_ : direct_, 0, pixels * 16, v.data());
+        device_.readBuffer(aov == Aov::Combined ? combined_ : directMean_, 0, pixels * 16, v.data());
         for (size_t i = 0; i < pixels; ++i)
             for (int c = 0; c < 3; ++c) img.rgb[3 * i + size_t(c)] = v[i][c];
     } else if (aov == Aov::IndirectDiffuse) {

@@ -73,7 +73,10 @@ enum class FoliageMode { AlphaAware, Opaque, LeftOut };
 
 struct RasterOptions {
     uint32_t width = 256, height = 256;
-    uint32_t lightSamples = 16;  // emitter (and sky) samples per pixel for direct lighting
+    uint32_t lightSamples = 16;  // emitter (and sky) samples per pixel for direct lighting, each frame
+    // The direct light is a running mean over at most this many frames, reprojected per surface point
+    // (raster_renderer_direct_history.cpp); 1: each frame's own lightSamples only.
+    uint32_t directFrames = 1024;
     uint32_t seed = 1;
     bool gi = false;  // true: GI from the distance field (bricklight-render turns it on)
     gi::InternalResolution giResolution = gi::InternalResolution::Native;
@@ -209,6 +212,10 @@ private:
     void drawGBuffer();
     void buildDepthPyramid();
     SceneLightConstants lightDirect();
+    // raster_renderer_direct_history.cpp: the direct light's running mean over frames.
+    bool createDirectHistory(std::string* error);
+    void destroyDirectHistory();
+    void accumulateDirectLight(const SceneLightConstants& light, bool cut);
     void composite();
     void shiftCameraHistory();
     // raster_renderer_sdf.cpp: the field, its one update a frame and the GI's alpha pass after it.
@@ -285,7 +292,15 @@ private:
     rhi::SamplerHandle point_;
     rhi::ShaderHandle display_;      // render/display.comp, created at the first drawView
     rhi::TextureHandle debugView_;   // RGBA8 scratch for the SDF and GI debug views, likewise
-    rhi::BufferHandle direct_, combined_;
+    rhi::BufferHandle direct_, combined_;  // direct_: this frame's estimate (the sun's passes add to it)
+    rhi::ShaderHandle accumulateDirect_;
+    rhi::BufferHandle directMean_;  // the direct light over frames: what the composite and the AOV read
+    rhi::BufferHandle directHistory_[2], directPoints_[2];  // ping-pong: rgb + frames; surface point + normal
+    uint32_t directParity_ = 0;
+    bool directHistoryValid_ = false;
+    bool sceneMoved_ = false;  // setScene since the last frame
+    SceneLightConstants previousLight_{};
+    glm::vec3 previousEye_{0.0f};
     std::unique_ptr<sdf::SdfScene> sdf_;
     std::vector<sdf::InstanceHandle> sdfInstances_;
     std::vector<glm::mat4> sdfTransforms_;

@@ -97,7 +97,7 @@ bool RasterRenderer::drawView(View view, rhi::TextureHandle display, const Displ
     uint32_t map = Radiance, fromBuffer = 0;
     switch (view) {
         case View::Final: fromBuffer = 1; break;
-        case View::Direct: buffer = direct_, fromBuffer = 1; break;
+        case View::Direct: buffer = directMean_, fromBuffer = 1; break;
         case View::IndirectDiffuse: texture = giDiffuse_; break;
         case View::SpecularGi: texture = giSpecular_; break;
         case View::Albedo: texture = albedo_, map = Color; break;
@@ -143,7 +143,7 @@ sdf::MemoryUse RasterRenderer::memoryUse() const {
         if (d) add(d->debugName, rhi::subresourceBytes(*d, {}));
     }
     if (const rhi::TextureDesc* d = shadowMap_ ? device_.describe(shadowMap_) : nullptr) add(d->debugName, rhi::subresourceBytes(*d, {}));
-    for (rhi::BufferHandle b : {direct_, combined_, shadowData_}) {
+    for (rhi::BufferHandle b : {direct_, directMean_, directHistory_[0], directHistory_[1], directPoints_[0], directPoints_[1], combined_, shadowData_}) {
         const rhi::BufferDesc* d = b ? device_.describe(b) : nullptr;
         if (d) add(d->debugName, d->size);
     }

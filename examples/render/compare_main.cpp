@@ -2,7 +2,7 @@
 //
 //   bricklight-compare A B [--max-relmse X]
 //
-// Prints relMSE (epsilon 0.01), RMSE, PSNR and SSIM of display luminance (docs/render.md). Exit status: 0
+// Prints relMSE (epsilon 0.01), RMSE, PSNR, SSIM of display luminance and grain (docs/render.md). Exit status: 0
 // compared (and within --max-relmse); 1 not: relMSE over X, an image that cannot be read (bounded as every
 // image file we read: render::readImage), sizes that differ, or a value that is not finite in either image
 // (NaN or infinite: no figure would mean anything); 2 a usage error. --help, --version.
@@ -87,7 +87,8 @@ int main(int argc, char** argv) {
     const bool finiteA = finite(a, ia), finiteB = finite(b, ib);
     if (!finiteA || !finiteB) return 1;
     const render::ImageMetrics m = render::compareImages(ia, ib);
-    std::printf("relMSE %.6g (eps %.2g)  RMSE %.6g  PSNR %.2f dB  SSIM %.4f  mean %.6g vs %.6g\n", m.relMse, render::kRelMseEpsilon,
-                m.rmse, m.psnr, m.ssim, m.meanA, m.meanB);
+    std::printf("relMSE %.6g (eps %.2g)  RMSE %.6g  PSNR %.2f dB  SSIM %.4f  mean %.6g vs %.6g  grain %.4g vs %.4g (%.3fx)\n",
+                m.relMse, render::kRelMseEpsilon, m.rmse, m.psnr, m.ssim, m.meanA, m.meanB, m.grainA, m.grainB,
+                m.grainB > 0.0 ? m.grainA / m.grainB : 0.0);
     return maxRelMse >= 0.0 && m.relMse > maxRelMse ? 1 : 0;
 }
