@@ -29,7 +29,7 @@ for _ in $(seq 1 100); do [ -S "/tmp/.X11-unix/X$number" ] && break; sleep 0.1; 
 export DISPLAY=":$number"
 
 metric() {  # relMSE and the two means of A against B
-  "$compare" "$1" "$2" | sed -E 's/^relMSE ([^ ]+).* mean ([^ ]+) vs ([^ ]+)$/\1 \2 \3/'
+  "$compare" "$1" "$2" | sed -E 's/^relMSE ([^ ]+).* mean ([^ ]+) vs ([^ ]+)( .*)?$/\1 \2 \3/'
 }
 below() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
 
