@@ -30,6 +30,7 @@
 #include "bricklight/rhi_vulkan.h"
 #include "bench_common.h"
 #include "output_file.h"
+#include "raster_renderer.h"
 #include "bricklight/sdf.h"
 #include "scene_geometry.h"
 
@@ -230,6 +231,7 @@ std::unique_ptr<sdf::SdfScene> bricklight::bench::makeBenchScene(rhi::IDevice& d
         if (alphaTested && foliage == "left-out") continue;
         sdf::InstanceDesc d{meshes[i.mesh], i.transform};
         d.alphaTested = alphaTested && foliage == "alpha-aware";
+        d.material = render::fieldMaterialOf(geometry.meshes[i.mesh]);  // as the demo renderer registers them
         scene->addInstance(d);
     }
     return scene;

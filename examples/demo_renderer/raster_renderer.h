@@ -331,6 +331,9 @@ glm::mat4 viewMatrix(const scenes::Camera& camera);
 glm::mat4 projectionMatrix(const scenes::Camera& camera, float aspect, float sceneSize);
 glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float sceneSize);
 
+// A mesh's material as the distance field keeps it (sdf::InstanceDesc::material; raster_renderer_sdf.cpp).
+sdf::SurfaceMaterial fieldMaterialOf(const scenes::TriangleMesh& mesh);
+
 // The scene's sun and point/spot lights as the GI relights what the camera does not see (raster_renderer_gi.cpp).
 std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene);
 

@@ -10,6 +10,12 @@
 
 namespace bricklight::render {
 
+// The diffuse share of the base colour (textures are not averaged: their factor stands for them) and the emission.
+sdf::SurfaceMaterial fieldMaterialOf(const scenes::TriangleMesh& mesh) {
+    return sdf::SurfaceMaterial{
+        glm::clamp(mesh.albedo * (1.0f - mesh.metalness) * (1.0f - mesh.transmission), glm::vec3(0.0f), glm::vec3(1.0f)), mesh.emission};
+}
+
 bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* error) {
     auto fail = [&](const std::string& m) {
         if (error) *error = "raster renderer: " + m;
@@ -53,11 +59,7 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
         id.mesh = meshes[i.mesh];
         id.transform = i.transform;
         id.alphaTested = alphaTested && options_.foliage == FoliageMode::AlphaAware;
-        // The field's material: the diffuse share of the base colour (textures are not averaged: their factor
-        // stands for them) and the emission.
-        const scenes::TriangleMesh& mesh = scene.meshes[i.mesh];
-        id.material = sdf::SurfaceMaterial{
-            glm::clamp(mesh.albedo * (1.0f - mesh.metalness) * (1.0f - mesh.transmission), glm::vec3(0.0f), glm::vec3(1.0f)), mesh.emission};
+        id.material = fieldMaterialOf(scene.meshes[i.mesh]);
         sdfInstances_.push_back(sdf_->addInstance(id));
         if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError().message);
     }
