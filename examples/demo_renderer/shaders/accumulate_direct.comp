@@ -4,9 +4,9 @@
 // Temporal accumulation of the direct light (docs/render.md, "Direct light over frames"). Each frame's direct light
 // is an unbiased estimate with a few emitter samples per pixel; averaging the frames a surface point has been seen
 // in converges it, as rendering more samples would. The history is reprojected through the motion vectors and
-// kept only where it belongs to the same surface point: the point the previous frame saw there lies within a
-// fraction of this pixel's footprint and faces the same way. Its weight is a running mean of at most
-// `maxHistory` frames, lowered per pixel where the light there may have changed since:
+// kept only where it belongs to the same surface point: the point the previous frame saw there lies within 1.5
+// pixels' footprint of this one and faces the same way. Its weight is a running mean of at most size.z frames,
+// lowered per pixel where the light there may have changed since:
 //  - the view direction turned by more than the BRDF's specular lobe is wide (a glossy highlight moves with the
 //    eye; a Lambertian surface's direct light does not depend on the view at all), and
 //  - the host's cap (constants.w): lights changed (history dropped) or geometry moved (shadows move; a short mean).
@@ -45,13 +45,15 @@ void main() {
     if (any(greaterThanEqual(pixel, params.size.xy))) return;
     uint index = pixel.y * params.size.x + pixel.x;
     vec4 position = texelFetch(gPosition, ivec2(pixel), 0);
+    bool geometry = position.w != 0.0;
+    vec4 normal = texelFetch(gNormal, ivec2(pixel), 0);      // w: dielectric F0
+    vec4 emissive = texelFetch(gEmission, ivec2(pixel), 0);  // a: metalness
     // The mean is of the reflected light: emission is exact and would bleed across an emitter's edge.
-    vec3 emission = position.w != 0.0 ? texelFetch(gEmission, ivec2(pixel), 0).rgb : vec3(0.0);
+    vec3 emission = geometry ? emissive.rgb : vec3(0.0);
     vec3 light = frameLight[index].rgb - emission;
-    vec3 n = normalize(texelFetch(gNormal, ivec2(pixel), 0).xyz);
+    vec3 n = normalize(normal.xyz);
     float frames = 0.0;
     vec3 history = vec3(0.0);
-    bool geometry = position.w != 0.0;
     if (geometry && params.size.w != 0u) {
         vec2 uv = (vec2(pixel) + 0.5) / vec2(params.size.xy);
         vec2 previousUv = uv - texelFetch(gMotion, ivec2(pixel), 0).xy;
@@ -85,12 +87,10 @@ void main() {
         // Less than half the footprint's weight found: a disocclusion edge, start over rather than trust one tap.
         if (weightSum >= 0.5) {
             float roughness = texelFetch(gAlbedo, ivec2(pixel), 0).a;
-            float f0 = texelFetch(gNormal, ivec2(pixel), 0).w;
-            float metalness = texelFetch(gEmission, ivec2(pixel), 0).a;
             vec3 toPreviousEye = normalize(params.previousEye.xyz - position.xyz);
             float turn = acos(clamp(dot(toEye, toPreviousEye), -1.0, 1.0));
             // Over the mean's frames the view may turn by at most the lobe's width.
-            float byView = turn > 0.0 ? max(lobeWidth(roughness, f0, metalness) / turn, 1.0) : 1e30;
+            float byView = turn > 0.0 ? max(lobeWidth(roughness, normal.w, emissive.a) / turn, 1.0) : 1e30;
             frames = min(framesSum / weightSum, min(float(params.size.z) - 1.0, byView));
             history = lightSum / weightSum;
         }
