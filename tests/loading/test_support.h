@@ -11,9 +11,22 @@
 
 namespace bricklight::testing {
 
-// A fresh folder under the system's temporary folder, named after the test.
+// This process's folder under the system's temporary folder; removed when the tests exit.
+inline const std::filesystem::path& processFolder() {
+    struct Folder {
+        std::filesystem::path path = std::filesystem::temp_directory_path() / ("bricklight-loading-" + std::to_string(::getpid()));
+        ~Folder() {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);
+        }
+    };
+    static const Folder folder;
+    return folder.path;
+}
+
+// A fresh folder under this process's folder, named after the test.
 inline std::string freshFolder(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("bricklight-loading-" + std::to_string(::getpid())) / name;
+    const std::filesystem::path dir = processFolder() / name;
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir.string();
