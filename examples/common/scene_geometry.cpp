@@ -184,7 +184,7 @@ SceneGeometry proceduralField(uint32_t targetTriangles) {
     return s;
 }
 
-const char* builtinSceneNames() { return "cornell, cornell-glass, cornell-mirror[:ROUGHNESS], two-rooms[:THICKNESS], atrium, dynamic, field, foliage"; }
+const char* builtinSceneNames() { return "cornell, cornell-glass, cornell-mirror[:ROUGHNESS], two-rooms[:THICKNESS], atrium, dynamic, field, foliage, corridor"; }
 
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits) {
     if (nameOrPath == "cornell") return cornellBox();
@@ -193,6 +193,7 @@ SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const
     if (nameOrPath == "atrium") return atrium();
     if (nameOrPath == "dynamic") return dynamicRoom();
     if (nameOrPath == "foliage") return foliage();
+    if (nameOrPath == "corridor") return corridor();
     if (nameOrPath.rfind("cornell-mirror", 0) == 0) {
         float roughness = 0.05f;
         if (nameOrPath.size() > 14) {

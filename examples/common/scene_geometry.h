@@ -140,6 +140,8 @@ SceneGeometry cornellMirror(float roughness);
 // A meadow of grass tufts (crossed alpha-tested cards), a tree and a hedge of leaf cards before an opaque wall,
 // under sun and sky; its grass and leaf textures are generated (GeneratedTexture), alpha cut-off 0.5.
 SceneGeometry foliage();
+// An L-shaped corridor of single-sided walls lit by one lamp around the corner from the camera (corridor_scene.cpp).
+SceneGeometry corridor();
 // The built-in scenes' names, for messages.
 const char* builtinSceneNames();
 // A built-in scene by name ("cornell", "cornell-glass", "cornell-mirror[:ROUGHNESS]", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field",

@@ -90,6 +90,9 @@ TEST_CASE("scenes: names and parameters", "[metrics]") {
     CHECK(scenes::loadScene("two-rooms:-1", &error).meshes.empty());
     CHECK(scenes::loadScene("two-roomsX", &error).meshes.empty());
     CHECK(!scenes::loadScene("atrium", &error).meshes.empty());
+    const scenes::SceneGeometry corridor = scenes::loadScene("corridor", &error);  // single-sided walls, one lamp
+    CHECK(corridor.triangleCount() == 22);
+    CHECK(corridor.meshes.size() == 4);
     CHECK(scenes::loadScene("dynamic", &error).animate);
 }
 
