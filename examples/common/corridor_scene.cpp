@@ -7,16 +7,6 @@
 
 namespace bricklight::scenes {
 
-namespace {
-
-void addQuad(TriangleMesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-    const uint32_t base = uint32_t(m.positions.size() / 3);
-    for (const glm::vec3& v : {a, b, c, d}) m.positions.insert(m.positions.end(), {v.x, v.y, v.z});
-    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-}
-
-}  // namespace
-
 SceneGeometry corridor() {
     SceneGeometry s;
     s.name = "corridor";

@@ -12,26 +12,22 @@ namespace bricklight::scenes {
 
 namespace {
 
-void addQuad(TriangleMesh& m, const float (&q)[4][3]) {
-    const uint32_t base = uint32_t(m.positions.size() / 3);
-    for (const auto& v : q) m.positions.insert(m.positions.end(), {v[0], v[1], v[2]});
-    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-}
-
 TriangleMesh quadMesh(const char* name, std::initializer_list<std::array<std::array<float, 3>, 4>> quads, glm::vec3 albedo) {
     TriangleMesh m;
     m.name = name;
     m.albedo = albedo;
-    for (const auto& q : quads) {
-        float c[4][3];
-        for (int i = 0; i < 4; ++i)
-            for (int k = 0; k < 3; ++k) c[i][k] = q[size_t(i)][size_t(k)];
-        addQuad(m, c);
-    }
+    auto corner = [](const std::array<float, 3>& v) { return glm::vec3(v[0], v[1], v[2]); };
+    for (const auto& q : quads) addQuad(m, corner(q[0]), corner(q[1]), corner(q[2]), corner(q[3]));
     return m;
 }
 
 }  // namespace
+
+void addQuad(TriangleMesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+    const uint32_t base = uint32_t(m.positions.size() / 3);
+    for (const glm::vec3& v : {a, b, c, d}) m.positions.insert(m.positions.end(), {v.x, v.y, v.z});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
 
 uint64_t SceneGeometry::triangleCount() const {
     uint64_t n = 0;

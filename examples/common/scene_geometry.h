@@ -115,6 +115,8 @@ SceneGeometry cornellBox();
 SceneGeometry proceduralField(uint32_t targetTriangles);
 // Appends a closed axis-aligned box [lo, hi] to `m`, counter-clockwise seen from outside.
 void addBox(TriangleMesh& m, glm::vec3 lo, glm::vec3 hi);
+// Appends the quad a, b, c, d (two triangles; facing the side from which a → b → c runs counter-clockwise).
+void addQuad(TriangleMesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d);
 // A unit icosphere (radius 1) with 20 * 4^subdivisions triangles, wound counter-clockwise seen from outside.
 TriangleMesh icosphere(uint32_t subdivisions);
 // A torus of about `triangles` triangles (the benchmark's moving dynamic object).
@@ -145,7 +147,7 @@ SceneGeometry corridor();
 // The built-in scenes' names, for messages.
 const char* builtinSceneNames();
 // A built-in scene by name ("cornell", "cornell-glass", "cornell-mirror[:ROUGHNESS]", "two-rooms[:THICKNESS]", "atrium", "dynamic", "field",
-// "foliage"), or a model
+// "foliage", "corridor"), or a model
 // file (loadModel, under `limits`).
 SceneGeometry loadScene(const std::string& nameOrPath, std::string* error, const LoadLimits& limits = {});
 
