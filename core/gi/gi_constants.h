@@ -44,15 +44,18 @@ enum RelightFlags : uint32_t {
     RelightAlbedo = 1u,    // DispatchDesc::diffuseAlbedo given: bricks learn their albedo, unseen texels are re-lit
     RelightEmission = 2u,  // DispatchDesc::emission given
     RelightEmissionInRays = 4u,  // the lit image leaves emission out: relight rays add it at their hits
+    RelightEmittersInLights = 8u,  // DispatchDesc::emittersInLights: relight rays take no emission at their hits
 };
 
-// One light in the lights buffer (std430, 3 × vec4).
+// One light in the lights buffer (std430, 4 × vec4; shaders/gi/gi_lights.glsl reads it).
 struct GpuLight {
-    glm::vec4 position;   // xyz, w type (gi::LightType)
-    glm::vec4 direction;  // xyz unit (towards a directional light; a spot's axis), w cos(spot inner angle)
+    glm::vec4 position;   // xyz (an area light's corner), w type (gi::LightType)
+    glm::vec4 direction;  // xyz unit (towards a directional light; a spot's axis) or an area light's edge0;
+                          // w cos(spot inner angle), or 1 for a two-sided area light
     glm::vec4 color;      // rgb, w cos(spot outer angle)
+    glm::vec4 edge1;      // xyz an area light's edge1, w its area
 };
-static_assert(sizeof(GpuLight) == 48);
+static_assert(sizeof(GpuLight) == 64);
 
 constexpr uint32_t kProbeTexels = 8;  // octahedral texels per probe side (8×8 rays)
 // Internal pixels per probe tile side when ContextDesc::probeTile is 0: 8, 16 from an internal width of

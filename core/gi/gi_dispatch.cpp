@@ -111,7 +111,8 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.traceLimits = glm::vec4(float(d.trace.maxIterationsPerCascade), d.trace.coarsenAfterVoxels, 0.0f, 0.0f);
     frame_.relight[0] = d.lightCount;
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
-                        (d.emission && !d.previousLitIncludesEmission ? uint32_t(RelightEmissionInRays) : 0u);
+                        (d.emission && !d.previousLitIncludesEmission && !d.emittersInLights ? uint32_t(RelightEmissionInRays) : 0u) |
+                        (d.emittersInLights ? uint32_t(RelightEmittersInLights) : 0u);
     frame_.probes[0] = probeTile_;
     frame_.cache[0] = cacheSlots_ / 4;  // inject_radiance.comp: the last quarter goes to bricks that receive light
 }
@@ -121,11 +122,18 @@ void GiContextImpl::uploadLights(const DispatchDesc& d) {
     std::vector<GpuLight> lights(d.lightCount);
     for (uint32_t i = 0; i < d.lightCount; ++i) {
         const Light& l = d.lights[i];
-        const glm::vec3 direction = l.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(l.direction);
         const bool spot = l.type == LightType::Spot;
         lights[i].position = glm::vec4(l.position, float(uint32_t(l.type)));
-        lights[i].direction = glm::vec4(direction, spot ? std::cos(l.spotInnerAngle) : -2.0f);
         lights[i].color = glm::vec4(l.color, spot ? std::cos(l.spotOuterAngle) : -2.0f);
+        if (l.type == LightType::Rect || l.type == LightType::Triangle) {
+            const float parallelogram = glm::length(glm::cross(l.edge0, l.edge1));
+            lights[i].direction = glm::vec4(l.edge0, l.twoSided ? 1.0f : 0.0f);
+            lights[i].edge1 = glm::vec4(l.edge1, l.type == LightType::Rect ? parallelogram : 0.5f * parallelogram);
+        } else {
+            const glm::vec3 direction = l.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::normalize(l.direction);
+            lights[i].direction = glm::vec4(direction, spot ? std::cos(l.spotInnerAngle) : -2.0f);
+            lights[i].edge1 = glm::vec4(0.0f);
+        }
     }
     // Uploaded only when they change: an upload waits for the last frame's readers of the buffer, and
     // the frame's passes for the upload.

@@ -132,6 +132,8 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
 }
 
 bool GiContextImpl::checkLights(const DispatchDesc& d) {
+    if (d.emittersInLights && d.previousLitIncludesEmission)
+        return fail(ErrorCode::InvalidArgument, "dispatch: emittersInLights needs previousLitIncludesEmission = false (the cache would count the emission twice)");
     if (d.lightCount == 0) return true;
     if (!d.lights) return fail(ErrorCode::MissingInput, "dispatch: lightCount is " + std::to_string(d.lightCount) + " but lights is null");
     if (d.lightCount > kMaxLights)
@@ -141,11 +143,18 @@ bool GiContextImpl::checkLights(const DispatchDesc& d) {
     for (uint32_t i = 0; i < d.lightCount; ++i) {
         const Light& l = d.lights[i];
         const std::string name = "dispatch: lights[" + std::to_string(i) + "]";
-        if (uint32_t(l.type) > uint32_t(LightType::Spot)) return fail(ErrorCode::InvalidArgument, name + " has an unknown type");
+        if (uint32_t(l.type) > uint32_t(LightType::Triangle)) return fail(ErrorCode::InvalidArgument, name + " has an unknown type");
         if (!finite3(l.position) || !finite3(l.direction) || !finite3(l.color) || !std::isfinite(l.spotInnerAngle) ||
-            !std::isfinite(l.spotOuterAngle))
+            !std::isfinite(l.spotOuterAngle) || !finite3(l.edge0) || !finite3(l.edge1))
             return fail(ErrorCode::InvalidArgument, name + " has a value that is not finite");
         if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f) return fail(ErrorCode::InvalidArgument, name + " has a negative color");
+        const bool area = l.type == LightType::Rect || l.type == LightType::Triangle;
+        if (area) {
+            const float scale = std::max(glm::length(l.edge0), glm::length(l.edge1));
+            if (!(glm::length(glm::cross(l.edge0, l.edge1)) > 1e-6f * scale * scale) || !(scale > 0.0f))
+                return fail(ErrorCode::InvalidArgument, name + " is an area light with no area (edge0 and edge1 zero or parallel)");
+            continue;
+        }
         if (l.type != LightType::Point && glm::length(l.direction) < 1e-6f) return fail(ErrorCode::InvalidArgument, name + " has a zero direction");
         if (l.type == LightType::Spot && !(l.spotInnerAngle >= 0.0f && l.spotInnerAngle <= l.spotOuterAngle && l.spotOuterAngle <= 3.1416f))
             return fail(ErrorCode::InvalidArgument, name + " needs 0 <= spotInnerAngle <= spotOuterAngle <= pi");

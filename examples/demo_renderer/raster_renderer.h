@@ -127,6 +127,14 @@ struct GBufferView {
     glm::vec3 eye{0.0f};
 };
 
+// The scene's sun, point/spot lights and emitting surfaces as the GI relights what the camera does not see
+// (raster_renderer_gi.cpp). emittersInLights: every emitting triangle is among the lights (at most
+// gi::kMaxLights lights in all; else the emitters are left to the relight rays).
+struct GiLights {
+    std::vector<gi::Light> lights;
+    bool emittersInLights = false;
+};
+
 class RasterRenderer {
 public:
     static std::unique_ptr<RasterRenderer> create(rhi::IDevice& device, const scenes::SceneGeometry& scene,
@@ -311,7 +319,7 @@ private:
     rhi::ShaderHandle vctVertex_, vctEmittance_;
     glm::uvec2 probePixel_{~0u, ~0u};  // View::VctConeSamples' pixel (~0: the centre, set at creation)
     Image readDebugView();  // debugView_ as an image (0..1)
-    std::vector<gi::Light> giLights_;
+    GiLights giLights_;
     rhi::ShaderHandle glassFragment_;
     rhi::TextureHandle glassRadiance_, glassDepth_;  // 1×1 until a frame draws glass
     bool glassDrawn_ = false;
@@ -334,7 +342,7 @@ glm::mat4 viewProjection(const scenes::Camera& camera, float aspect, float scene
 // A mesh's material as the distance field keeps it (sdf::InstanceDesc::material; raster_renderer_sdf.cpp).
 sdf::SurfaceMaterial fieldMaterialOf(const scenes::TriangleMesh& mesh);
 
-// The scene's sun and point/spot lights as the GI relights what the camera does not see (raster_renderer_gi.cpp).
-std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene);
+// (raster_renderer_gi.cpp)
+GiLights giLightsOf(const scenes::SceneGeometry& scene);
 
 }  // namespace bricklight::render

@@ -6,10 +6,54 @@
 
 namespace bricklight::render {
 
-// The scene's sun and point/spot lights, for GI's relighting of what the camera does not see. (The sky is
-// not among them: the renderer's direct lighting already holds it, so GI is given no environment.)
-std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene) {
-    std::vector<gi::Light> lights;
+namespace {
+
+// The emitting triangles of the scene as GI's area lights, a triangle pair that forms a parallelogram (a quad's two
+// halves, a → b → c and a → c → d) as one Rect. False if they do not fit in `room` lights.
+bool appendEmitters(const scenes::SceneGeometry& scene, size_t room, std::vector<gi::Light>& lights) {
+    std::vector<gi::Light> emitters;
+    for (const scenes::MeshInstance& instance : scene.instances) {
+        const scenes::TriangleMesh& mesh = scene.meshes[instance.mesh];
+        if (!(mesh.emission.x > 0.0f || mesh.emission.y > 0.0f || mesh.emission.z > 0.0f)) continue;
+        auto corner = [&](uint32_t index) {
+            const float* v = &mesh.positions[3 * size_t(mesh.indices[index])];
+            return glm::vec3(instance.transform * glm::vec4(v[0], v[1], v[2], 1.0f));
+        };
+        const size_t triangles = mesh.indices.size() / 3;
+        for (size_t t = 0; t < triangles; ++t) {
+            const glm::vec3 a = corner(uint32_t(3 * t)), b = corner(uint32_t(3 * t + 1)), c = corner(uint32_t(3 * t + 2));
+            const float area = glm::length(glm::cross(b - a, c - a));
+            if (!(area > 0.0f)) continue;  // emits nothing
+            gi::Light l;
+            l.type = gi::LightType::Triangle;
+            l.position = a;
+            l.edge0 = b - a;
+            l.edge1 = c - a;
+            l.color = mesh.emission;
+            if (t + 1 < triangles) {
+                const glm::vec3 a2 = corner(uint32_t(3 * t + 3)), c2 = corner(uint32_t(3 * t + 4)), d = corner(uint32_t(3 * t + 5));
+                const float tolerance = 1e-5f * std::sqrt(area);
+                if (glm::length(a2 - a) <= tolerance && glm::length(c2 - c) <= tolerance && glm::length(a + c - b - d) <= tolerance) {
+                    l.type = gi::LightType::Rect;
+                    l.edge1 = d - a;
+                    ++t;
+                }
+            }
+            if (emitters.size() == room) return false;
+            emitters.push_back(l);
+        }
+    }
+    lights.insert(lights.end(), emitters.begin(), emitters.end());
+    return true;
+}
+
+}  // namespace
+
+// The scene's sun, point/spot lights and emitting surfaces, for GI's relighting of what the camera does not see.
+// (The sky is not among them: the renderer's direct lighting already holds it, so GI is given no environment.)
+GiLights giLightsOf(const scenes::SceneGeometry& scene) {
+    GiLights out;
+    std::vector<gi::Light>& lights = out.lights;
     const scenes::Environment& env = scene.environment;
     if (env.sunIrradiance.x > 0.0f || env.sunIrradiance.y > 0.0f || env.sunIrradiance.z > 0.0f) {
         gi::Light sun;
@@ -32,7 +76,9 @@ std::vector<gi::Light> giLightsOf(const scenes::SceneGeometry& scene) {
         }
         lights.push_back(l);
     }
-    return lights;
+    // More emitting triangles than lights left: relight rays take the emission where they hit instead.
+    out.emittersInLights = appendEmitters(scene, gi::kMaxLights - lights.size(), lights);
+    return out;
 }
 
 bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* error) {
@@ -71,8 +117,9 @@ void RasterRenderer::dispatchGi(bool cut) {
         // texels leave it out too, and their rays add it where they hit an emitter.
         g.emission = emission_;
         g.previousLitIncludesEmission = false;
-        g.lights = giLights_.data();
-        g.lightCount = uint32_t(giLights_.size());
+        g.lights = giLights_.lights.data();
+        g.lightCount = uint32_t(giLights_.lights.size());
+        g.emittersInLights = giLights_.emittersInLights;
     }
     g.outputDiffuse = giDiffuse_;
     g.outputSpecular = giSpecular_;

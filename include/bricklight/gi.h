@@ -101,14 +101,21 @@ constexpr uint32_t kMaxTraceIterations = 4096;
 
 // A light of the application's direct lighting, for relighting the radiance cache where the camera does
 // not see (DispatchDesc::lights). Units are the lit image's.
-enum class LightType : uint8_t { Directional, Point, Spot };
+// Area lights (Rect, Triangle) are the emitting surfaces an application samples in its direct lighting: the
+// parallelogram with corners position, position + edge0, position + edge0 + edge1, position + edge1, or the
+// triangle position, position + edge0, position + edge1. They emit `color` as radiance (W/(sr·m²)) from the side
+// cross(edge0, edge1) faces (from both with twoSided); relighting samples one point of each per texel and frame.
+enum class LightType : uint8_t { Directional, Point, Spot, Rect, Triangle };
 struct Light {
     LightType type = LightType::Point;
-    glm::vec3 position{0.0f};                // point, spot
+    glm::vec3 position{0.0f};                // point, spot; rect, triangle: a corner
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: towards the light; spot: the cone's axis (away from the light)
-    glm::vec3 color{0.0f};                   // directional: irradiance on a surface facing it; point, spot: intensity (W/sr)
+    glm::vec3 color{0.0f};                   // directional: irradiance on a surface facing it; point, spot: intensity (W/sr);
+                                             // rect, triangle: radiance
     float spotInnerAngle = 0.0f;             // spot: half-angles (radians) of full light and of no light
     float spotOuterAngle = 0.0f;
+    glm::vec3 edge0{0.0f}, edge1{0.0f};      // rect, triangle: the edges from `position`
+    bool twoSided = false;                   // rect, triangle: emits from both sides
 };
 constexpr uint32_t kMaxLights = 64;
 
@@ -156,6 +163,11 @@ struct DispatchDesc {
     bool previousLitIncludesEmission = true;
     const Light* lights = nullptr;        // lightCount entries, at most kMaxLights
     uint32_t lightCount = 0;
+    // The lights include every emitting surface of the scene (as Rect and Triangle lights): relight rays then take
+    // no emission where they hit an emitter, since the lights' shadow rays bring its light (sampling an emitter
+    // towards each texel is far less noisy than waiting for rays to hit it, and an emitter lights only the side it
+    // faces). Needs previousLitIncludesEmission = false: a cache that held the emission would count it twice.
+    bool emittersInLights = false;
 
     TraceParams trace;
     // Forget screen-space history (camera cut): temporal accumulation and probe reuse restart; the

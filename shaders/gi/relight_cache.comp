@@ -24,13 +24,14 @@ layout(local_size_x = 128) in;
 BL_READ_BUFFER(0) RelightList { uint relightList[]; };
 BL_READ_BUFFER(1) BrickOwners { uint brickOwners[]; };
 BL_READ_BUFFER(2) BrickMaterial { uint brickMaterial[]; };
-BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 3 per light (core/gi/gi_constants.h: GpuLight)
+BL_READ_BUFFER(3) Lights { vec4 giLights[]; };  // 4 per light (core/gi/gi_constants.h: GpuLight)
 BL_IMAGE(0, r32ui) uniform coherent uimage3D giRadianceCache;
 BL_STORAGE_BUFFER(0) CacheSlots { uint giCacheSlots[]; };  // read only here (the read-buffer slots are taken)
 #define GI_CACHE_SLOTS_DECLARED
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
 #include "gi_bricks.glsl"
+#include "gi_lights.glsl"
 
 // Outward unit normal and distance (world) of the surface near brick-local uvw. The field is unsigned, so
 // its gradient points away from the surface on the texel's own side — the side the camera saw, since
@@ -59,37 +60,6 @@ bool giSurfaceNear(uint brick, vec3 uvw, float band, out vec3 n, out float dista
     n = g / len;
     distance = blSdfSampleBrick(brick, uvw) * band;
     return true;
-}
-
-bool giShadowed(vec3 p, vec3 l, float distance) {
-    uint rng = giPcg(floatBitsToUint(p.x) ^ giPcg(floatBitsToUint(p.y) ^ giPcg(floatBitsToUint(p.z) ^ giFrameIndex())));
-    BlSdfHit hit = giTraceThroughAlpha(giMakeRay(p, l, min(distance, giFrame.trace.w), GI_RAY_SHADOW), rng);
-    return hit.hit || hit.gaveUp;  // no answer: in shadow, the safer guess (no light from nowhere)
-}
-
-// Irradiance from the frame's lights first, first + stride, ... at p (normal n), shadowed through the field.
-vec3 giLightIrradiance(vec3 p, vec3 n, uint first, uint stride) {
-    vec3 sum = vec3(0.0);
-    for (uint i = first; i < giFrame.relight.x; i += stride) {
-        vec4 a = giLights[3u * i], b = giLights[3u * i + 1u], c = giLights[3u * i + 2u];
-        vec3 l = b.xyz, irradiance = c.rgb;
-        float distance = 1e30;
-        if (a.w > 0.5) {  // point or spot
-            vec3 toLight = a.xyz - p;
-            float d2 = max(dot(toLight, toLight), 1e-8);
-            distance = sqrt(d2);
-            l = toLight / distance;
-            irradiance /= d2;
-            if (a.w > 1.5) {  // spot: c.w = cos(outer) < b.w = cos(inner)
-                float axis = dot(-l, b.xyz);
-                irradiance *= b.w > c.w ? smoothstep(c.w, b.w, axis) : step(c.w, axis);
-            }
-        }
-        float cosine = dot(n, l);
-        if (cosine <= 0.0 || all(equal(irradiance, vec3(0.0)))) continue;
-        if (!giShadowed(p, l, distance)) sum += irradiance * cosine;
-    }
-    return sum;
 }
 
 // What the second thread of each texel hands over: its ray (rgb; w 1 if it voted) and its lights.
@@ -134,6 +104,8 @@ void main() {
     vec4 bounce = vec4(0.0);  // rgb radiance of this thread's ray, w 1 if it voted
     vec3 irradiance = vec3(0.0);
     bool emissionInRays = (giFrame.relight.y & GI_RELIGHT_EMISSION_IN_RAYS) != 0u;
+    // With the emitters among the lights, neither the rays nor the texel's own value take emission.
+    bool emittersInLights = (giFrame.relight.y & GI_RELIGHT_EMITTERS_IN_LIGHTS) != 0u;
     if (relit) {
         vec3 s = q - n * distance;
         p = s + n * giPushOff(s, giFrame.trace.x);
@@ -167,7 +139,7 @@ void main() {
     uint m = brick * GI_MATERIAL_WORDS;
     vec3 albedo = unpackUnorm4x8(brickMaterial[m]).rgb;
     // The texel's own emission, where the cache (like the lit image) holds it; else the rays see it.
-    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays ? blDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
+    vec3 emitted = brickMaterial[m + 1u] != 0u && !emissionInRays && !emittersInLights ? blDecodeRgb9e5(brickMaterial[m + 1u]) : vec3(0.0);
     vec3 target = emitted + albedo * (irradiance / GI_PI + (bounce.w > 0.0 ? bounce.rgb / bounce.w : vec3(0.0)));
     if (!giFinite(target)) return;
     imageStore(giRadianceCache, texel, uvec4(blEncodeRgb9e5(old == 0u ? target : mix(blDecodeRgb9e5(old), target, GI_RELIGHT_BLEND))));
