@@ -229,6 +229,21 @@ void inputChecksByKindAndChannels(const std::string& backend) {
              d.lights = &light;
              d.lightCount = 65;
          }},
+        {"dispatch: lights[0] is an area light with no area", ErrorCode::InvalidArgument, [&](gi::DispatchDesc& d) {
+             static gi::Light line;
+             line.type = gi::LightType::Rect;
+             line.color = glm::vec3(1.0f);
+             line.edge0 = glm::vec3(1.0f, 0.0f, 0.0f);
+             line.edge1 = glm::vec3(2.0f, 0.0f, 0.0f);  // parallel: a line, not a rectangle
+             d.diffuseAlbedo = g.albedo;
+             d.lights = &line;
+             d.lightCount = 1;
+         }},
+        {"emittersInLights needs previousLitIncludesEmission = false", ErrorCode::InvalidArgument, [&](gi::DispatchDesc& d) {
+             d.diffuseAlbedo = g.albedo;
+             d.emittersInLights = true;
+             d.previousLitIncludesEmission = true;
+         }},
     };
     for (const Case& c : cases) {
         gi::DispatchDesc d = inputsOf(g, own);

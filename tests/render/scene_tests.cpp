@@ -186,3 +186,34 @@ void shadingNormals(const std::string& backend) {
 }  // namespace
 
 BACKEND_TEST("scenes: shading normals from vertex normals, the same in both paths", "[render]", shadingNormals)
+
+TEST_CASE("scenes: emitting surfaces become GI's area lights", "[metrics]") {
+    // Cornell's light is one quad (two triangles, a → b → c and a → c → d): one Rect light facing down, with the
+    // quad's corners and area; the sun of the two rooms stays a directional light beside it.
+    const render::GiLights cornell = render::giLightsOf(scenes::cornellBox());
+    REQUIRE(cornell.emittersInLights);
+    REQUIRE(cornell.lights.size() == 1);
+    const gi::Light& l = cornell.lights[0];
+    CHECK(l.type == gi::LightType::Rect);
+    CHECK(l.color == glm::vec3(17.0f, 12.0f, 4.0f));
+    CHECK(glm::length(glm::cross(l.edge0, l.edge1)) == Approx(130.0f * 105.0f));
+    CHECK(glm::normalize(glm::cross(l.edge0, l.edge1)).y == Approx(-1.0f));
+    CHECK(l.position.y == Approx(548.0f));
+    // A triangle that pairs with no other stays a Triangle, placed by its instance.
+    scenes::SceneGeometry one;
+    scenes::TriangleMesh tri;
+    tri.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    tri.indices = {0, 1, 2};
+    tri.emission = glm::vec3(2.0f);
+    one.meshes.push_back(tri);
+    one.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5))});
+    const render::GiLights single = render::giLightsOf(one);
+    REQUIRE(single.lights.size() == 1);
+    CHECK(single.lights[0].type == gi::LightType::Triangle);
+    CHECK(single.lights[0].position == glm::vec3(0, 0, 5));
+    // More emitting triangles than gi::kMaxLights: none are given, the relight rays take the emission at their hits.
+    scenes::SceneGeometry sphere = emittingSphere(0.5f, 1.0f);
+    const render::GiLights many = render::giLightsOf(sphere);
+    CHECK_FALSE(many.emittersInLights);
+    CHECK(many.lights.empty());
+}
