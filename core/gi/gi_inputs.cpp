@@ -151,7 +151,7 @@ bool GiContextImpl::checkLights(const DispatchDesc& d) {
         const bool area = l.type == LightType::Rect || l.type == LightType::Triangle;
         if (area) {
             const float scale = std::max(glm::length(l.edge0), glm::length(l.edge1));
-            if (!(glm::length(glm::cross(l.edge0, l.edge1)) > 1e-6f * scale * scale) || !(scale > 0.0f))
+            if (!(glm::length(glm::cross(l.edge0, l.edge1)) > 1e-6f * scale * scale))  // also false for zero edges
                 return fail(ErrorCode::InvalidArgument, name + " is an area light with no area (edge0 and edge1 zero or parallel)");
             continue;
         }

@@ -3,10 +3,10 @@
 // The application's lights (DispatchDesc::lights), shadowed through the distance field: what relighting adds at
 // a texel besides its rays. Needs the lights buffer declared as `giLights` (4 vec4 per light: core/gi/gi_constants.h,
 // GpuLight) and giTraceThroughAlpha (gi_alpha.glsl).
+// gi::LightType as the record's position.w: Directional 0, Point 1, Spot 2, Rect 3, Triangle 4.
 #define GI_LIGHT_DIRECTIONAL 0.0
 #define GI_LIGHT_SPOT 2.0
 #define GI_LIGHT_RECT 3.0
-#define GI_LIGHT_TRIANGLE 4.0
 
 // Whether the segment from p along unit l reaches `distance` without meeting a surface. A segment that ends on
 // an emitting surface (an area light's point) meets that surface itself: a hit within `endSlack` of its end
