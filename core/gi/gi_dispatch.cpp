@@ -112,7 +112,9 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     frame_.relight[0] = d.lightCount;
     frame_.relight[1] = (d.diffuseAlbedo ? uint32_t(RelightAlbedo) : 0u) | (d.emission ? uint32_t(RelightEmission) : 0u) |
                         (d.emission && !d.previousLitIncludesEmission && !d.emittersInLights ? uint32_t(RelightEmissionInRays) : 0u) |
-                        (d.emittersInLights ? uint32_t(RelightEmittersInLights) : 0u);
+                        (d.emittersInLights ? uint32_t(RelightEmittersInLights) : 0u) |
+                        (d.previousLitIncludesEmission ? uint32_t(RelightLitHoldsEmission) : 0u) |
+                        (d.relightBounces ? 0u : uint32_t(RelightDirectOnly));
     frame_.probes[0] = probeTile_;
     frame_.cache[0] = cacheSlots_ / 4;  // inject_radiance.comp: the last quarter goes to bricks that receive light
 }
@@ -281,7 +283,9 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         readBuffer(s.bindings, 0, probeInfo_[cur]);
         image(s.bindings, 0, probes_[cur], Access::ReadWrite);
         image(s.bindings, 1, radianceCache_, Access::Read);
+        readBuffer(s.bindings, 2, lights_);
         readBuffer(s.bindings, 3, slotOfBrick_);
+        storageBuffer(s.bindings, 0, probeIrradianceSH_, Access::Read);  // last frame's, for unseen hits
         addTrace(s.bindings);
         addAlphaCache(s.bindings);
         addEnvironment(s.bindings, d);

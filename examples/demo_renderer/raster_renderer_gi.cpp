@@ -120,6 +120,7 @@ void RasterRenderer::dispatchGi(bool cut) {
         g.lights = giLights_.lights.data();
         g.lightCount = uint32_t(giLights_.lights.size());
         g.emittersInLights = giLights_.emittersInLights;
+        g.relightBounces = options_.giFeedback;  // --single-bounce: one bounce everywhere, not only on screen
     }
     g.outputDiffuse = giDiffuse_;
     g.outputSpecular = giSpecular_;

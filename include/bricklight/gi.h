@@ -168,6 +168,11 @@ struct DispatchDesc {
     // towards each texel is far less noisy than waiting for rays to hit it, and an emitter lights only the side it
     // faces). Needs previousLitIncludesEmission = false: a cache that held the emission would count it twice.
     bool emittersInLights = false;
+    // Whether the surfaces GI lights itself (re-lit texels off screen, and the surfaces probe rays meet that no view
+    // has lit) take light from other surfaces too (true: every bounce, as the screen's feedback gives on screen), or
+    // only from the lights and their emission (false: with a lit image that holds direct light only, GI then gives
+    // exactly one bounce — for comparing bounce by bounce with a path tracer).
+    bool relightBounces = true;
 
     TraceParams trace;
     // Forget screen-space history (camera cut): temporal accumulation and probe reuse restart; the

@@ -8,9 +8,10 @@
 // radiance cache at the hit (the finest cascade with data there), a miss the environment. Every probe
 // traces a quarter of its texels a frame (one of each 2×2 block, rotating per frame); a reprojected probe
 // keeps the others, a new one leaves them empty until their turn. A hit with no
-// cached radiance anywhere is marked "hit, unknown" (alpha, see gi_common.glsl) for project_probes to fill
-// from the known hits of its neighbouring texels or the probe's — not left out, which would weigh the
-// misses (the environment) too much.
+// cached radiance anywhere is lit where it was hit (giUnseenHitRadiance: the field's material, the lights and
+// the probe's light) when relighting is on; else marked "hit, unknown" (alpha, see gi_common.glsl) for
+// project_probes to fill from the known hits of its neighbouring texels or the probe's — not left out, which
+// would weigh the misses (the environment) too much.
 layout(local_size_x = 64) in;
 // Weight of a retraced texel's new sample in a reprojected probe. 1: the texel keeps one sample, the
 // newest; averaging over frames is the interpolation pass's job. (An average here, 0.35, biased probes
@@ -19,14 +20,63 @@ layout(local_size_x = 64) in;
 BL_READ_BUFFER(0) ProbeInfo { uvec4 probeInfo[]; };
 BL_IMAGE(0, rgba16f) uniform image2D probes;
 BL_IMAGE(1, r32ui) uniform readonly uimage3D giRadianceCache;
+BL_READ_BUFFER(2) Lights { vec4 giLights[]; };  // 4 per light (core/gi/gi_constants.h: GpuLight)
+// Last frame's probeIrradianceSH (project_probes.comp), 9 per probe; read only here (the read-buffer slots are taken).
+BL_STORAGE_BUFFER(0) PreviousProbeSH { vec4 previousProbeSH[]; };
 #include "gi_environment.glsl"
 #define GI_USES_RADIANCE_CACHE
 #include "gi_bricks.glsl"
+#include "gi_lights.glsl"
+#include "gi_sh.glsl"
 #ifdef GI_UNSEEN_FROM_VCT  // hits no view has lit read a voxel clip-map's light (DispatchDesc::unseenLight)
 #define BL_CONE_TRACE_TEXTURE_BASE 0  // 0..6 (13..15 are the environment and the field's atlas)
 #define BL_CONE_TRACE_FRAME_SLOT 1
 #include "bricklight/cone_trace.glsl"
 #endif
+
+// At most this many of the frame's lights get a shadow ray at one unseen hit (giUnseenHitRadiance): with more,
+// each hit takes every k-th of them from a random first, weighted by k.
+#define GI_UNSEEN_HIT_LIGHTS 4u
+
+// The radiance leaving a surface that no view has lit (no cache holds its light), lit where the probe's ray met it:
+//   emission + albedo · (E_lights / π + E_probe(n) / π)
+// from the field's material for the hit's brick (sdf::InstanceDesc::material), the frame's lights shadowed through
+// the field (gi_lights.glsl), and for the light that reaches the surface from other surfaces the probe's own
+// irradiance of the last frame turned to the hit's normal (its SH covers the whole sphere, project_probes.comp):
+// the nearest measured estimate of it. The stand-in before (the radiance of the probe's neighbouring known hits)
+// gave a hidden floor the light of the lit floor beside it whether or not the lamp reached it, and a dark wall
+// the colour of whatever lay next to it. The emission counts where the cache holds the emission of the surfaces
+// the camera saw (DispatchDesc::previousLitIncludesEmission), as known hits do. False where relighting is off (no
+// albedo input: the application gave no lights either) or the field holds no material there — and in bricks that hold
+// cards (alpha-tested surfaces): a shadow ray goes through cards with the alpha cache's open fraction of each cell
+// (gi_alpha.glsl), independently of the ray that could not see the hit, so with the sun behind the camera a card
+// hidden behind other cards (shadowed in truth: the sun's path and the view's cross the same cards) got sun through
+// the open fractions (the foliage scene's indirect light 3.2× the path tracer's instead of 1.9×).
+bool giUnseenHitRadiance(vec3 q, vec3 normal, uint brick, uint probeIndex, inout uint rng, out vec3 radiance) {
+    radiance = vec3(0.0);
+    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || giBrickHoldsCards(brick)) return false;
+    uvec2 material = blSdfBrickMaterial(brick);
+    if ((material.x >> 24) == 0u) return false;
+    vec3 albedo = unpackUnorm4x8(material.x).rgb;
+    vec3 p = q + normal * giPushOff(q, giFrame.trace.x);
+    uint count = giFrame.relight.x;
+    vec3 direct = vec3(0.0);
+    if (count > 0u) {
+        uint stride = (count + GI_UNSEEN_HIT_LIGHTS - 1u) / GI_UNSEEN_HIT_LIGHTS;
+        uint first = min(uint(giRandom(rng) * float(stride)), stride - 1u);
+        direct = giLightIrradiance(p, normal, first, stride) * float(stride);
+    }
+    vec3 indirect = vec3(0.0);  // irradiance / π
+    if ((giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) == 0u && previousProbeSH[probeIndex * 9u].w > 0.0) {
+        float w[9];
+        giShDiffuseWeights(normal, w);
+        for (uint i = 0u; i < 9u; ++i) indirect += previousProbeSH[probeIndex * 9u + i].rgb * w[i];
+        indirect = max(indirect, vec3(0.0));
+    }
+    vec3 emitted = (giFrame.relight.y & GI_RELIGHT_LIT_HOLDS_EMISSION) != 0u && material.y != 0u ? blDecodeRgb9e5(material.y) : vec3(0.0);
+    radiance = emitted + albedo * (direct / GI_PI + indirect);
+    return giFinite(radiance);
+}
 
 // One texel: trace its ray (jittered within the texel) and store or blend the result.
 void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool reprojected, vec4 old) {
@@ -62,8 +112,14 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
             return;
         }
 #endif
-        // A surface no view has lit yet: marked for the projection pass to fill from the probe's known
-        // hits. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
+        if (giUnseenHitRadiance(ray.origin + d * hit.t, hit.normal, hit.brickId, probeIndex, rng, radiance)) {
+            vec4 v = vec4(radiance, kind);
+            if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) v.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);
+            imageStore(probes, texel, v);
+            return;
+        }
+        // A surface no view has lit yet, without relighting: marked for the projection pass to fill from the probe's
+        // known hits. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
         // come through another probe's directions, often a miss.)
         imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
         return;

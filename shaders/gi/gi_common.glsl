@@ -35,6 +35,8 @@ BL_CONSTANTS(1) uniform GiFrame {
 #define GI_RELIGHT_EMISSION 2u  // ...and their emission
 #define GI_RELIGHT_EMISSION_IN_RAYS 4u  // the lit image leaves emission out: relight rays add it at their hits
 #define GI_RELIGHT_EMITTERS_IN_LIGHTS 8u  // the lights hold every emitter: relight rays take no emission at their hits
+#define GI_RELIGHT_LIT_HOLDS_EMISSION 16u  // the lit image (so the cache) holds the emission: unseen hits add the field's
+#define GI_RELIGHT_DIRECT_ONLY 32u  // re-lit texels and unseen hits take the lights and emission only (one bounce)
 // Per-brick material (GI_MATERIAL_WORDS uints per brick): albedo RGBA8 (a = 1 once learnt), emission
 // RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never).
 #define GI_MATERIAL_WORDS 3u

@@ -116,9 +116,11 @@ void main() {
         float u1 = giRandom(rng), phi = 2.0 * GI_PI * giRandom(rng);
         float sr = sqrt(u1);
         vec3 d = normalize(tangent * (sr * cos(phi)) + bitangent * (sr * sin(phi)) + n * sqrt(max(1.0 - u1, 0.0)));
-        BlSdfHit hit = giTraceThroughAlpha(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE), rng);
+        // No answer, or a surface of unknown radiance: no vote. One bounce only (GI_RELIGHT_DIRECT_ONLY): no ray.
+        BlSdfHit hit;
+        hit.gaveUp = true;
+        if ((giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) == 0u) hit = giTraceThroughAlpha(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE), rng);
         vec3 radiance;
-        // No answer, or a surface of unknown radiance: no vote.
         if (!hit.gaveUp) {
             if (!hit.hit) bounce = vec4(giEnvironment(d), 1.0);
             else if (giRadianceAtSide(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0), radiance)) {

@@ -198,23 +198,19 @@ void noLeakThroughWall(const std::string& backend) {
 
 void recoversAfterMotion(const std::string& backend) {
     // dynamic: the torus and the light move for 24 frames, then stop. GI must move towards what a renderer
-    // that saw only the final state reaches in as many frames: 24 frames after the stop the relMSE to it
-    // is below 0.009 and below its value at the stop; 104 frames after, below 0.015; and 232 frames after
-    // (256 frames in all, against the still renderer at 256), below 0.0075 — no light left behind by the
-    // moving lamp. Measured on lavapipe / llvmpipe: ~0.019 at the stop, 0.0051–0.0071 after 24 frames,
-    // 0.0039–0.0067 after 104, 0.0017–0.0026 after 232. On an H100 (1013 runs, 2026-11-24: 165 Vulkan,
-    // 848 GL): 0.014–0.023 at the stop, 0.0037–0.0078 after 24, 0.0056–0.0132 after 104 (median 0.0099,
-    // 99th percentile 0.0119), 0.0022–0.0060 after 232 (median 0.0043, 99th percentile 0.0054). The
-    // highest of those are the runs where the still renderer's bounces came least far (its mean ~0.7 %
-    // below the median), not light left behind: two still renderers agree to ~1e-5 at equal frame counts
-    // on the CPU, but the GI is still brightening at 128 frames (128 against 256 frames: relMSE 0.0105,
-    // mean +16 %: each bounce of the multi-bounce feedback takes tens of frames), and how fast depends on
-    // the passes' races. The bounds sit above the H100's largest values with a margin (they were 0.012
-    // and 0.006, which 8 of the 1013 runs exceeded). One GL run of the 1013 was wrong at every check (0.15
-    // at the stop, 0.10 at +232), which the test still fails (docs/gi.md, *Known limitations*). Before
-    // relighting was restricted to bricks out of view it was 0.0057 / 0.0024 at +24 / +104 (single runs):
-    // re-lighting bricks in view that injection happened to miss sped this up, but made Vulkan and GL
-    // drift apart (docs/gi.md, "Relighting"). Without relighting: 0.020, 0.0062, then 0.0041 and rising.
+    // that saw only the final state reaches in as many frames (each check against the still renderer at the
+    // moving one's frame count: the multi-bounce feedback is still brightening at 128 frames, 128 against 256
+    // frames differ by relMSE ~0.01, so a comparison with a still renderer further along measures convergence,
+    // not light left behind): 24 frames after the stop (48 frames each) below 0.013 and below its value at the
+    // stop; 104 frames after, below 0.015; 232 frames after, below 0.0075 — no light left behind by the moving
+    // lamp. Measured on lavapipe / llvmpipe with the unseen hits lit where they are met (fill_probes_body.glsl):
+    // 0.022–0.023 at the stop, 0.0089–0.0100 after 24 (the moving renderer 4.5 % brighter than the still one:
+    // it has seen more of the room), 0.0035–0.0041 after 104, 0.0019–0.0024 after 232. Before that (the +24 and
+    // +104 checks then against the still renderer at 128 frames): ~0.019 at the stop, 0.0051–0.0071 after 24,
+    // 0.0039–0.0067 after 104, 0.0017–0.0026 after 232; on an H100 (1013 runs, 2026-11-24) 0.0022–0.0060 after
+    // 232, and one GL run of the 1013 wrong at every check (0.15 at the stop, 0.10 at +232), which the test
+    // still fails (docs/gi.md, *Known limitations*; docs/notes/gi-quality.md has the H100 history). Without
+    // relighting: 0.020, 0.0062, then 0.0041 and rising.
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry scene = scenes::dynamicRoom();
@@ -226,8 +222,10 @@ void recoversAfterMotion(const std::string& backend) {
         frames(td, *moving, 1);
     }
     auto still = giRenderer(td, scene, 48);  // the final state from the start
-    frames(td, *still, 128);
-    const render::Image stillAt128 = still->read(render::Aov::IndirectDiffuse);  // not converged yet: see above
+    frames(td, *still, 48);
+    const render::Image stillAt48 = still->read(render::Aov::IndirectDiffuse);  // not converged yet: see above
+    frames(td, *still, 80);
+    const render::Image stillAt128 = still->read(render::Aov::IndirectDiffuse);
     REQUIRE(moving->setScene(scene, &error));  // the same state again: no more motion vectors
     // Each comparison also reports both images' means (moving / still), which tell a failure in the
     // renderer that moved from one in the still renderer.
@@ -238,9 +236,9 @@ void recoversAfterMotion(const std::string& backend) {
         return m.relMse;
     };
     frames(td, *moving, 1);
-    const double atStop = compare(stillAt128);
+    const double atStop = compare(stillAt48);
     frames(td, *moving, 23);
-    const double after = compare(stillAt128);
+    const double after = compare(stillAt48);
     frames(td, *moving, 80);
     const double later = compare(stillAt128);
     frames(td, *moving, 128);
@@ -248,7 +246,7 @@ void recoversAfterMotion(const std::string& backend) {
     const double settled = compare(still->read(render::Aov::IndirectDiffuse));
     INFO("relMSE to the still scene's GI: " << atStop << " at the stop, " << after << " 24 frames later, " << later << " 104 frames later, "
                                               << settled << " 232 frames later; means (moving/still):" << means.str());
-    CHECK(after < 0.009);
+    CHECK(after < 0.013);
     CHECK(after < atStop);
     CHECK(later < 0.015);
     CHECK(settled < 0.0075);
