@@ -134,6 +134,8 @@ bool GiContextImpl::checkInputs(const DispatchDesc& d) {
 bool GiContextImpl::checkLights(const DispatchDesc& d) {
     if (d.emittersInLights && d.previousLitIncludesEmission)
         return fail(ErrorCode::InvalidArgument, "dispatch: emittersInLights needs previousLitIncludesEmission = false (the cache would count the emission twice)");
+    if (d.lightUnseenSurfaces && !d.diffuseAlbedo)
+        return fail(ErrorCode::MissingInput, "dispatch: lightUnseenSurfaces is set without 'diffuseAlbedo': relighting needs the albedo");
     if (d.lightCount == 0) return true;
     if (!d.lights) return fail(ErrorCode::MissingInput, "dispatch: lightCount is " + std::to_string(d.lightCount) + " but lights is null");
     if (d.lightCount > kMaxLights)

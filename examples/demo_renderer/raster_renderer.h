@@ -133,6 +133,7 @@ struct GBufferView {
 struct GiLights {
     std::vector<gi::Light> lights;
     bool emittersInLights = false;
+    bool allDirectLight = false;  // the lights hold all the direct light: the emitters, and no sky (which GI is not given)
 };
 
 class RasterRenderer {

@@ -78,6 +78,8 @@ GiLights giLightsOf(const scenes::SceneGeometry& scene) {
     }
     // More emitting triangles than lights left: relight rays take the emission where they hit instead.
     out.emittersInLights = appendEmitters(scene, gi::kMaxLights - lights.size(), lights);
+    const glm::vec3 sky = env.skyRadiance;
+    out.allDirectLight = out.emittersInLights && sky.x <= 0.0f && sky.y <= 0.0f && sky.z <= 0.0f;
     return out;
 }
 
@@ -120,6 +122,7 @@ void RasterRenderer::dispatchGi(bool cut) {
         g.lights = giLights_.lights.data();
         g.lightCount = uint32_t(giLights_.lights.size());
         g.emittersInLights = giLights_.emittersInLights;
+        g.lightUnseenSurfaces = giLights_.allDirectLight;
         g.relightBounces = options_.giFeedback;  // --single-bounce: one bounce everywhere, not only on screen
     }
     g.outputDiffuse = giDiffuse_;

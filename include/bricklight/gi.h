@@ -168,6 +168,13 @@ struct DispatchDesc {
     // towards each texel is far less noisy than waiting for rays to hit it, and an emitter lights only the side it
     // faces). Needs previousLitIncludesEmission = false: a cache that held the emission would count it twice.
     bool emittersInLights = false;
+    // `lights` (with the emitters: emittersInLights, or the emission in the lit image) hold all of the application's
+    // direct light: probe rays that meet a surface no view has lit (no light cached for it) then light it where they
+    // meet it, from the field's material (sdf::InstanceDesc::material), these lights and the probe's light (docs/gi.md,
+    // "Surfaces no view has lit"). Leave it false where the direct lighting holds light GI is not given, such as a sky:
+    // such surfaces would miss it, and the stand-in (the light of their neighbouring directions) is better then.
+    // Needs diffuseAlbedo.
+    bool lightUnseenSurfaces = false;
     // Whether the surfaces GI lights itself (re-lit texels off screen, and the surfaces probe rays meet that no view
     // has lit) take light from other surfaces too (true: every bounce, as the screen's feedback gives on screen), or
     // only from the lights and their emission (false: with a lit image that holds direct light only, GI then gives

@@ -46,15 +46,16 @@ BL_STORAGE_BUFFER(0) PreviousProbeSH { vec4 previousProbeSH[]; };
 // the nearest measured estimate of it. The stand-in before (the radiance of the probe's neighbouring known hits)
 // gave a hidden floor the light of the lit floor beside it whether or not the lamp reached it, and a dark wall
 // the colour of whatever lay next to it. The emission counts where the cache holds the emission of the surfaces
-// the camera saw (DispatchDesc::previousLitIncludesEmission), as known hits do. False where relighting is off (no
-// albedo input: the application gave no lights either) or the field holds no material there — and in bricks that hold
+// the camera saw (DispatchDesc::previousLitIncludesEmission), as known hits do. False unless the application says its
+// lights hold all of its direct light (DispatchDesc::lightUnseenSurfaces: a sky it does not give would be missing
+// here), where the field holds no material — and in bricks that hold
 // cards (alpha-tested surfaces): a shadow ray goes through cards with the alpha cache's open fraction of each cell
 // (gi_alpha.glsl), independently of the ray that could not see the hit, so with the sun behind the camera a card
 // hidden behind other cards (shadowed in truth: the sun's path and the view's cross the same cards) got sun through
 // the open fractions (the foliage scene's indirect light 3.2× the path tracer's instead of 1.9×).
 bool giUnseenHitRadiance(vec3 q, vec3 normal, uint brick, uint probeIndex, inout uint rng, out vec3 radiance) {
     radiance = vec3(0.0);
-    if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || giBrickHoldsCards(brick)) return false;
+    if ((giFrame.relight.y & GI_RELIGHT_UNSEEN_HITS) == 0u || giBrickHoldsCards(brick)) return false;
     uvec2 material = blSdfBrickMaterial(brick);
     if ((material.x >> 24) == 0u) return false;
     vec3 albedo = unpackUnorm4x8(material.x).rgb;
@@ -101,28 +102,21 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
         kind = GI_TEXEL_MISS;
     } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0),
                                  radiance)) {
+        vec3 q = ray.origin + d * hit.t;  // a surface no cache holds light for
+        bool lit = false;
 #ifdef GI_UNSEEN_FROM_VCT
         // The clip-map's voxels hold the light of surfaces the camera never saw (voxelized from the app's draws).
-        bool known;
-        radiance = blVctSurfaceRadiance(ray.origin + d * hit.t, d, known);
-        if (known && giFinite(radiance)) {
-            vec4 v = vec4(radiance, kind);
-            if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) v.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);
-            imageStore(probes, texel, v);
-            return;
-        }
+        radiance = blVctSurfaceRadiance(q, d, lit);
+        lit = lit && giFinite(radiance);
 #endif
-        if (giUnseenHitRadiance(ray.origin + d * hit.t, hit.normal, hit.brickId, probeIndex, rng, radiance)) {
-            vec4 v = vec4(radiance, kind);
-            if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) v.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);
-            imageStore(probes, texel, v);
+        if (!lit) lit = giUnseenHitRadiance(q, hit.normal, hit.brickId, probeIndex, rng, radiance);
+        if (!lit) {
+            // A surface no view has lit yet, and no light for it here: marked for the projection pass to fill from
+            // the probe's known hits. (Keeping a reprojected texel's old value instead biased probes dark: that
+            // value may have come through another probe's directions, often a miss.)
+            imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
             return;
         }
-        // A surface no view has lit yet, without relighting: marked for the projection pass to fill from the probe's
-        // known hits. (Keeping a reprojected texel's old value instead biased probes dark: that value may have
-        // come through another probe's directions, often a miss.)
-        imageStore(probes, texel, vec4(0.0, 0.0, 0.0, GI_TEXEL_UNKNOWN_HIT));
-        return;
     }
     vec4 value = vec4(radiance, kind);
     if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) value.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);

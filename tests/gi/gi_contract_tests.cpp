@@ -244,6 +244,8 @@ void inputChecksByKindAndChannels(const std::string& backend) {
              d.emittersInLights = true;
              d.previousLitIncludesEmission = true;
          }},
+        {"lightUnseenSurfaces is set without 'diffuseAlbedo'", ErrorCode::MissingInput,
+         [&](gi::DispatchDesc& d) { d.lightUnseenSurfaces = true; }},
     };
     for (const Case& c : cases) {
         gi::DispatchDesc d = inputsOf(g, own);
