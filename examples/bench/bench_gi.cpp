@@ -180,6 +180,7 @@ int benchGi(const Options& o, const scenes::SceneGeometry& geometry, std::unique
         d.diffuseAlbedo = albedo;
         d.lights = &sun;
         d.lightCount = 1;
+        d.lightUnseenSurfaces = true;  // the costlier configuration: probe rays light what no view has lit
         if (o.giIterations) d.trace.maxIterationsPerCascade = o.giIterations;
         if (o.giCoarsen >= 0.0f) d.trace.coarsenAfterVoxels = o.giCoarsen;
         d.outputDiffuse = diffuse;

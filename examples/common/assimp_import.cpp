@@ -309,13 +309,16 @@ SceneGeometry convert(const aiScene* scene, const std::string& path, const LoadL
     }
     if (s.meshes.empty()) return fail("'" + path + "' holds no triangles");
     s.computeBounds();
-    // A view from the front; the file's lights where it has any, else a sky and a sun.
+    // A view from the front; the file's lights where it has any, else — unless its own surfaces emit (an interior lit
+    // by its lamps, which a sky and a sun would light from outside through every gap) — a sky and a sun.
     const glm::vec3 centre = (s.boundsMin + s.boundsMax) * 0.5f;
     const float size = glm::length(s.boundsMax - s.boundsMin);
     s.camera = {centre + glm::vec3(0.0f, 0.25f * size, 1.2f * size), centre, glm::vec3(0, 1, 0), 45.0f};
     importLights(scene, s);
     s.computeBounds();  // area lights became geometry
-    if (scene->mNumLights == 0)
+    bool emits = false;
+    for (const TriangleMesh& m : s.meshes) emits |= m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f;
+    if (scene->mNumLights == 0 && !emits)
         s.environment = {glm::vec3(0.35f, 0.45f, 0.6f), glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f)), glm::vec3(3.0f)};
     return s;
 }

@@ -222,6 +222,26 @@ TEST_CASE("loading: alpha-tested materials (glTF alphaMode and alphaCutoff, OBJ 
     CHECK(matches(error, "its opacity map '.*outside.png' \\(named by .*\\) lies outside the model's folder"));
 }
 
+TEST_CASE("loading: a file without lights gets a sky and a sun unless its surfaces emit", "[loading]") {
+    const std::string dir = freshFolder("lit-by-itself");
+    writeFile(dir + "/model.obj", objTriangle("model.mtl"));
+    for (bool emissive : {false, true}) {
+        INFO(emissive);
+        writeFile(dir + "/model.mtl", std::string("newmtl m\nKd 0.5 0.5 0.5\n") + (emissive ? "Ke 4 3 2\n" : ""));
+        for (bool isolate : {true, false}) {
+            scenes::LoadLimits limits;
+            limits.isolateImport = isolate;
+            std::string error;
+            const scenes::SceneGeometry s = scenes::loadModel(dir + "/model.obj", &error, limits);
+            INFO(error);
+            REQUIRE(s.meshes.size() == 1);
+            CHECK((s.meshes[0].emission == glm::vec3(4.0f, 3.0f, 2.0f)) == emissive);
+            CHECK((glm::length(s.environment.skyRadiance) > 0.0f) == !emissive);
+            CHECK((glm::length(s.environment.sunIrradiance) > 0.0f) == !emissive);
+        }
+    }
+}
+
 #if defined(BRICKLIGHT_TEST_TEXTURES)
 TEST_CASE("loading: an opacity map without alpha gives its first channel as the coverage", "[loading]") {
     const std::string dir = freshFolder("coverage");
