@@ -46,8 +46,8 @@ enum RelightFlags : uint32_t {
     RelightEmissionInRays = 4u,  // the lit image leaves emission out: relight rays add it at their hits
     RelightEmittersInLights = 8u,  // DispatchDesc::emittersInLights: relight rays take no emission at their hits
     RelightLitHoldsEmission = 16u,  // DispatchDesc::previousLitIncludesEmission: probe rays' unseen hits add the field's
-    RelightDirectOnly = 32u,
-    RelightUnseenHits = 64u,  // DispatchDesc::lightUnseenSurfaces: probe rays light the surfaces no view has lit  // !DispatchDesc::relightBounces: surfaces GI lights itself take the lights and emission only
+    RelightDirectOnly = 32u,  // !DispatchDesc::relightBounces: surfaces GI lights itself take the lights and emission only
+    RelightUnseenHits = 64u,  // DispatchDesc::lightUnseenSurfaces: probe rays light the surfaces no view has lit
 };
 
 // One light in the lights buffer (std430, 4 × vec4; shaders/gi/gi_lights.glsl reads it).
