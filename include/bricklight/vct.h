@@ -281,7 +281,7 @@ struct ConeTraceParams {
     uint32_t tracingSparsity = 2;   // 1..4: diffuse cones traced for one pixel per N×N block (another each frame)
     float tracingStep = 0.5f;       // 0.25..1: diffuse cones' sample spacing / sample diameter (smaller: smoother, slower)
     float specularTracingStep = 1.0f;  // the same for the specular cone (VXGI's defaults: 0.5 diffuse, 1 specular)
-    float opacityCorrection = 1.0f; // 0.1..10: scales opacity's Beer exponent (higher: darker, more contrast)
+    float opacityCorrection = 1.0f; // 0.1..10: scales the opacity each step takes (higher: darker, more contrast)
     uint32_t lightLeakLag = 0;      // 0..2: samples the transmittance lags (VXGI 1.0 used 2; 0 leaks least)
     float initialOffset = 2.0f;     // voxels (of the level at the surface) along the normal before the first sample
     float maxDistance = 0.0f;       // world units a cone may go; 0: until it leaves the clip-map

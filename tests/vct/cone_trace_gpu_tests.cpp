@@ -3,6 +3,7 @@
 // through an open side gathers nothing and stays open.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "backend_test.h"
@@ -46,11 +47,14 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
     for (const glm::vec3& d : directions())
         for (float factor : {0.25f, 0.6f, 1.2f}) cones.push_back({glm::vec4(16.0f, 16.0f, 16.0f, factor), glm::vec4(d, 3.0f)});
     const std::vector<ConeOut> results = traceCones(td, h, cones);
-    // Measured (anisotropic / isotropic): cones along the axes gather 0.99 / 0.89 (factor 0.25), 0.91 / 0.76 (0.6),
-    // 0.46 / 0.64 (1.2) and end 0.99, 0.91, 0.51 opaque — the widest cones' last samples read the coarsest level's
-    // first mip, whose 16-unit voxels hold the 19-unit box's walls and the space around them (0.72 / 0.60 and 0.72
-    // opaque when they undersampled the coarsest level instead); cones into the corners, where coarse voxels hold
-    // the corner and the empty space around it, 0.58 / 1.23, 0.44 / 1.00, 0.41 / 1.06.
+    // Measured (anisotropic / isotropic), factors 0.25 / 0.6 / 1.2: cones along the axes gather 1.00 / 0.87, 1.00 /
+    // 0.83, 1.00 / 0.83 and end opaque (before samples were kept in front of the origin and one crossing's opacity
+    // shares added: 0.99 / 0.89, 0.91 / 0.76, 0.46 / 0.64, ending 0.99, 0.91, 0.51 opaque); cones into the corners,
+    // where coarse voxels hold the corner and the empty space around it, 0.70 / 1.40, 0.58 / 1.16, 0.58 / 1.16,
+    // ending 0.93, 0.74, 0.74 opaque (before: 0.58 / 1.23, 0.44 / 1.00, 0.41 / 1.06). Isotropic light is one value
+    // for every direction, weighted by the direction's components: a wall seen diagonally reads up to three times
+    // its light per unit of opacity (the limit docs/vct.md gives for isotropic emittance).
+    const bool isotropic = mode == vct::EmittanceMode::Isotropic;
     for (size_t i = 0; i < cones.size(); ++i) {
         const ConeOut& r = results[i];
         INFO("cone " << i << " direction " << cones[i].direction.x << "," << cones[i].direction.y << "," << cones[i].direction.z << " factor "
@@ -62,13 +66,13 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
         CHECK(r.radiance.y == Approx(r.radiance.x).epsilon(1e-3));
         CHECK(r.radiance.z == Approx(r.radiance.x).epsilon(1e-3));
         if (diagonal) {
-            CHECK(r.finalOpacity > 0.25f);
-            CHECK(r.radiance.x > 0.15f);
-            CHECK(r.radiance.x < 1.3f);
+            CHECK(r.finalOpacity > 0.7f);
+            CHECK(r.radiance.x > 0.5f);
+            CHECK(r.radiance.x < (isotropic ? 1.5f : 1.1f));
         } else {
-            CHECK(r.finalOpacity > (factor < 0.5f ? 0.97f : factor < 1.0f ? 0.85f : 0.45f));
-            CHECK(r.radiance.x > (factor < 0.5f ? 0.85f : factor < 1.0f ? 0.7f : 0.4f));
-            CHECK(r.radiance.x < 1.15f);
+            CHECK(r.finalOpacity > 0.97f);
+            CHECK(r.radiance.x > (isotropic ? 0.75f : 0.95f));
+            CHECK(r.radiance.x < 1.05f);
         }
     }
     REQUIRE_NO_MESSAGES(td);
@@ -103,6 +107,49 @@ void conesThroughAnOpenSide(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// A room the clip-map's finest level holds (55 of its 64 voxels wide), every inner face sending radiance 1: cones
+// leaving the floor cosine-distributed over its hemisphere must gather about 1 at any width. Before the samples
+// were kept in front of the cone's origin and one crossing's opacity shares added, the mean was 0.76 (factor
+// 0.3) down to 0.39 (factor 1.1): wide samples read the floor and the space beneath it, and 15–25 % of every
+// cone passed through the walls.
+void conesFromTheFloorOfAClosedRoom(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    vct::ClipmapDesc desc = testClipmapDesc(5, vct::EmittanceMode::Anisotropic);
+    desc.resolution = 64;
+    VoxelizeHarness h(td, desc);
+    Error error;
+    REQUIRE(h.clipmap().update(glm::vec3(32.0f), &error));
+    const glm::vec3 one(1.0f);
+    h.draw(inwardBox(glm::vec3(4.5f), glm::vec3(59.5f)), vct::VoxelMaterial{}, &one);
+    h.clipmap().finishVoxelization();
+    for (float factor : {0.3f, 0.6f, 1.1f}) {
+        std::vector<ConeIn> cones;
+        const int n = 64;
+        for (int k = 0; k < n; ++k) {
+            const float u = (k + 0.5f) / n, phi = k * 2.39996323f;
+            const glm::vec3 d(std::sqrt(u) * std::cos(phi), std::sqrt(1.0f - u), std::sqrt(u) * std::sin(phi));
+            cones.push_back({glm::vec4(20.0f, 6.5f, 25.0f, factor), glm::vec4(d, 0.0f)});
+        }
+        const std::vector<ConeOut> r = traceCones(td, h, cones);
+        float radiance = 0.0f, opacity = 0.0f, lowest = 1.0f;
+        for (const ConeOut& c : r) {
+            radiance += c.radiance.x / n;
+            opacity += c.finalOpacity / n;
+            lowest = std::min(lowest, c.radiance.x);
+        }
+        // Measured (lavapipe and llvmpipe alike): mean 0.921 / 0.929 / 0.929 for factors 0.3 / 0.6 / 1.1, the least
+        // 0.56 / 0.62 / 0.62, opacity 0.957 / 0.975 / 0.975. What is missing is mostly the floor's own voxels, which
+        // the first samples of the most grazing cones read.
+        INFO("factor " << factor << ": mean radiance " << radiance << ", least " << lowest << ", mean opacity " << opacity);
+        CHECK(radiance > 0.87f);
+        CHECK(radiance < 1.05f);
+        CHECK(lowest > 0.5f);
+        CHECK(opacity > 0.93f);
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 void anisotropicBox(const std::string& backend) { conesInsideAnEmissiveBox(backend, vct::EmittanceMode::Anisotropic); }
 void isotropicBox(const std::string& backend) { conesInsideAnEmissiveBox(backend, vct::EmittanceMode::Isotropic); }
 
@@ -110,4 +157,5 @@ void isotropicBox(const std::string& backend) { conesInsideAnEmissiveBox(backend
 
 BACKEND_TEST("cones inside an emissive box gather its radiance (anisotropic)", "[vct][quick]", anisotropicBox)
 BACKEND_TEST("cones inside an emissive box gather its radiance (isotropic)", "[vct]", isotropicBox)
+BACKEND_TEST("cones from the floor of a closed emissive room gather its radiance", "[vct][quick]", conesFromTheFloorOfAClosedRoom)
 BACKEND_TEST("cones see a lit wall ahead and nothing through an open side", "[vct]", conesThroughAnOpenSide)
