@@ -54,6 +54,10 @@ struct BlCone {
     // there with the light the surface's finest voxels send back along it — so it cannot gather light from
     // behind a wall thinner than its voxels. 0: unknown (the voxels' opacity alone).
     float surfaceDistance;
+    // The plane of the surface the cone leaves: its unit normal and the world distance from the origin back to it
+    // (a zero normal: none, e.g. a cone from a point in the air). Samples read narrow enough to stay in front of it.
+    vec3 planeNormal;
+    float planeDistance;
 };
 
 struct BlConeResult {
@@ -75,6 +79,8 @@ BlCone blDefaultCone(vec3 origin, vec3 direction, float coneFactor) {
     c.lightLeakLag = 0u;
     c.ambientRange = 0.0;
     c.surfaceDistance = 0.0;
+    c.planeNormal = vec3(0.0);
+    c.planeDistance = 0.0;
     return c;
 }
 
@@ -166,6 +172,9 @@ BlConeResult blTraceCone(BlCone cone) {
     float crossingBase = 1.0, crossingShare = 0.0, crossingStart = 0.0;
     float t = max(cone.firstSampleT, 0.0);
     float surfaceT = cone.surfaceDistance > 0.0 ? cone.surfaceDistance / finest : 1.0e30;
+    bool hasPlane = dot(cone.planeNormal, cone.planeNormal) > 0.0;
+    float planeT = hasPlane ? cone.planeDistance / finest : 1.0e30;
+    float planeCos = hasPlane ? max(dot(cone.direction, cone.planeNormal), 0.0) : 0.0;
     for (int i = 0; i < 256; ++i) {
         // The sample's diameter in finest voxels. Before the surface the axis met (surfaceDistance) samples narrow
         // so as to end in front of it: a sample that reached past it would average in what lies behind the wall
@@ -177,6 +186,10 @@ BlConeResult blTraceCone(BlCone cone) {
         // Wide cones so trace a narrower core near their origin; the diffuse cones' turn each frame covers the rest.
         float width = max(min(t * cone.coneFactor, t / 3.0), 1.0);  // the cone's, where the sample is
         float size = max(min(width, 0.25 * (surfaceT - t)), 1.0);
+        // Nor, for the same reason, wider than a third of its height above the plane of the surface it leaves (the
+        // cone still steps as wide as it is): a grazing cone's reads reached below that plane into the voxels of the
+        // surface's other side — a two-sided floor lit by the sky from below sent that light back up (docs/vct.md).
+        size = max(min(size, (planeT + t * planeCos) / 3.0), 1.0);
         if (surfaceT - t < 1.0) {
             bool known;
             vec3 light = blVctSurfaceRadiance((origin + cone.direction * surfaceT) * finest, cone.direction, known);

@@ -206,6 +206,8 @@ vec3 blVoxelIndirect(BlVoxelFragment f) {
         vec3 d = normalize(sqrt(u) * (cos(phi) * tangent + sin(phi) * bitangent) + sqrt(1.0 - u) * n);
         BlCone c = blDefaultCone(f.position + n * (2.0 * f.voxelSize), d, factor);
         c.firstSampleT = 0.0;
+        c.planeNormal = n;
+        c.planeDistance = 2.0 * f.voxelSize;
         // Samples a width apart: trilinear reads at that spacing still sum a wall's opacity to its whole value,
         // and these cones run for every fragment of the voxelization (half the samples of 0.5, the same light).
         c.tracingStep = 1.0;

@@ -69,6 +69,8 @@ BlCone coneAt(vec3 position, vec3 normal, vec3 direction, float coneFactor) {
     float voxel = voxelSizeAt(position);
     BlCone c = blDefaultCone(position + normal * (trace.cone.w * voxel), direction, coneFactor);
     c.firstSampleT = 0.0;
+    c.planeNormal = normal;
+    c.planeDistance = trace.cone.w * voxel;
     c.tracingStep = trace.cone.y;
     c.opacityCorrection = trace.cone.z;
     // Without emittance (voxel AO) nothing beyond the ambient range matters: the cone stops there.
