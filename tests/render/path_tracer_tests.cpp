@@ -74,6 +74,36 @@ void planeUnderSky(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+void oneBounceCarriesTheSky(const std::string& backend) {
+    // A small upright card (facing the camera, 1 above an endless floor of albedo 0.5) under a uniform sky of 1:
+    // the card's lower half-hemisphere sees the floor, whose radiance is 0.5 (the whole sky lights it), so its
+    // indirect light (irradiance / pi) is 0.5 / 2 = 0.25 after one bounce and after all of them (the floor's
+    // bounces escape to the sky; the card shades a negligible share of it). With maxBounces = 1 the path tracer
+    // used to end at the floor with the sun's light (none here) and not the sky's: 0.
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    scenes::SceneGeometry s;
+    s.meshes.push_back(groundPlane(1e4f, glm::vec3(0.5f)));
+    scenes::TriangleMesh card;
+    card.name = "card";
+    card.positions = {-0.1f, 0.9f, 0.0f, 0.1f, 0.9f, 0.0f, 0.1f, 1.1f, 0.0f, -0.1f, 1.1f, 0.0f};
+    card.indices = {0, 1, 2, 0, 2, 3};
+    card.albedo = glm::vec3(1.0f);
+    s.meshes.push_back(card);
+    for (uint32_t m = 0; m < 2; ++m) s.instances.push_back({m, glm::mat4(1.0f)});
+    s.environment.skyRadiance = glm::vec3(1.0f);
+    s.environment.sunIrradiance = glm::vec3(0.0f);
+    s.camera = {glm::vec3(0, 1, 3), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), 3.0f};  // the card fills the view
+    s.computeBounds();
+    for (uint32_t n : {1u, 2u, render::PathTracerOptions{}.maxBounces}) {
+        auto pt = traced(td, s, 16, 128, true, 1, n);
+        const double indirect = mean(pt->read(render::Aov::IndirectDiffuse)).x;
+        INFO("maxBounces " << n << ": indirect " << indirect << ", expected 0.25");
+        CHECK(indirect == Approx(0.25).epsilon(0.03));
+    }
+    REQUIRE_NO_MESSAGES(td);
+}
+
 void energyConservation(const std::string& backend) {
     // Albedo 1 everywhere under a uniform sky (a white furnace): no energy is lost or gained, so every
     // pixel shows the sky's radiance however the geometry interreflects (the Cornell blocks on a floor).
@@ -184,6 +214,7 @@ void badScenes(const std::string& backend) {
 BACKEND_TEST("path tracer: white furnace converges to the analytic radiance", "[render]", whiteFurnace)
 BACKEND_TEST("path tracer: a plane under a uniform sky", "[render][quick]", planeUnderSky)
 BACKEND_TEST("path tracer: albedo 1 under a uniform sky conserves energy", "[render]", energyConservation)
+BACKEND_TEST("path tracer: one bounce carries the sky's light at the bounce", "[render]", oneBounceCarriesTheSky)
 BACKEND_TEST("path tracer: combined = direct + albedo * indirect-diffuse", "[render]", aovsAreConsistent)
 BACKEND_TEST("path tracer: cornell converges", "[render]", cornellConverges)
 BACKEND_TEST("path tracer: bad scenes give clear errors", "[render]", badScenes)

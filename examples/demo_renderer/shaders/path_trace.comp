@@ -5,7 +5,7 @@
 // Lambertian + GGX materials (scene_trace.glsl's BRDF), one-sided emitters, a uniform sky and a sun. Direct light from emitters and the
 // sun by next-event estimation only (emission is counted on camera rays; a path that hits an emitter
 // later carries its reflected light but not its emission, which NEE has already counted), light from the
-// sky by escaping paths; directions sampled from the BRDF. Russian roulette from the fourth vertex on. Each dispatch adds `samples` samples
+// sky by escaping paths (past the last bounce too); directions sampled from the BRDF. Russian roulette from the fourth vertex on. Each dispatch adds `samples` samples
 // per pixel to running sums of the AOVs:
 //   0 combined   radiance along the camera ray
 //   1 direct     emission seen + light that reaches the primary hit straight from an emitter, the sun or the sky
@@ -67,7 +67,10 @@ void main() {
         bool countEmission = true;  // camera rays, and rays a glass vertex sampled
         bool glassPixel = false;
         // Vertex k = 0 is the primary hit; the ray of vertex k leaves vertex k − 1.
-        for (uint k = 0u; k <= sceneLight.counts.z; ++k) {
+        // One vertex past the last bounce (counts.z) the ray only looks for the sky: the last vertex's light includes
+        // the sky as it includes the sun and the emitters (next-event estimation), so that a path of n bounces carries
+        // all of the light that reaches it after n reflections (maxBounces = 1 is then one bounce of every light).
+        for (uint k = 0u; k <= sceneLight.counts.z + 1u; ++k) {
             Hit hit;
             if (!traceRay(origin, d, k == 0u ? 0.0 : eps, 1e30, false, hit)) {
                 // The camera ray, or the primary hit's ray, escaping to the sky is direct light.
@@ -77,6 +80,7 @@ void main() {
                 if (k == 0u) aovs[6] += vec3(1.0);
                 break;
             }
+            if (k > sceneLight.counts.z) break;
             vec3 p = origin + d * hit.t;
             vec3 ng = triangleNormal(hit.triangle);
             bool front = dot(ng, d) < 0.0;
