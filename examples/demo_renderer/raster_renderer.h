@@ -94,6 +94,9 @@ struct RasterOptions {
     // Voxel cone tracing (giTechnique Vct, or vxao): the clip-map is centred on the scene; its finest level
     // holds the scene's bounds with a margin, each next level doubles.
     uint32_t vctResolution = 64, vctLevels = 5;
+    // The finest level's voxel size in world units (> 0); 0: as large as holding the scene in the finest level
+    // asks. Smaller voxels resolve smaller things (grass a voxel tall is one layer) near the scene's centre.
+    float vctFinestVoxel = 0.0f;
     vct::EmittanceMode vctEmittance = vct::EmittanceMode::Anisotropic;
     uint32_t vctLightSamples = 4;  // light samples per voxelization fragment
     float vctThickness = 1.0f;     // vct::VoxelMaterial::thickness of every surface (two-sided: half each side)

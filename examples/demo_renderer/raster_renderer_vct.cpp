@@ -29,6 +29,7 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
     desc.persistent = !options_.giFeedback;
     // The finest level holds the scene with a margin (the anchor snaps to even voxels: two voxels each side).
     desc.finestVoxelSize = std::max(side * 1.1f, 1e-6f) / float(std::max(desc.resolution, 8u) - 4);
+    if (options_.vctFinestVoxel > 0.0f) desc.finestVoxelSize = options_.vctFinestVoxel;
     Error why;
     if (options_.vctSdfOcclusion && !sdf_ && !createSdf(scene, error)) return false;
     clipmap_ = vct::Clipmap::create(device_, desc, &why);

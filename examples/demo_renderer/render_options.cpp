@@ -144,6 +144,17 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
     }
     if (a == "--shadow-resolution") return whole(kMinShadowResolution, kMaxShadowResolution, &o.sunShadows.resolution);
     if (a == "--shadow-pcf") return whole(0, kMaxShadowPcfRadius, &o.sunShadows.pcfRadius);
+    if (a == "--vct-voxel") {
+        if (!value()) return OptionParse::Error;
+        char* end = nullptr;
+        const float size = std::strtof(v, &end);
+        if (!*v || *end || !(size > 0.0f && size < 1.0e6f)) {
+            *error = "--vct-voxel expects the finest voxel's size in scene units, above 0 (got '" + std::string(v) + "')";
+            return OptionParse::Error;
+        }
+        o.vctVoxel = size;
+        return OptionParse::Consumed;
+    }
     if (a == "--sun-angle") {
         if (!value()) return OptionParse::Error;
         char* end = nullptr;
@@ -253,7 +264,7 @@ bool checkSharedOptions(const RenderOptions& o, std::string* error) {
 const char* sharedOptionsUsage() {
     return "  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]\n"
            "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
-           "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--gi-unseen vxgi|none]\n"
+           "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--vct-voxel SIZE] [--gi-unseen vxgi|none]\n"
            "  [--shadows bvh|shadowmap|hybrid] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
            "  [--sun-angle DEGREES]\n"
            "  [--reflections gi|hybrid] [--foliage alpha-aware|opaque|left-out] [--single-bounce] [--validate]\n"
@@ -285,6 +296,7 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.vxao = o.vxao;
     ro.vctSdfOcclusion = o.vctSdfOcclusion;
     ro.giUnseenFromVct = o.giUnseenFromVct;
+    ro.vctFinestVoxel = o.vctVoxel;
     ro.giResolution = o.giScale;
     ro.giFeedback = !o.singleBounce;
     ro.shadows = o.shadows;
