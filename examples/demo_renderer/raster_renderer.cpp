@@ -4,6 +4,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bricklight/half.h"
+#include "specular_albedo.h"
 
 namespace bricklight::render {
 
@@ -80,6 +81,17 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
     sd.debugName = "gbuffer point";
     r->point_ = device.createSampler(sd);
+    sd = rhi::SamplerDesc{};
+    sd.mipFilter = rhi::Filter::Nearest;
+    sd.debugName = "composite linear";
+    r->linear_ = device.createSampler(sd);
+    rhi::TextureDesc ad;
+    ad.format = rhi::Format::RG32_FLOAT;
+    ad.width = ad.height = kSpecularAlbedoSize;
+    ad.usage = rhi::TextureUsage::Sampled;
+    ad.debugName = "specular albedo";
+    r->specularAlbedo_ = device.createTexture(ad);
+    if (r->specularAlbedo_) device.writeTexture(r->specularAlbedo_, {}, specularAlbedoTable().data());
     rhi::BufferDesc bd;
     bd.size = uint64_t(options.width) * options.height * 16;
     bd.debugName = "direct lighting";
@@ -87,7 +99,8 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     bd.debugName = "combined";
     r->combined_ = device.createBuffer(bd);
     if (!r->vertex_ || !r->fragment_ || !r->lighting_ || !r->composite_ || !r->albedo_ || !r->normal_ || !r->emission_ || !r->motion_ ||
-        !r->position_ || !r->depth_ || !r->lit_ || !r->giDiffuse_ || !r->giSpecular_ || !r->point_ || !r->direct_ || !r->combined_)
+        !r->position_ || !r->depth_ || !r->lit_ || !r->giDiffuse_ || !r->giSpecular_ || !r->point_ || !r->direct_ || !r->combined_ ||
+        !r->linear_ || !r->specularAlbedo_)
         return fail("the device could not create the G-buffer or the lighting pass (see its messages)");
     rhi::ClearValue zero{};
     for (rhi::TextureHandle t : {r->lit_, r->giDiffuse_, r->giSpecular_}) device.clearTexture(t, 0, 1, zero);
@@ -138,11 +151,12 @@ RasterRenderer::~RasterRenderer() {
     for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_, glassFragment_, alphaPassVertex_, alphaPassFragment_})
         if (s) device_.destroy(s);
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_,
-                                 glassRadiance_, glassDepth_})
+                                 glassRadiance_, glassDepth_, specularAlbedo_})
         if (t) device_.destroy(t);
     for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_, display_})
         if (s) device_.destroy(s);
     if (point_) device_.destroy(point_);
+    if (linear_) device_.destroy(linear_);
     if (direct_) device_.destroy(direct_);
     if (combined_) device_.destroy(combined_);
 }
@@ -256,6 +270,7 @@ void RasterRenderer::composite() {
     uint8_t slot = 0;
     for (rhi::TextureHandle t : {albedo_, normal_, emission_, position_, giDiffuse_, giSpecular_, glassRadiance_, reflections_})
         k.bindings.textures.push({slot++, rhi::wholeTexture(t), point_});
+    k.bindings.textures.push({slot++, rhi::wholeTexture(specularAlbedo_), linear_});
     k.bindings.readBuffers.push({0, directMean_, {}});
     k.bindings.storageBuffers.push({0, combined_, {}, rhi::Access::Write});
     rhi::StorageImageBinding li;

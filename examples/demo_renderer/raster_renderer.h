@@ -291,6 +291,8 @@ private:
     void traceReflections(bool resetHistory);  // after GI, before the composite
     std::unique_ptr<reflections::ReflectionClassifier> reflectionClassifier_;
     std::unique_ptr<reflections::ReflectionDenoiser> reflectionDenoiser_;
+    rhi::TextureHandle specularAlbedo_;  // the split sum's (A, B) over n·v and roughness (specular_albedo.h)
+    rhi::SamplerHandle linear_;
     rhi::TextureHandle reflections_, reflectionTraced_;  // reflections_ is a 1×1 transparent stand-in when off
     uint32_t reflectionFrame_ = 0;
     Image readGi(rhi::TextureHandle t);

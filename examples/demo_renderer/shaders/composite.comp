@@ -3,7 +3,7 @@
 #include "bricklight/bindings.glsl"
 // The fast path's final image: direct light + GI, composited like image-based lighting (design §5):
 //   combined = direct + (1 - metalness) · base · diffuseGI + specularGI · (F0 · A + B)
-// with (A, B) the split-sum scale and bias of the GGX BRDF (Karis' analytic fit). Surfaces with F0 = 0
+// with (A, B) the split-sum scale and bias of our GGX lobe (specular_albedo.h: integrated, not fitted). Surfaces with F0 = 0
 // are exactly Lambertian in our BRDF and get no specular term. Also writes the "lit" image that GI
 // injects next frame: what surfaces send back into the scene, i.e. the combined radiance without the
 // emitters' own emission (direct lighting already samples the emitters; counting their emission again
@@ -26,17 +26,10 @@ BL_TEXTURE(4) uniform sampler2D diffuseGI;
 BL_TEXTURE(5) uniform sampler2D specularGI;
 BL_TEXTURE(6) uniform sampler2D glassRadiance;  // 1×1 and transparent while no glass is drawn
 BL_TEXTURE(7) uniform sampler2D reflections;    // rgb, a = weight over the GI's specular; 1×1 and transparent when off
+BL_TEXTURE(8) uniform sampler2D specularAlbedo;  // rg: the split sum's (A, B) at (n·v, roughness), specular_albedo.h
 BL_READ_BUFFER(0) Direct { vec4 direct[]; };
 BL_STORAGE_BUFFER(0) Combined { vec4 combined[]; };
 BL_IMAGE(0, rgba16f) uniform writeonly image2D lit;
-
-vec2 splitSum(float roughness, float nDotV) {
-    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
-    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
-    vec4 r = roughness * c0 + c1;
-    float a004 = min(r.x * r.x, exp2(-9.28 * nDotV)) * r.x + r.y;
-    return vec2(-1.04, 1.04) * a004 + r.zw;
-}
 
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -60,7 +53,7 @@ void main() {
         float nDotV = clamp(dot(n, normalize(params.eye.xyz - position.xyz)), 1e-4, 1.0);
         vec3 gi = (1.0 - metalness) * albedo.rgb * texelFetch(diffuseGI, ivec2(pixel), 0).rgb;
         if (any(greaterThan(f0, vec3(0.0)))) {
-            vec2 ab = splitSum(albedo.a, nDotV);
+            vec2 ab = textureLod(specularAlbedo, vec2(nDotV, albedo.a), 0.0).rg;
             vec3 specular = texelFetch(specularGI, ivec2(pixel), 0).rgb;
             vec4 reflection = texelFetch(reflections, min(ivec2(pixel), textureSize(reflections, 0) - 1), 0);
             specular = mix(specular, reflection.rgb, clamp(reflection.a, 0.0, 1.0));
