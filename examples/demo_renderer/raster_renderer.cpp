@@ -91,7 +91,8 @@ std::unique_ptr<RasterRenderer> RasterRenderer::create(rhi::IDevice& device, con
     ad.usage = rhi::TextureUsage::Sampled;
     ad.debugName = "specular albedo";
     r->specularAlbedo_ = device.createTexture(ad);
-    if (r->specularAlbedo_) device.writeTexture(r->specularAlbedo_, {}, specularAlbedoTable().data());
+    if (r->specularAlbedo_ && !device.writeTexture(r->specularAlbedo_, {}, specularAlbedoTable().data()))
+        return fail("the device could not upload the specular albedo table (see its messages)");
     rhi::BufferDesc bd;
     bd.size = uint64_t(options.width) * options.height * 16;
     bd.debugName = "direct lighting";
