@@ -25,11 +25,16 @@ scenes::SceneGeometry glossyFloorCornell() {
 
 namespace {
 
-ReferenceRecipe recipe(std::string name, scenes::SceneGeometry scene, uint32_t size, uint32_t spp, uint32_t maxBounces) {
+ReferenceRecipe recipe(std::string name, scenes::SceneGeometry scene, uint32_t width, uint32_t height, uint32_t spp,
+                       uint32_t maxBounces) {
     ReferenceRecipe r{std::move(name), std::move(scene), {}, spp};
-    r.options.width = r.options.height = size;
+    r.options.width = width;
+    r.options.height = height;
     r.options.maxBounces = maxBounces;
     return r;
+}
+ReferenceRecipe recipe(std::string name, scenes::SceneGeometry scene, uint32_t size, uint32_t spp, uint32_t maxBounces) {
+    return recipe(std::move(name), std::move(scene), size, size, spp, maxBounces);
 }
 
 Reference traceRecipe(TestDevice& td, const std::string& name) {
@@ -50,6 +55,7 @@ std::vector<ReferenceRecipe> referenceRecipes() {
         recipe("cornell-mirror-0.05-one-bounce", scenes::cornellMirror(0.05f), 128, 512, 1),
         recipe("cornell-mirror-0.3-one-bounce", scenes::cornellMirror(0.3f), 128, 512, 1),
         recipe("cornell-glass", scenes::cornellGlass(), 128, 512, all),
+        recipe("corridor", scenes::corridor(), kCorridorWidth, kCorridorHeight, 1024, all),
     };
 }
 
@@ -71,5 +77,6 @@ Reference mirrorFloorReference(TestDevice& td, float roughness) {
     return traceRecipe(td, roughness == 0.05f ? "cornell-mirror-0.05-one-bounce" : "cornell-mirror-0.3-one-bounce");
 }
 Reference cornellGlassReference(TestDevice& td) { return traceRecipe(td, "cornell-glass"); }
+Reference corridorReference(TestDevice& td) { return traceRecipe(td, "corridor"); }
 
 }  // namespace bricklight::testing

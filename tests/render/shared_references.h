@@ -37,5 +37,8 @@ Reference glossyFloorReference(TestDevice& td);
 Reference foliageReference(TestDevice& td, bool sunBehindCards);  // foliage_test_support.h's scene, 64², 256 spp
 Reference mirrorFloorReference(TestDevice& td, float roughness);   // cornellMirror(0.05 or 0.3), 1 bounce
 Reference cornellGlassReference(TestDevice& td);
+// The built-in corridor (single-sided walls, the lamp around a corner), kCorridorWidth × kCorridorHeight, 1024 spp.
+constexpr uint32_t kCorridorWidth = 96, kCorridorHeight = 64;
+Reference corridorReference(TestDevice& td);
 
 }  // namespace bricklight::testing

@@ -9,6 +9,7 @@ foreach(backend vulkan gl)
       [=[GI on the Cornell box against the path tracer]=]
       [=[GI's single bounce on the Cornell box against the path tracer's]=]
       [=[GI's specular on a glossy floor against the path tracer]=]
+      [=[GI around a corner of single-sided walls against the path tracer]=]
       [=[voxel cone tracing on the Cornell box against the path tracer]=]
       [=[voxel cone tracing's single bounce against the path tracer's]=]
       [=[voxel cone tracing's specular on a glossy floor against the path tracer]=]

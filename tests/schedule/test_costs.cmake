@@ -14,6 +14,8 @@ set_tests_properties([=[voxel cone tracing's light leak through a wall per setti
 set_tests_properties([=[glass: cornell-glass through voxel cone tracing against the path tracer (gl)]=] PROPERTIES COST 71.5)
 set_tests_properties([=[voxel cone tracing with cones stopped by the distance field (gl)]=] PROPERTIES COST 69.2)
 set_tests_properties([=[SDF GI lighting unseen surfaces from the clip-map (vulkan)]=] PROPERTIES COST 58.5)
+set_tests_properties([=[GI in a closed emitting sphere gives the closed form's light, one bounce and every bounce (vulkan)]=] PROPERTIES COST 57.0)
+set_tests_properties([=[GI in a closed emitting sphere gives the closed form's light, one bounce and every bounce (gl)]=] PROPERTIES COST 54.0)
 set_tests_properties([=[foliage: voxel cone tracing's alpha-aware cards against built-opaque and left-out ones, and the path tracer (vulkan)]=] PROPERTIES COST 54.2)
 set_tests_properties([=[foliage: the SDF GI's alpha-aware cards against built-opaque and left-out ones, and the path tracer (vulkan)]=] PROPERTIES COST 53.2)
 set_tests_properties([=[foliage: the SDF GI's alpha-aware cards against built-opaque and left-out ones, and the path tracer (gl)]=] PROPERTIES COST 52.1)
