@@ -53,15 +53,15 @@ void SdfSceneImpl::scrollCascades(const glm::vec3& center) {
     }
 }
 
-// Triangles of the instances a job needs that are not chosen yet; marks and lists them.
-uint32_t SdfSceneImpl::trianglesFor(const Job& job, std::vector<char>& chosen, std::vector<uint32_t>& picked) const {
+// Triangles of the static (or dynamic) instances a job needs that are not chosen yet; marks and lists them.
+uint32_t SdfSceneImpl::trianglesFor(const Job& job, bool dynamic, std::vector<char>& chosen, std::vector<uint32_t>& picked) const {
     const float vs = voxelSize(job.cascade), b = band(job.cascade);
     const glm::vec3 lo = glm::vec3(job.min) * vs - b, hi = glm::vec3(job.max) * vs + b;
     uint32_t total = 0;
     size_t index = 0;
     for (const auto& [id, inst] : instances_) {
         const size_t i = index++;
-        if (chosen[i] || inst.maxCascade < job.cascade) continue;
+        if (chosen[i] || inst.dynamic != dynamic || inst.maxCascade < job.cascade) continue;
         if (glm::any(glm::lessThan(inst.bounds.max, lo)) || glm::any(glm::greaterThan(inst.bounds.min, hi))) continue;
         total += meshes_.at(inst.mesh.id).triangleCount;
         picked.push_back(uint32_t(i));
@@ -109,30 +109,10 @@ static void mergeJobs(std::vector<Job>& jobs, size_t cap) {
     }
 }
 
-Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
-    // Dynamic instances: their old and new footprints, every update.
-    for (auto& [id, inst] : instances_)
-        if (inst.dynamic) {
-            if (inst.built) markDirty(inst.builtBounds, inst.maxCascade);
-            markDirty(inst.bounds, inst.maxCascade);
-            inst.builtBounds = inst.bounds;
-            inst.built = true;
-        }
-    std::vector<Job> candidates = std::move(pending_);
-    pending_.clear();
-    for (size_t i = 0; i < dirtyBoxes_.size(); ++i)
-        for (uint32_t c = 0; c <= std::min(dirtyMaxCascade_[i], desc_.cascadeCount - 1); ++c) {
-            const float vs = voxelSize(c), b = band(c);
-            // Voxels whose closed box (its lattice reaches the far faces) comes within the band of the box.
-            Job job{c, glm::ivec3(glm::ceil((dirtyBoxes_[i].min - b) / vs)) - 1,
-                    glm::ivec3(glm::floor((dirtyBoxes_[i].max + b) / vs)) + 1};
-            candidates.push_back(job);
-        }
-    dirtyBoxes_.clear();
-    dirtyMaxCascade_.clear();
-    if (candidates.size() <= 4096) dropContainedJobs(candidates);  // quadratic: skipped for floods
-
-    Plan plan;
+// Takes candidate jobs in order while the budgets allow (a job alone over one is split); the rest wait in
+// pending_ (a full job) or become full jobs there (an overlay job: its voxels are invalidated now, so that no
+// composite shows a dynamic instance where it was, and built from scratch later).
+void SdfSceneImpl::planRound(std::vector<Job> candidates, bool dynamic, Round& round, uint32_t& changedCascades) {
     std::vector<char> chosen(instances_.size(), 0);
     std::vector<uint32_t> instanceOrder;
     instanceOrder.reserve(instances_.size());
@@ -147,14 +127,14 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
             continue;
         }
         std::vector<uint32_t> picked;
-        const uint32_t extra = trianglesFor(job, chosen, picked);
-        const bool fits = plan.jobs.size() < budgets.maxJobsPerUpdate &&
-                          plan.voxels + job.voxels() <= std::min<uint64_t>(budgets.maxVoxelsPerUpdate, adaptiveVoxelLimit_) &&
-                          uint64_t(plan.triangles) + extra <= budgets.maxTrianglesPerUpdate;
+        const uint32_t extra = trianglesFor(job, dynamic, chosen, picked);
+        const bool fits = round.jobs.size() < budgets.maxJobsPerUpdate &&
+                          round.voxels + job.voxels() <= std::min<uint64_t>(budgets.maxVoxelsPerUpdate, adaptiveVoxelLimit_) &&
+                          uint64_t(round.triangles) + extra <= budgets.maxTrianglesPerUpdate;
         if (!fits) {
             // A job alone over a budget is split in two along its longest side until it fits.
             const glm::ivec3 size = job.max - job.min;
-            const bool alone = plan.jobs.empty();
+            const bool alone = round.jobs.empty();
             if (alone && job.voxels() > 1) {
                 const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
                 Job a = job, b = job;
@@ -168,6 +148,7 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
                          " triangles, more than maxTrianglesPerUpdate (" + std::to_string(budgets.maxTrianglesPerUpdate) +
                          "): it stays unbuilt (traced through the next cascade); raise the budget");
                 oversizeReported_ = true;
+                if (dynamic) pending_.push_back(job);  // its old composite must not stay
                 continue;
             }
             full = true;
@@ -176,13 +157,45 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
         }
         for (uint32_t i : picked) {
             chosen[i] = 1;
-            plan.instances.push_back(instanceOrder[i]);
+            round.instances.push_back(instanceOrder[i]);
         }
-        plan.triangles += extra;
-        plan.voxels += job.voxels();
-        plan.changedCascades |= 1u << job.cascade;
-        plan.jobs.push_back(job);
+        round.triangles += extra;
+        round.voxels += job.voxels();
+        changedCascades |= 1u << job.cascade;
+        round.jobs.push_back(job);
     }
+}
+
+Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
+    // Per cascade up to its highest, the voxels whose closed box (its lattice reaches the far faces) comes
+    // within the band of a box.
+    auto jobsFor = [&](const WorldBox& box, uint32_t maxCascade, std::vector<Job>& out) {
+        for (uint32_t c = 0; c <= std::min(maxCascade, desc_.cascadeCount - 1); ++c) {
+            const float vs = voxelSize(c), b = band(c);
+            out.push_back({c, glm::ivec3(glm::ceil((box.min - b) / vs)) - 1, glm::ivec3(glm::floor((box.max + b) / vs)) + 1});
+        }
+    };
+    // Dynamic instances: their old and new footprints are the overlay, every update.
+    std::vector<Job> overlay;
+    for (auto& [id, inst] : instances_)
+        if (inst.dynamic) {
+            if (inst.built) jobsFor(inst.builtBounds, inst.maxCascade, overlay);
+            jobsFor(inst.bounds, inst.maxCascade, overlay);
+            inst.builtBounds = inst.bounds;
+            inst.built = true;
+        }
+    std::vector<Job> candidates = std::move(pending_);
+    pending_.clear();
+    for (size_t i = 0; i < dirtyBoxes_.size(); ++i) jobsFor(dirtyBoxes_[i], dirtyMaxCascade_[i], candidates);
+    dirtyBoxes_.clear();
+    dirtyMaxCascade_.clear();
+    if (candidates.size() <= 4096) dropContainedJobs(candidates);  // quadratic: skipped for floods
+    if (overlay.size() <= 4096) dropContainedJobs(overlay);
+
+    Plan plan;
+    planRound(std::move(candidates), false, plan.full, plan.changedCascades);
+    planRound(std::move(overlay), true, plan.overlay, plan.changedCascades);
+    const Budgets& budgets = desc_.budgets;
     // Jobs deferred for the first time are invalidated now, so that no voxel shows what its toroidal slot
     // held before (or geometry that moved away); tracing falls to the next cascade there until they are
     // built. Too many: neighbours are merged (invalidating and rebuilding more than needed is safe).
@@ -195,10 +208,13 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
     pending_ = std::move(waiting);
     pending_.insert(pending_.end(), fresh.begin(), fresh.end());
     mergeJobs(pending_, 64 * size_t(budgets.maxJobsPerUpdate));
-    report.jobs = uint32_t(plan.jobs.size());
-    report.voxels = uint32_t(plan.voxels);
-    report.instancesGathered = uint32_t(plan.instances.size());
-    report.trianglesGathered = plan.triangles;
+    report.jobs = uint32_t(plan.full.jobs.size() + plan.overlay.jobs.size());
+    report.voxels = uint32_t(plan.full.voxels + plan.overlay.voxels);
+    report.instancesGathered = uint32_t(plan.full.instances.size() + plan.overlay.instances.size());
+    report.trianglesGathered = plan.full.triangles + plan.overlay.triangles;
+    report.overlayJobs = uint32_t(plan.overlay.jobs.size());
+    report.overlayVoxels = uint32_t(plan.overlay.voxels);
+    report.overlayTrianglesGathered = plan.overlay.triangles;
     report.jobsDeferred = uint32_t(pending_.size());
     for (const Job& j : pending_) report.voxelsDeferred += uint32_t(j.voxels());
     return plan;

@@ -14,6 +14,8 @@ constexpr uint32_t kBrickTexels = kBrickResolution * kBrickResolution * kBrickRe
 constexpr uint32_t kEmpty = 0xFFFFFFFEu;
 constexpr uint32_t kUnbuilt = 0xFFFFFFFFu;
 constexpr uint32_t kFirstState = 0xFFFFFFF0u;
+constexpr uint32_t kNoBase = 0xFFFFFFFCu;  // base map: no static brick kept aside (BL_SDF_NO_BASE)
+static_assert(kNoBase == FieldSnapshot::kNoBase);
 constexpr uint32_t kAabbNone = 0xFFFFFFFFu;
 // Brick AABB flag: the brick holds surfaces of alpha-tested instances (InstanceDesc::alphaTested). The brick
 // AABB buffer holds capacity words of boxes, then two words per brick: the 4³ cells opaque surfaces reach.
@@ -50,6 +52,7 @@ enum Counter : uint32_t {
     TrianglesProcessed,
     RefsStored,
     FreeAtAllocation,
+    RefsInUpdate,
     CounterCount = 16
 };
 

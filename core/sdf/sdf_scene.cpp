@@ -52,14 +52,14 @@ SdfSceneImpl::~SdfSceneImpl() {
             device_.destroy(m.vertexBuffer);
             device_.destroy(m.indexBuffer);
         }
-    for (rhi::BufferHandle b : {cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
+    for (rhi::BufferHandle b : {cascadeTable_, brickMaps_, baseMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
                                 voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
         if (b) device_.destroy(b);
     if (atlas_) device_.destroy(atlas_);
     if (atlasSampler_) device_.destroy(atlasSampler_);
     for (rhi::ShaderHandle s : {shaders_.invalidate, shaders_.gather, shaders_.count, shaders_.prepare, shaders_.allocate,
-                                shaders_.scatter, shaders_.emit, shaders_.resolve, shaders_.treeBottom, shaders_.treeTop,
-                                shaders_.debug})
+                                shaders_.scatter, shaders_.emit, shaders_.resolve, shaders_.prepareOverlay, shaders_.resolveOverlay,
+                                shaders_.treeBottom, shaders_.treeTop, shaders_.debug})
         if (s) device_.destroy(s);
 }
 
@@ -148,7 +148,8 @@ bool SdfSceneImpl::init(Error* error) {
         !shader("sdf/count_references.comp", &shaders_.count) || !shader("sdf/prepare_args.comp", &shaders_.prepare) ||
         !shader("sdf/allocate_bricks.comp", &shaders_.allocate) ||
         !shader("sdf/scatter_references.comp", &shaders_.scatter) || !shader("sdf/emit_distances.comp", &shaders_.emit) ||
-        !shader("sdf/resolve_empty.comp", &shaders_.resolve) || !shader("sdf/build_tree_bottom.comp", &shaders_.treeBottom) ||
+        !shader("sdf/resolve_empty.comp", &shaders_.resolve) || !shader("sdf/prepare_overlay.comp", &shaders_.prepareOverlay) ||
+        !shader("sdf/resolve_overlay.comp", &shaders_.resolveOverlay) || !shader("sdf/build_tree_bottom.comp", &shaders_.treeBottom) ||
         !shader("sdf/build_tree_top.comp", &shaders_.treeTop) || !shader("sdf/debug_view.comp", &shaders_.debug))
         return false;
 
@@ -172,6 +173,8 @@ bool SdfSceneImpl::init(Error* error) {
 
     std::vector<uint32_t> unbuilt(mapEntries, layout::kUnbuilt);
     brickMaps_ = makeBuffer("brickMaps", mapEntries * 4, rw, unbuilt.data());
+    std::vector<uint32_t> noBase(mapEntries, layout::kNoBase);
+    baseMaps_ = makeBuffer("baseMaps", mapEntries * 4, rw, noBase.data());
     std::vector<uint32_t> emptyTrees(size_t(d.cascadeCount) * layout::kTreeStride, 0);
     trees_ = makeBuffer("trees", emptyTrees.size() * 4, rw, emptyTrees.data());
     // Boxes and opaque cells start as "none", materials as "unknown" (0).
@@ -200,7 +203,7 @@ bool SdfSceneImpl::init(Error* error) {
     jobTable_ = makeBuffer("jobTable", (layout::kJobTableHeadInts + 4ull * b.maxJobsPerUpdate) * 16, ShaderRead);
     overlays_ = makeBuffer("debugOverlays", 32ull * std::max(1u, d.maxBoundsOverlays), ShaderRead);
 
-    for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
+    for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, baseMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
                                 voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the field's buffers (see the device's messages)");
     if (!atlas_ || !atlasSampler_) return bad(ErrorCode::DeviceFailure, "the device could not create the brick atlas (see the device's messages)");
@@ -221,7 +224,7 @@ MemoryUse SdfSceneImpl::memoryUse() const {
     const uint64_t side = uint64_t(desc_.atlasBricksPerAxis) * kBrickResolution;
     add("atlas (R8_UNORM 3D)", side * side * side);
     for (auto [name, h] : std::initializer_list<std::pair<const char*, rhi::BufferHandle>>{
-             {"brickMaps", brickMaps_}, {"trees", trees_}, {"brickAabbs (boxes, cells, materials)", brickAabbs_}, {"brickOwners", brickOwners_},
+             {"brickMaps", brickMaps_}, {"baseMaps", baseMaps_}, {"trees", trees_}, {"brickAabbs (boxes, cells, materials)", brickAabbs_}, {"brickOwners", brickOwners_},
              {"freeStack", freeStack_}, {"voxelReferenceCounts", voxelRefs_}, {"cascadeTable", cascadeTable_},
              {"counters+args", counters_}, {"triangles (scratch)", triangles_}, {"references (scratch)", references_},
              {"sortedReferences (scratch)", sortedReferences_}, {"touchedVoxels (scratch)", touched_},
@@ -254,14 +257,16 @@ FieldSnapshot SdfSceneImpl::readField() {
     s.brickMaterials.resize(size_t(brickCapacity()) * layout::kMaterialWords);
     device_.readBuffer(brickAabbs_, uint64_t(brickCapacity()) * 4 * (1 + layout::kOpaqueCellWords), s.brickMaterials.size() * 4,
                        s.brickMaterials.data());
-    std::vector<uint32_t> maps(size_t(desc_.cascadeCount) * layout::kCascadeVoxels);
+    std::vector<uint32_t> maps(size_t(desc_.cascadeCount) * layout::kCascadeVoxels), bases(maps.size());
     device_.readBuffer(brickMaps_, 0, maps.size() * 4, maps.data());
+    device_.readBuffer(baseMaps_, 0, bases.size() * 4, bases.data());
     for (uint32_t c = 0; c < desc_.cascadeCount; ++c) {
         FieldSnapshot::Cascade fc;
         fc.origin = cascades_[c].origin;
         fc.voxelSize = voxelSize(c);
         fc.brickMap.assign(maps.begin() + size_t(c) * layout::kCascadeVoxels,
                            maps.begin() + size_t(c + 1) * layout::kCascadeVoxels);
+        fc.baseMap.assign(bases.begin() + size_t(c) * layout::kCascadeVoxels, bases.begin() + size_t(c + 1) * layout::kCascadeVoxels);
         s.cascades.push_back(std::move(fc));
     }
     pollStats();

@@ -59,14 +59,22 @@ struct Job {
     }
 };
 
-// What update() decided to do, before recording.
-struct Plan {
-    std::vector<Job> jobs;            // built by this update
-    std::vector<Job> invalidateOnly;  // deferred: their voxels become UNBUILT now (no stale bricks)
+// One round of building: jobs and the instances whose triangles they need.
+struct Round {
+    std::vector<Job> jobs;
     std::vector<uint32_t> instances;  // ids to gather
     uint32_t triangles = 0;
     uint64_t voxels = 0;
-    uint32_t changedCascades = 0;  // scrolled or with jobs: their trees are rebuilt
+};
+
+// What update() decided to do, before recording. Full jobs build the static field from the static
+// instances; then the overlay (the old and new footprints of the dynamic instances) is built from the dynamic
+// instances alone, over the static field kept aside there (its base bricks).
+struct Plan {
+    Round full;
+    Round overlay;
+    std::vector<Job> invalidateOnly;  // deferred: their voxels become UNBUILT now (no stale bricks)
+    uint32_t changedCascades = 0;     // scrolled or with jobs: their trees are rebuilt
 };
 
 struct InFlightStats {
@@ -124,11 +132,14 @@ private:
     void scrollCascades(const glm::vec3& center);
     Plan planUpdate(UpdateReport& report);
     bool clipToCascade(Job& job) const;
-    uint32_t trianglesFor(const Job& job, std::vector<char>& chosen, std::vector<uint32_t>& picked) const;
+    uint32_t trianglesFor(const Job& job, bool dynamic, std::vector<char>& chosen, std::vector<uint32_t>& picked) const;
+    void planRound(std::vector<Job> candidates, bool dynamic, Round& round, uint32_t& changedCascades);
 
     // sdf_update.cpp
     void writeCascadeTable();
     void recordBuild(const Plan& plan);
+    void writeJobTable(const std::vector<Job>& build, const std::vector<Job>& invalidateOnly);
+    void recordRound(const Round& round);  // gather .. emit distances
     void recordTrees(uint32_t cascadeMask);
     void pollStats();
 
@@ -138,7 +149,8 @@ private:
     std::shared_ptr<const bool> alive_ = std::make_shared<const bool>(true);  // expires with the scene
 
     struct Shaders {
-        rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, resolve, treeBottom, treeTop, debug;
+        rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, resolve, prepareOverlay, resolveOverlay, treeBottom,
+            treeTop, debug;
     } shaders_;
 
     // Persistent resources.
@@ -146,6 +158,7 @@ private:
     rhi::SamplerHandle atlasSampler_;
     rhi::BufferHandle cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_;
     rhi::BufferHandle voxelRefs_;
+    rhi::BufferHandle baseMaps_;  // u32 per (cascade, voxel slot): the static field's brick under a composite
     // Per-update scratch, sized by the budgets.
     rhi::BufferHandle triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_;
     uint32_t touchedCapacity_ = 0;

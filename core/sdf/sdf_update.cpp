@@ -1,6 +1,9 @@
 // One update as records: cascade table, job table, then the passes
-//   invalidate -> gather (per instance) -> count references -> prepare -> allocate -> prepare ->
-//   scatter -> emit distances -> resolve empty -> tree bottom -> tree top
+//   full round:    invalidate -> gather (per static instance) -> count references -> prepare -> allocate ->
+//                  prepare -> scatter -> emit distances -> resolve empty
+//   overlay round: prepare overlay -> gather (per dynamic instance) -> ... -> emit distances (min with the
+//                  base) -> resolve overlay
+//   then tree bottom -> tree top
 // with GPU-sized (indirect) dispatches after the counting pass, and a non-blocking read-back of the
 // counters whose results arrive a few updates later (stats, and re-queuing work the GPU had to defer).
 #include <cstring>
@@ -67,7 +70,7 @@ UpdateReport SdfSceneImpl::update(const glm::vec3& center) {
     report.jobsRetried = retriedJobs_;
     retriedJobs_ = 0;
     writeCascadeTable();
-    if (!plan.jobs.empty() || !plan.invalidateOnly.empty()) recordBuild(plan);
+    if (!plan.full.jobs.empty() || !plan.overlay.jobs.empty() || !plan.invalidateOnly.empty()) recordBuild(plan);
     if (plan.changedCascades) recordTrees(plan.changedCascades);
     return report;
 }
@@ -77,21 +80,20 @@ void SdfSceneImpl::invalidateAll() {
         if (cascades_[c].placed) pending_.push_back({c, cascades_[c].origin, cascades_[c].origin + int(kCascadeResolution)});
 }
 
-void SdfSceneImpl::recordBuild(const Plan& plan) {
-    Marker all(device_, "sdf update");
-    // Job table: per-cascade bounds of the build jobs, then build jobs, then invalidate-only jobs.
+// Job table: per-cascade bounds of the build jobs, then build jobs, then invalidate-only jobs.
+void SdfSceneImpl::writeJobTable(const std::vector<Job>& build, const std::vector<Job>& invalidateOnly) {
     std::vector<layout::GpuInt4> table(layout::kJobTableHeadInts);
     for (uint32_t c = 0; c < kMaxCascades; ++c) {
         table[2 * c] = {{INT32_MAX, INT32_MAX, INT32_MAX, 0}};
         table[2 * c + 1] = {{INT32_MIN, INT32_MIN, INT32_MIN, 0}};
     }
     uint64_t voxels = 0;
-    auto addJob = [&](const Job& j, bool build) {
+    auto addJob = [&](const Job& j, bool isBuild) {
         table.push_back({{j.min.x, j.min.y, j.min.z, int32_t(j.cascade)}});
         const glm::ivec3 s = j.max - j.min;
         table.push_back({{s.x, s.y, s.z, int32_t(voxels)}});
         voxels += j.voxels();
-        if (!build) return;
+        if (!isBuild) return;
         auto& lo = table[2 * j.cascade].v;
         auto& hi = table[2 * j.cascade + 1].v;
         for (int a = 0; a < 3; ++a) {
@@ -100,35 +102,104 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         }
         lo[3] = 1;
     };
-    for (const Job& j : plan.jobs) addJob(j, true);
-    const uint64_t buildVoxels = voxels;
-    for (const Job& j : plan.invalidateOnly) addJob(j, false);
-    const uint32_t jobCount = uint32_t(plan.jobs.size() + plan.invalidateOnly.size());
+    for (const Job& j : build) addJob(j, true);
+    for (const Job& j : invalidateOnly) addJob(j, false);
     device_.writeBuffer(jobTable_, 0, table.data(), table.size() * sizeof(layout::GpuInt4));
-    device_.clearBuffer(counters_, {4, (layout::CounterCount - 1) * 4}, 0);  // all but the free count
+}
 
+// One thread per voxel of the job table's first `jobCount` jobs (`voxels` of them).
+static void dispatchPerJobVoxel(rhi::IDevice& device, rhi::DispatchState& s, uint64_t voxels) {
     uint32_t gx, gy;
-    {
-        Marker m(device_, "invalidate");
-        struct { uint32_t jobCount, voxelCount, buildVoxelCount; } p{jobCount, uint32_t(voxels), uint32_t(buildVoxels)};
-        rhi::DispatchState s;
-        s.shader = shaders_.invalidate;
-        s.label = "sdf invalidate jobs";
-        s.bindings.constants.push(rhi::constants(0, p));
-        s.bindings.readBuffers.push({0, jobTable_, {}});
-        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
-        s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
-        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
-        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
-        wideGroups(voxels, &gx, &gy);
-        device_.dispatch(s, gx, gy, 1);
-    }
-    if (plan.jobs.empty()) return;
+    wideGroups(voxels, &gx, &gy);
+    if (voxels) device.dispatch(s, gx, gy, 1);
+}
 
+void SdfSceneImpl::recordBuild(const Plan& plan) {
+    Marker all(device_, "sdf update");
+    device_.clearBuffer(counters_, {4, (layout::CounterCount - 1) * 4}, 0);  // all but the free count
+    if (!plan.full.jobs.empty() || !plan.invalidateOnly.empty()) {
+        writeJobTable(plan.full.jobs, plan.invalidateOnly);
+        const uint64_t invalidated = plan.full.voxels + [&] {
+            uint64_t v = 0;
+            for (const Job& j : plan.invalidateOnly) v += j.voxels();
+            return v;
+        }();
+        {
+            Marker m(device_, "invalidate");
+            struct { uint32_t jobCount, voxelCount, buildVoxelCount; } p{uint32_t(plan.full.jobs.size() + plan.invalidateOnly.size()),
+                                                                        uint32_t(invalidated), uint32_t(plan.full.voxels)};
+            rhi::DispatchState s;
+            s.shader = shaders_.invalidate;
+            s.label = "sdf invalidate jobs";
+            s.bindings.constants.push(rhi::constants(0, p));
+            s.bindings.readBuffers.push({0, jobTable_, {}});
+            s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+            s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
+            s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+            s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+            s.bindings.storageBuffers.push({4, baseMaps_, {}, Access::Atomic});
+            dispatchPerJobVoxel(device_, s, invalidated);
+        }
+        if (!plan.full.jobs.empty()) {
+            recordRound(plan.full);
+            Marker m(device_, "resolve empty");
+            struct { uint32_t jobCount, voxelCount; } p{uint32_t(plan.full.jobs.size()), uint32_t(plan.full.voxels)};
+            rhi::DispatchState s;
+            s.shader = shaders_.resolve;
+            s.label = "sdf resolve empty voxels";
+            s.bindings.constants.push(rhi::constants(0, p));
+            s.bindings.readBuffers.push({0, jobTable_, {}});
+            s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+            s.bindings.storageBuffers.push({1, counters_, {}, Access::Atomic});
+            dispatchPerJobVoxel(device_, s, plan.full.voxels);
+        }
+    }
+    if (!plan.overlay.jobs.empty()) {
+        Marker m(device_, "overlay");
+        writeJobTable(plan.overlay.jobs, {});
+        // The cursors of the full round start again (the stats counters add up over both rounds).
+        device_.clearBuffer(counters_, {4 * layout::AllocCursor, 4 * (layout::SortedCursor - layout::AllocCursor + 1)}, 0);
+        struct { uint32_t jobCount, voxelCount; } p{uint32_t(plan.overlay.jobs.size()), uint32_t(plan.overlay.voxels)};
+        {
+            rhi::DispatchState s;
+            s.shader = shaders_.prepareOverlay;
+            s.label = "sdf prepare overlay";
+            s.bindings.constants.push(rhi::constants(0, p));
+            s.bindings.readBuffers.push({0, jobTable_, {}});
+            s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+            s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
+            s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+            s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+            s.bindings.storageBuffers.push({4, baseMaps_, {}, Access::ReadWrite});
+            dispatchPerJobVoxel(device_, s, plan.overlay.voxels);
+        }
+        recordRound(plan.overlay);
+        {
+            rhi::DispatchState s;
+            s.shader = shaders_.resolveOverlay;
+            s.label = "sdf resolve overlay";
+            s.bindings.constants.push(rhi::constants(0, p));
+            s.bindings.readBuffers.push({0, jobTable_, {}});
+            s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::ReadWrite});
+            s.bindings.storageBuffers.push({1, baseMaps_, {}, Access::ReadWrite});
+            dispatchPerJobVoxel(device_, s, plan.overlay.voxels);
+        }
+    }
+    InFlightStats f;
+    f.update = updateIndex_;
+    f.ticket = device_.requestReadback(counters_, 0, layout::CounterCount * 4);
+    // Re-queued as full jobs if the GPU deferred voxels: an overlay voxel left unbuilt is built anew.
+    f.jobs = plan.full.jobs;
+    f.jobs.insert(f.jobs.end(), plan.overlay.jobs.begin(), plan.overlay.jobs.end());
+    f.voxels = plan.full.voxels + plan.overlay.voxels;
+    if (f.ticket) inFlight_.push_back(std::move(f));
+}
+
+void SdfSceneImpl::recordRound(const Round& round) {
     {
         // The gathered instances' materials, indexed by the tag gather gives their triangles (0: none).
         std::vector<glm::vec4> materials;
-        for (uint32_t id : plan.instances) {
+        for (uint32_t id : round.instances) {
             const Instance& inst = instances_.at(id);
             if (!inst.material) continue;
             materials.push_back(glm::vec4(inst.material->albedo, 1.0f));
@@ -136,10 +207,12 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         }
         if (!materials.empty()) device_.writeBuffer(materialTable_, 0, materials.data(), materials.size() * sizeof(glm::vec4));
     }
+    uint32_t gx, gy;
     {
         Marker m(device_, "gather");
         uint32_t first = 0, materialTag = 0;
-        for (uint32_t id : plan.instances) {
+        bool firstDispatch = true;
+        for (uint32_t id : round.instances) {
             const Instance& inst = instances_.at(id);
             const Mesh& mesh = meshes_.at(inst.mesh.id);
             struct {
@@ -171,7 +244,9 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
             rhi::DispatchState s;
             s.shader = shaders_.gather;
             s.label = "sdf gather triangles";
-            s.flags = rhi::DispatchFlags::NoBarrierWithPreviousWriter;  // disjoint ranges of the scratch
+            // Disjoint ranges of the scratch; the first of a round waits for the previous round's readers.
+            if (!firstDispatch) s.flags = rhi::DispatchFlags::NoBarrierWithPreviousWriter;
+            firstDispatch = false;
             s.bindings.constants.push(rhi::constants(0, p));
             s.bindings.readBuffers.push({0, mesh.vertexBuffer, {}});
             s.bindings.readBuffers.push({1, mesh.indexBuffer, {}});
@@ -185,7 +260,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
     {
         Marker m(device_, "count references");
         struct { uint32_t triangleCount, cascadeCount, maxReferences, touchedCapacity; } p{
-            plan.triangles, desc_.cascadeCount, desc_.budgets.maxReferencesPerUpdate, touchedCapacity_};
+            round.triangles, desc_.cascadeCount, desc_.budgets.maxReferencesPerUpdate, touchedCapacity_};
         rhi::DispatchState s;
         s.shader = shaders_.count;
         s.label = "sdf count references";
@@ -198,8 +273,8 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         s.bindings.storageBuffers.push({2, references_, {}, Access::Write});
         s.bindings.storageBuffers.push({3, touched_, {}, Access::Write});
         s.bindings.storageBuffers.push({4, counters_, {}, Access::Atomic});
-        wideGroups(plan.triangles, &gx, &gy);
-        if (plan.triangles) device_.dispatch(s, gx, gy, 1);
+        wideGroups(round.triangles, &gx, &gy);
+        if (round.triangles) device_.dispatch(s, gx, gy, 1);
     }
     auto prepare = [&](uint32_t stage) {
         struct { uint32_t stage, maxReferences; } p{stage, desc_.budgets.maxReferencesPerUpdate};
@@ -248,32 +323,14 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         s.bindings.readBuffers.push({2, touched_, {}});
         s.bindings.readBuffers.push({3, cascadeTable_, {}});
         s.bindings.readBuffers.push({4, materialTable_, {}});
+        s.bindings.readBuffers.push({5, baseMaps_, {}});
         s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
-        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::Write});
+        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::ReadWrite});
         s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
         s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
-        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::Write});
+        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::ReadWrite});
         device_.dispatchIndirect(s, args_, layout::kArgsPerTouchedBrick);
     }
-    {
-        Marker m(device_, "resolve empty");
-        struct { uint32_t jobCount, voxelCount; } p{uint32_t(plan.jobs.size()), uint32_t(buildVoxels)};
-        rhi::DispatchState s;
-        s.shader = shaders_.resolve;
-        s.label = "sdf resolve empty voxels";
-        s.bindings.constants.push(rhi::constants(0, p));
-        s.bindings.readBuffers.push({0, jobTable_, {}});
-        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
-        s.bindings.storageBuffers.push({1, counters_, {}, Access::Atomic});
-        wideGroups(buildVoxels, &gx, &gy);
-        device_.dispatch(s, gx, gy, 1);
-    }
-    InFlightStats f;
-    f.update = updateIndex_;
-    f.ticket = device_.requestReadback(counters_, 0, layout::CounterCount * 4);
-    f.jobs = plan.jobs;
-    f.voxels = plan.voxels;
-    if (f.ticket) inFlight_.push_back(std::move(f));
 }
 
 void SdfSceneImpl::recordTrees(uint32_t mask) {
@@ -313,7 +370,7 @@ void SdfSceneImpl::pollStats() {
         s.bricksFreed = c[layout::BricksFreed];
         s.trianglesProcessed = c[layout::TrianglesProcessed];
         s.trianglesRejected = c[layout::TrianglesRejected];
-        s.referencesProcessed = c[layout::RefsStored];
+        s.referencesProcessed = c[layout::RefsInUpdate];
         s.voxelsBuilt = c[layout::VoxelsBuilt];
         s.voxelsDeferredGpu = c[layout::VoxelsDeferred];
         stats_ = s;

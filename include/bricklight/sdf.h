@@ -145,6 +145,11 @@ struct UpdateReport {
     uint32_t jobsDeferred = 0;     // over a budget: carried to the next update
     uint32_t voxelsDeferred = 0;
     uint32_t jobsRetried = 0;      // re-queued because an earlier update reported GPU overflow
+    // Of the above, the overlay: the footprints of dynamic instances, rebuilt from their triangles alone over
+    // the static field kept there (docs/sdf.md, *Update model*).
+    uint32_t overlayJobs = 0;
+    uint32_t overlayVoxels = 0;
+    uint32_t overlayTrianglesGathered = 0;
 };
 
 using MemoryUse = bricklight::MemoryUse;  // bricklight/memory_use.h
@@ -175,10 +180,14 @@ struct TraceSlots {
 struct FieldSnapshot {
     static constexpr uint32_t kEmpty = 0xFFFFFFFEu;
     static constexpr uint32_t kUnbuilt = 0xFFFFFFFFu;
+    static constexpr uint32_t kNoBase = 0xFFFFFFFCu;
     struct Cascade {
         glm::ivec3 origin{0};  // world voxel coordinates of logical voxel (0,0,0)
         float voxelSize = 0.0f;
         std::vector<uint32_t> brickMap;  // physical (toroidal) order
+        // Same order: where dynamic instances' distances are composited into the live brick, the brick (or
+        // kEmpty) of the static geometry alone, kept for the next update; kNoBase elsewhere.
+        std::vector<uint32_t> baseMap;
     };
     std::vector<Cascade> cascades;
     uint32_t atlasBricksPerAxis = 0;

@@ -14,6 +14,9 @@
 #define BL_SDF_EMPTY 0xFFFFFFFEu     // built, no surface within the band of the voxel
 #define BL_SDF_UNBUILT 0xFFFFFFFFu   // not built yet (or deferred): tracing falls to a coarser cascade
 #define BL_SDF_BUILDING 0xFFFFFFFDu  // being built by the current update (internal)
+// Base map entries (internal to the builder): the brick (or EMPTY) holding a voxel's static geometry alone
+// where dynamic instances' distances are composited into its live brick, else this.
+#define BL_SDF_NO_BASE 0xFFFFFFFCu
 #define BL_SDF_FIRST_STATE 0xFFFFFFF0u
 
 // Per-brick owner (SdfScene::brickOwnerBuffer): cascade << 24 | allocation generation << 18 | physical

@@ -19,6 +19,7 @@
 #define C_TRIANGLES_PROCESSED 10
 #define C_REFS_STORED 11
 #define C_FREE_AT_ALLOCATION 12
+#define C_REFS_IN_UPDATE 13
 
 // Indirect argument slots (3 uints each) in the args buffer.
 #define ARGS_PER_TOUCHED_64 0   // one thread per touched voxel, 64 per group

@@ -28,21 +28,28 @@
 // mean of the materials in the voxel, and continuous in the distances (a wall on a lattice plane has a row of
 // brixels exactly one interval away: a step weight would count them or not by rounding) — summed per thread
 // alongside the distances (no second distance evaluation) and then over the group.
+// In an update's overlay round (dynamic instances, prepare_overlay.comp) the voxel has a base brick: its static
+// geometry's field, built earlier and kept. The stored sample is then the smaller of the two (8-bit rounding is
+// monotonic, so this equals rounding the exact minimum), and the box, the alpha flag and the opaque cells are
+// the union of the base's and the dynamic triangles' (a brixel is within an interval of a surface of either
+// kind exactly when it is within one of the minimum). The material mixes the two by their surface brixels.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };
 BL_READ_BUFFER(1) SortedReferences { uint sortedReferences[]; };
 BL_READ_BUFFER(2) Touched { uvec4 touched[]; };
 BL_READ_BUFFER(3) CascadeTable { BL_SDF_CASCADE_TABLE_BODY } table;
 BL_READ_BUFFER(4) MaterialTable { vec4 materialTable[]; };  // per tag - 1: albedo, emission
+BL_READ_BUFFER(5) BaseMaps { uint baseMaps[]; };
 BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
 BL_STORAGE_BUFFER(1) BrickAabbs { uint brickAabbs[]; };
 BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
-BL_IMAGE(0, r8) uniform writeonly image3D atlas;
+BL_IMAGE(0, r8) uniform image3D atlas;
 
 shared uint best[512];       // squared distance to the nearest opaque triangle (float bits)
 shared uint bestAlpha[512];  // ... to the nearest alpha-tested triangle
 shared uint boxMin[3], boxMax[3], keep, alphaTested, opaqueCells[2];
+shared uint baseSurface, ownSurface;  // brixels within an interval of the base's / the dynamic triangles' surfaces
 shared vec4 albedoSum[256];    // rgb: albedo · pairs, w: pairs
 shared vec3 emissionSum[256];
 
@@ -79,6 +86,8 @@ void main() {
     if (lane == 0u) {
         keep = 0u;
         alphaTested = 0u;
+        baseSurface = 0u;
+        ownSurface = 0u;
     }
     barrier();
 
@@ -139,6 +148,15 @@ void main() {
     float d = min(dOpaque, dAlpha);
     uint q = uint(floor(min(d, band) / band * 255.0 + 0.5));
     uint brick = entry.w;
+    uint key = cascade * BL_SDF_CASCADE_VOXELS + physical;
+    uint base = baseMaps[key];
+    if (base < BL_SDF_FIRST_STATE) {
+        // Within an interval of a surface of the base: the sample at most the rounding of one interval.
+        uint qBase = uint(imageLoad(atlas, blSdfBrickTexel(base, table.header.y) + own).r * 255.0 + 0.5);
+        if (qBase <= uint(floor(255.0 / BL_SDF_BAND_BRIXELS + 0.5))) atomicAdd(baseSurface, 1u);
+        q = min(q, qBase);
+    }
+    if (d <= brixel) atomicAdd(ownSurface, 1u);
     imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + own, vec4(float(q) / 255.0));
     if (q < 255u) atomicOr(keep, 1u);
     if (d <= brixel) {
@@ -176,20 +194,49 @@ void main() {
     uint materialAt = table.header.z * (1u + BL_SDF_OPAQUE_CELL_WORDS) + BL_SDF_MATERIAL_WORDS * entry.w;
     vec4 total = albedoSum[0];
     bool known = keep != 0u && total.w > 0.0;
-    brickAabbs[materialAt] = known ? packUnorm4x8(vec4(clamp(total.rgb / total.w, 0.0, 1.0), 1.0)) : 0u;
-    brickAabbs[materialAt + 1u] = known ? blEncodeRgb9e5(emissionSum[0] / total.w) : 0u;
-    uint key = cascade * BL_SDF_CASCADE_VOXELS + physical;
+    vec3 albedoMean = known ? clamp(total.rgb / total.w, 0.0, 1.0) : vec3(0.0);
+    vec3 emissionMean = known ? emissionSum[0] / total.w : vec3(0.0);
+    uint baseBox = BL_SDF_AABB_NONE;
+    if (base < BL_SDF_FIRST_STATE) {
+        baseBox = brickAabbs[base];
+        uint baseMaterialAt = table.header.z * (1u + BL_SDF_OPAQUE_CELL_WORDS) + BL_SDF_MATERIAL_WORDS * base;
+        uint baseAlbedo = brickAabbs[baseMaterialAt];
+        if ((baseAlbedo >> 24) != 0u) {
+            // Both known: the mean over both kinds' surface brixels; else whichever is known.
+            float wBase = float(max(baseSurface, 1u)), wOwn = known ? float(ownSurface) : 0.0;
+            vec3 baseEmission = blDecodeRgb9e5(brickAabbs[baseMaterialAt + 1u]);
+            albedoMean = (unpackUnorm4x8(baseAlbedo).rgb * wBase + albedoMean * wOwn) / (wBase + wOwn);
+            emissionMean = (baseEmission * wBase + emissionMean * wOwn) / (wBase + wOwn);
+            known = true;
+        }
+        if (baseBox != BL_SDF_AABB_NONE) {
+            // The base's box (stored grown by one and clamped, which commutes with the union) and its flags.
+            if ((baseBox & BL_SDF_AABB_ALPHA_TESTED) != 0u) alphaTested = 1u;
+            uint cells = table.header.z + 2u * base;
+            opaqueCells[0] |= brickAabbs[cells];
+            opaqueCells[1] |= brickAabbs[cells + 1u];
+        }
+    }
+    brickAabbs[materialAt] = known ? packUnorm4x8(vec4(albedoMean, 1.0)) : 0u;
+    brickAabbs[materialAt + 1u] = known ? blEncodeRgb9e5(emissionMean) : 0u;
     if (keep == 0u) {
         brickMaps[key] = BL_SDF_EMPTY;
         brickAabbs[brick] = BL_SDF_AABB_NONE;
         uint top = atomicAdd(counters[C_FREE_COUNT], 1u);
         freeStack[top] = brick;
         atomicAdd(counters[C_BRICKS_FREED], 1u);
-    } else if (boxMin[0] > boxMax[0]) {
+    } else if (boxMin[0] > boxMax[0] && baseBox == BL_SDF_AABB_NONE) {
         brickAabbs[brick] = BL_SDF_AABB_NONE;  // distances only: no surface inside the voxel
     } else {
-        uvec3 lo = uvec3(max(ivec3(boxMin[0], boxMin[1], boxMin[2]) - 1, ivec3(0)));
-        uvec3 hi = uvec3(min(ivec3(boxMax[0], boxMax[1], boxMax[2]) + 1, ivec3(7)));
+        uvec3 lo = uvec3(7u), hi = uvec3(0u);
+        if (boxMin[0] <= boxMax[0]) {
+            lo = uvec3(max(ivec3(boxMin[0], boxMin[1], boxMin[2]) - 1, ivec3(0)));
+            hi = uvec3(min(ivec3(boxMax[0], boxMax[1], boxMax[2]) + 1, ivec3(7)));
+        }
+        if (baseBox != BL_SDF_AABB_NONE) {
+            lo = min(lo, uvec3(baseBox, baseBox >> 3, baseBox >> 6) & 7u);
+            hi = max(hi, uvec3(baseBox >> 9, baseBox >> 12, baseBox >> 15) & 7u);
+        }
         uint flags = alphaTested != 0u ? BL_SDF_AABB_ALPHA_TESTED : 0u;
         brickAabbs[brick] = lo.x | (lo.y << 3) | (lo.z << 6) | (hi.x << 9) | (hi.y << 12) | (hi.z << 15) | flags;
         uint cells = table.header.z + 2u * brick;

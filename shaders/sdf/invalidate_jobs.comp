@@ -4,7 +4,8 @@
 #include "build_common.glsl"
 // Pass 1 of an update: every voxel of this update's jobs becomes BUILDING, every voxel of a deferred job
 // UNBUILT (job voxels numbered from buildVoxelCount on). The brick it held (if any) goes back to the free
-// list exactly once (atomic exchange), and its reference count is reset.
+// list exactly once (atomic exchange), and its reference count is reset. So does the base brick kept
+// under a dynamic instance's composite (prepare_overlay.comp): a full job builds the static field anew.
 layout(local_size_x = 64) in;
 BL_CONSTANTS(0) uniform Params { uint jobCount; uint voxelCount; uint buildVoxelCount; } params;
 BL_READ_BUFFER(0) JobTable { BL_SDF_JOB_TABLE_BODY } jobTable;
@@ -12,6 +13,7 @@ BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
 BL_STORAGE_BUFFER(1) VoxelRefs { uint voxelRefs[]; };  // [2 * key] count, [2 * key + 1] touched index
 BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
+BL_STORAGE_BUFFER(4) BaseMaps { uint baseMaps[]; };
 #include "job_lookup.glsl"
 
 void main() {
@@ -23,9 +25,12 @@ void main() {
     uint key = cascade * BL_SDF_CASCADE_VOXELS + blSdfPhysicalIndex(voxel);
     uint old = atomicExchange(brickMaps[key], index < params.buildVoxelCount ? BL_SDF_BUILDING : BL_SDF_UNBUILT);
     voxelRefs[2u * key] = 0u;
-    if (old < BL_SDF_FIRST_STATE) {
+    uint oldBase = atomicExchange(baseMaps[key], BL_SDF_NO_BASE);
+    for (int i = 0; i < 2; ++i) {
+        uint brick = i == 0 ? old : oldBase;
+        if (brick >= BL_SDF_FIRST_STATE) continue;
         uint slot = atomicAdd(counters[C_FREE_COUNT], 1u);
-        freeStack[slot] = old;
+        freeStack[slot] = brick;
         atomicAdd(counters[C_BRICKS_FREED], 1u);
     }
 }

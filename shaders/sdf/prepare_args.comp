@@ -27,7 +27,8 @@ void main() {
     uint freeCount = counters[C_FREE_COUNT];
     counters[C_FREE_COUNT] = freeCount - min(counters[C_ALLOC_CURSOR], freeCount);
     uint stored = min(counters[C_REF_CURSOR], params.maxReferences);
-    counters[C_REFS_STORED] = stored;
+    counters[C_REFS_STORED] = stored;  // this round's, for the scatter pass
+    counters[C_REFS_IN_UPDATE] += stored;  // over the update's rounds (full, then overlay), for the stats
     wide(ARGS_PER_TOUCHED_BRICK, touchedCount);
     wide(ARGS_PER_REFERENCE_64, (stored + 63u) / 64u);
 }

@@ -192,6 +192,17 @@ FieldDifference compareFields(const sdf::FieldSnapshot& a, const sdf::FieldSnaps
                     for (int i = 0; i < 512; ++i) {
                         const glm::ivec3 bx(i & 7, (i >> 3) & 7, i >> 6);
                         const int d = std::abs(int(a.brixel(sa, bx)) - int(b.brixel(sb, bx)));
+                        if (d && r.firstMismatch.empty()) {
+                            auto baseOf = [&](const sdf::FieldSnapshot& f) {
+                                const sdf::FieldSnapshot::Cascade& fc = f.cascades[c];
+                                const glm::ivec3 p = (fc.origin + v) & glm::ivec3(63);
+                                return fc.baseMap.empty() ? 0u : fc.baseMap[size_t((p.z * 64 + p.y) * 64 + p.x)];
+                            };
+                            r.firstMismatch = "cascade " + std::to_string(c) + " voxel (" + std::to_string(x) + "," + std::to_string(y) + "," +
+                                              std::to_string(z) + ") brixel " + std::to_string(i) + ": " + std::to_string(a.brixel(sa, bx)) +
+                                              " vs " + std::to_string(b.brixel(sb, bx)) + ", bases " + std::to_string(baseOf(a)) + " / " +
+                                              std::to_string(baseOf(b));
+                        }
                         if (d) r.brixelsDiffering++;
                         r.maxBrixelDifference = std::max<uint32_t>(r.maxBrixelDifference, uint32_t(d));
                     }
