@@ -155,12 +155,12 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         }
     }
     if (!plan.overlay.jobs.empty()) {
-        Marker m(device_, "overlay");
         writeJobTable(plan.overlay.jobs, {});
         // The cursors of the full round start again (the stats counters add up over both rounds).
         device_.clearBuffer(counters_, {4 * layout::AllocCursor, 4 * (layout::SortedCursor - layout::AllocCursor + 1)}, 0);
         struct { uint32_t jobCount, voxelCount; } p{uint32_t(plan.overlay.jobs.size()), uint32_t(plan.overlay.voxels)};
         {
+            Marker m(device_, "prepare overlay");
             rhi::DispatchState s;
             s.shader = shaders_.prepareOverlay;
             s.label = "sdf prepare overlay";
@@ -175,6 +175,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         }
         recordRound(plan.overlay);
         {
+            Marker m(device_, "resolve overlay");
             rhi::DispatchState s;
             s.shader = shaders_.resolveOverlay;
             s.label = "sdf resolve overlay";

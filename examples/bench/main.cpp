@@ -160,9 +160,10 @@ Options parse(int argc, char** argv) {
     return o;
 }
 
-const char* kPasses[] = {"sdf update/invalidate", "sdf update/gather", "sdf update/count references",
+// A pass that runs in both of an update's rounds (full, overlay) counts both.
+const char* kPasses[] = {"sdf update/invalidate", "sdf update/prepare overlay", "sdf update/gather", "sdf update/count references",
                          "sdf update/allocate bricks", "sdf update/scatter references", "sdf update/emit distances",
-                         "sdf update/resolve empty", "sdf trees"};
+                         "sdf update/resolve empty", "sdf update/resolve overlay", "sdf trees"};
 
 double updateTotal(const PhaseTimes& t) { return t.perFrame("sdf update") + t.perFrame("sdf trees"); }
 

@@ -506,3 +506,5 @@ set_tests_properties([=[gl/transfer_buffer_write_copy_clear]=] PROPERTIES COST 0
 set_tests_properties([=[gl/new_buffer_reads_zero]=] PROPERTIES COST 0.0)
 set_tests_properties([=[bricklight-shadow-cpu-tests]=] PROPERTIES COST 0.0)
 set_tests_properties([=[bricklight-renderer-cpu-tests]=] PROPERTIES COST 0.0)
+set_tests_properties([=[sdf movers and deforming meshes gather their own triangles only and build the exact field (vulkan)]=] PROPERTIES COST 13.1)
+set_tests_properties([=[sdf movers and deforming meshes gather their own triangles only and build the exact field (gl)]=] PROPERTIES COST 13.1)
