@@ -6,8 +6,9 @@
 //                        [--frames N] [--iterations N] [--coarsen N] [--probe-tile 0|8|16] [--timing passes|total]
 //                        [--foliage alpha-aware|opaque|left-out] [--json FILE]
 //
-// sdf: a full build, frames with one moving ~100k-triangle dynamic instance, frames where the centre moves
-// by one finest voxel, and primary-ray trace throughput at W x H (default 1920 x 1080).
+// sdf: a full build, frames with one moving ~100k-triangle dynamic instance, with 64 moving ~18k-triangle ones,
+// with one ~30k-triangle mesh deforming, frames where the centre moves by one finest voxel, and primary-ray
+// trace throughput at W x H (default 1920 x 1080).
 // gi: per-pass GPU milliseconds of GI frames at W x H and the internal scale, and GI's memory
 // (bench_gi.cpp). Run-time needs: the C++ runtime, the Vulkan loader, libEGL/libGL (assimp only for model
 // files).
@@ -330,6 +331,78 @@ int bricklight::bench::runSdf(const Options& o) {
     device->endFrame();
     collect(*device, 0);
 
+    // 2b. 64 rigid dynamic instances of ~18k triangles (4 finest voxels across), 8 x 8 around the centre, all
+    //     moving every frame.
+    scenes::TriangleMesh prop = scenes::torus(1.5f * vs0, 0.5f * vs0, 18000);
+    sdf::MeshHandle propMesh = scene->createMesh({prop.positions.data(), uint32_t(prop.positions.size() / 3), prop.indices.data(),
+                                                  uint32_t(prop.indices.size()), "rigid prop"});
+    auto propAt = [&](uint32_t i, uint32_t frame) {
+        const glm::vec3 offset(6.0f * vs0 * (float(i % 8) - 3.5f), 0.0f, 6.0f * vs0 * (float(i / 8) - 3.5f));
+        return glm::rotate(glm::translate(glm::mat4(1.0f), center + offset + glm::vec3(0.25f * vs0 * float(frame), 0.0f, 0.0f)),
+                           0.05f * float(frame + i), glm::vec3(0.2f, 1.0f, 0.1f));
+    };
+    std::vector<sdf::InstanceHandle> props;
+    for (uint32_t i = 0; i < 64; ++i) props.push_back(scene->addInstance({propMesh, propAt(i, 0), true, o.dynamicMaxCascade}));
+    for (uint32_t f = 0; f < 3; ++f) {
+        for (uint32_t i = 0; i < 64; ++i) scene->setTransform(props[i], propAt(i, f));
+        scene->update(center), device->endFrame();
+    }
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) {
+        for (uint32_t i = 0; i < 64; ++i) scene->setTransform(props[i], propAt(i, 3 + f));
+        scene->update(center);
+        device->endFrame();
+    }
+    PhaseTimes rigidFrames = collect(*device, o.frames);
+    scene->update(center);
+    const sdf::Stats rigidStats = scene->latestStats();
+    for (sdf::InstanceHandle h : props) scene->removeInstance(h);
+    scene->update(center);
+    device->endFrame();
+    collect(*device, 0);
+
+    // 2c. One deforming mesh of ~30k triangles (8 finest voxels across) in a buffer of the application's, its
+    //     positions rewritten every frame (the upload is a transfer, outside the field's timings).
+    scenes::TriangleMesh blob = scenes::torus(3.0f * vs0, 1.0f * vs0, 30000);
+    auto blobPositions = [&](uint32_t frame) {
+        std::vector<float> p = blob.positions;
+        for (size_t v = 0; v < p.size(); v += 3) p[v + 1] *= 1.0f + 0.4f * std::sin(0.7f * float(frame) + 2.0f * p[v] / vs0);
+        return p;
+    };
+    rhi::BufferHandle blobVertices = device->createBuffer(
+        {blob.positions.size() * 4, 0, rhi::BufferUsage::ShaderRead, "deforming positions"}, blobPositions(0).data());
+    rhi::BufferHandle blobIndices =
+        device->createBuffer({blob.indices.size() * 4, 0, rhi::BufferUsage::ShaderRead, "deforming indices"}, blob.indices.data());
+    sdf::MeshBuffers blobBuffers;
+    blobBuffers.vertexBuffer = blobVertices;
+    blobBuffers.vertexCount = uint32_t(blob.positions.size() / 3);
+    blobBuffers.indexBuffer = blobIndices;
+    blobBuffers.triangleCount = uint32_t(blob.indices.size() / 3);
+    blobBuffers.boundsMin = glm::vec3(-4.0f * vs0, -1.4f * vs0, -4.0f * vs0);
+    blobBuffers.boundsMax = glm::vec3(4.0f * vs0, 1.4f * vs0, 4.0f * vs0);
+    blobBuffers.name = "deforming torus";
+    sdf::MeshHandle blobMesh = scene->createMesh(blobBuffers);
+    sdf::InstanceHandle deforming =
+        scene->addInstance({blobMesh, glm::translate(glm::mat4(1.0f), center), true, o.dynamicMaxCascade});
+    auto deformTo = [&](uint32_t frame) {
+        const std::vector<float> p = blobPositions(frame);
+        device->writeBuffer(blobVertices, 0, p.data(), p.size() * 4);
+    };
+    for (uint32_t f = 0; f < 3; ++f) deformTo(f), scene->update(center), device->endFrame();
+    collect(*device, 0);
+    for (uint32_t f = 0; f < o.frames; ++f) {
+        deformTo(3 + f);
+        scene->update(center);
+        device->endFrame();
+    }
+    PhaseTimes deformingFrames = collect(*device, o.frames);
+    scene->update(center);
+    const sdf::Stats deformingStats = scene->latestStats();
+    scene->removeInstance(deforming);
+    scene->update(center);
+    device->endFrame();
+    collect(*device, 0);
+
     // 3. The centre moves by one finest voxel per frame.
     glm::vec3 c = center;
     for (uint32_t f = 0; f < o.frames; ++f) {
@@ -387,6 +460,12 @@ int bricklight::bench::runSdf(const Options& o) {
     printPhase(("moving dynamic 100k (to c" + std::to_string(std::min(o.dynamicMaxCascade, o.cascades - 1)) + ")").c_str(), dynamicFrames);
     std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", dynamicStats.bricksAllocated,
                 dynamicStats.trianglesProcessed, dynamicStats.referencesProcessed);
+    printPhase(("moving rigid x64 (to c" + std::to_string(std::min(o.dynamicMaxCascade, o.cascades - 1)) + ")").c_str(), rigidFrames);
+    std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", rigidStats.bricksAllocated,
+                rigidStats.trianglesProcessed, rigidStats.referencesProcessed);
+    printPhase(("deforming 30k (to c" + std::to_string(std::min(o.dynamicMaxCascade, o.cascades - 1)) + ")").c_str(), deformingFrames);
+    std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", deformingStats.bricksAllocated,
+                deformingStats.trianglesProcessed, deformingStats.referencesProcessed);
     printPhase("centre moves one voxel", scrollFrames);
     std::printf("%-30s last frame: %u bricks built, %u triangles, %u references\n", "", scrollStats.bricksAllocated,
                 scrollStats.trianglesProcessed, scrollStats.referencesProcessed);
@@ -405,6 +484,7 @@ int bricklight::bench::runSdf(const Options& o) {
             << "\", \"device\": \"" << device->capabilities().deviceName << "\", \"triangles\": " << geometry.triangleCount()
             << ", \"cascades\": " << o.cascades << ", \"finest_voxel\": " << desc.finestVoxelSize
             << ",\n \"full_build\": " << phaseJson(build) << ",\n \"dynamic_100k\": " << phaseJson(dynamicFrames)
+            << ",\n \"rigid_x64\": " << phaseJson(rigidFrames) << ",\n \"deforming_30k\": " << phaseJson(deformingFrames)
             << ",\n \"scroll_one_voxel\": " << phaseJson(scrollFrames) << ",\n \"trace\": {\"ms\": " << traceMs
             << ", \"rays_per_second\": " << raysPerSecond << ", \"width\": " << o.width << ", \"height\": " << o.height
             << "},\n \"bricks_used\": " << afterBuild.bricksUsed << ", \"references\": " << afterBuild.referencesProcessed
@@ -413,6 +493,8 @@ int bricklight::bench::runSdf(const Options& o) {
     }
     device->destroy(depth);
     device->destroy(tracer);
+    device->destroy(blobVertices);
+    device->destroy(blobIndices);
     return 0;
 }
 
