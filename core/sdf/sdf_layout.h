@@ -53,13 +53,23 @@ enum Counter : uint32_t {
     RefsStored,
     FreeAtAllocation,
     RefsInUpdate,
-    CounterCount = 16
+    SplitCursor,
+    SplitWorkCursor,
+    BricksSplit,
+    CounterCount = 20
 };
+
+// The brick pass splits a brick with more references than this into chunks of this many, one group each,
+// for at most kMaxSplitBricks bricks per round (build_common.glsl).
+constexpr uint32_t kRefsPerGroup = 2048;
+constexpr uint32_t kMaxSplitBricks = 2048;
+constexpr uint32_t kSplitMinimumClear = 0x7F800000u;  // +inf
 
 // Indirect argument offsets (bytes) in the args buffer.
 constexpr uint64_t kArgsPerTouched64 = 0;
 constexpr uint64_t kArgsPerTouchedBrick = 12;
 constexpr uint64_t kArgsPerReference64 = 24;
+constexpr uint64_t kArgsPerSplitBrick = 36;
 constexpr uint64_t kArgsBytes = 48;
 
 constexpr uint32_t kWideGroups = 32768;  // dispatches wider than this use a second dimension

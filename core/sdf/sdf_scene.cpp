@@ -52,13 +52,13 @@ SdfSceneImpl::~SdfSceneImpl() {
             device_.destroy(m.vertexBuffer);
             device_.destroy(m.indexBuffer);
         }
-    for (rhi::BufferHandle b : {cascadeTable_, brickMaps_, baseMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
+    for (rhi::BufferHandle b : {cascadeTable_, brickMaps_, baseMaps_, splitBricks_, splitWork_, splitMinima_, splitMaterials_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
                                 voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
         if (b) device_.destroy(b);
     if (atlas_) device_.destroy(atlas_);
     if (atlasSampler_) device_.destroy(atlasSampler_);
     for (rhi::ShaderHandle s : {shaders_.invalidate, shaders_.gather, shaders_.count, shaders_.prepare, shaders_.allocate,
-                                shaders_.scatter, shaders_.emit, shaders_.resolve, shaders_.prepareOverlay, shaders_.resolveOverlay,
+                                shaders_.scatter, shaders_.emit, shaders_.finalizeSplit, shaders_.resolve, shaders_.prepareOverlay, shaders_.resolveOverlay,
                                 shaders_.treeBottom, shaders_.treeTop, shaders_.debug})
         if (s) device_.destroy(s);
 }
@@ -149,7 +149,8 @@ bool SdfSceneImpl::init(Error* error) {
         !shader("sdf/allocate_bricks.comp", &shaders_.allocate) ||
         !shader("sdf/scatter_references.comp", &shaders_.scatter) || !shader("sdf/emit_distances.comp", &shaders_.emit) ||
         !shader("sdf/resolve_empty.comp", &shaders_.resolve) || !shader("sdf/prepare_overlay.comp", &shaders_.prepareOverlay) ||
-        !shader("sdf/resolve_overlay.comp", &shaders_.resolveOverlay) || !shader("sdf/build_tree_bottom.comp", &shaders_.treeBottom) ||
+        !shader("sdf/resolve_overlay.comp", &shaders_.resolveOverlay) ||
+        !shader("sdf/finalize_split_bricks.comp", &shaders_.finalizeSplit) || !shader("sdf/build_tree_bottom.comp", &shaders_.treeBottom) ||
         !shader("sdf/build_tree_top.comp", &shaders_.treeTop) || !shader("sdf/debug_view.comp", &shaders_.debug))
         return false;
 
@@ -195,6 +196,13 @@ bool SdfSceneImpl::init(Error* error) {
     cascadeTable_ = makeBuffer("cascadeTable", sizeof(layout::GpuCascadeTable), ShaderRead);
 
     touchedCapacity_ = uint32_t(std::min<uint64_t>(b.maxVoxelsPerUpdate, mapEntries));
+    // A split brick has more than kRefsPerGroup references: its chunks number at most 2 per kRefsPerGroup.
+    const uint64_t splitWork = 2ull * (b.maxReferencesPerUpdate / layout::kRefsPerGroup + 1);
+    splitBricks_ = makeBuffer("splitBricks", uint64_t(layout::kMaxSplitBricks) * 16, rw);
+    splitWork_ = makeBuffer("splitWork", splitWork * 8, rw);
+    std::vector<uint32_t> clearMinima(size_t(layout::kMaxSplitBricks) * 1024, layout::kSplitMinimumClear);
+    splitMinima_ = makeBuffer("splitMinima", clearMinima.size() * 4, rw, clearMinima.data());
+    splitMaterials_ = makeBuffer("splitMaterials", splitWork * 32, rw);
     triangles_ = makeBuffer("triangles", uint64_t(b.maxTrianglesPerUpdate) * 48, rw);
     references_ = makeBuffer("references", uint64_t(b.maxReferencesPerUpdate) * 12, rw);
     sortedReferences_ = makeBuffer("sortedReferences", uint64_t(b.maxReferencesPerUpdate) * 4, rw);
@@ -203,7 +211,7 @@ bool SdfSceneImpl::init(Error* error) {
     jobTable_ = makeBuffer("jobTable", (layout::kJobTableHeadInts + 4ull * b.maxJobsPerUpdate) * 16, ShaderRead);
     overlays_ = makeBuffer("debugOverlays", 32ull * std::max(1u, d.maxBoundsOverlays), ShaderRead);
 
-    for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, baseMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
+    for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, baseMaps_, splitBricks_, splitWork_, splitMinima_, splitMaterials_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
                                 voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the field's buffers (see the device's messages)");
     if (!atlas_ || !atlasSampler_) return bad(ErrorCode::DeviceFailure, "the device could not create the brick atlas (see the device's messages)");
@@ -224,7 +232,8 @@ MemoryUse SdfSceneImpl::memoryUse() const {
     const uint64_t side = uint64_t(desc_.atlasBricksPerAxis) * kBrickResolution;
     add("atlas (R8_UNORM 3D)", side * side * side);
     for (auto [name, h] : std::initializer_list<std::pair<const char*, rhi::BufferHandle>>{
-             {"brickMaps", brickMaps_}, {"baseMaps", baseMaps_}, {"trees", trees_}, {"brickAabbs (boxes, cells, materials)", brickAabbs_}, {"brickOwners", brickOwners_},
+             {"brickMaps", brickMaps_}, {"baseMaps", baseMaps_}, {"trees", trees_}, {"split bricks (scratch)", splitBricks_},
+             {"split chunks (scratch)", splitWork_}, {"split minima (scratch)", splitMinima_}, {"split materials (scratch)", splitMaterials_}, {"brickAabbs (boxes, cells, materials)", brickAabbs_}, {"brickOwners", brickOwners_},
              {"freeStack", freeStack_}, {"voxelReferenceCounts", voxelRefs_}, {"cascadeTable", cascadeTable_},
              {"counters+args", counters_}, {"triangles (scratch)", triangles_}, {"references (scratch)", references_},
              {"sortedReferences (scratch)", sortedReferences_}, {"touchedVoxels (scratch)", touched_},

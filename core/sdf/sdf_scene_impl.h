@@ -149,8 +149,8 @@ private:
     std::shared_ptr<const bool> alive_ = std::make_shared<const bool>(true);  // expires with the scene
 
     struct Shaders {
-        rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, resolve, prepareOverlay, resolveOverlay, treeBottom,
-            treeTop, debug;
+        rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, finalizeSplit, resolve, prepareOverlay,
+            resolveOverlay, treeBottom, treeTop, debug;
     } shaders_;
 
     // Persistent resources.
@@ -159,6 +159,9 @@ private:
     rhi::BufferHandle cascadeTable_, brickMaps_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_;
     rhi::BufferHandle voxelRefs_;
     rhi::BufferHandle baseMaps_;  // u32 per (cascade, voxel slot): the static field's brick under a composite
+    // Bricks whose references the brick pass splits over several groups: their entries, chunks, minima
+    // (+inf between rounds) and the chunks' material sums.
+    rhi::BufferHandle splitBricks_, splitWork_, splitMinima_, splitMaterials_;
     // Per-update scratch, sized by the budgets.
     rhi::BufferHandle triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_;
     uint32_t touchedCapacity_ = 0;

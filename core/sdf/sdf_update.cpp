@@ -158,6 +158,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
         writeJobTable(plan.overlay.jobs, {});
         // The cursors of the full round start again (the stats counters add up over both rounds).
         device_.clearBuffer(counters_, {4 * layout::AllocCursor, 4 * (layout::SortedCursor - layout::AllocCursor + 1)}, 0);
+        device_.clearBuffer(counters_, {4 * layout::SplitCursor, 4 * (layout::SplitWorkCursor - layout::SplitCursor + 1)}, 0);
         struct { uint32_t jobCount, voxelCount; } p{uint32_t(plan.overlay.jobs.size()), uint32_t(plan.overlay.voxels)};
         {
             Marker m(device_, "prepare overlay");
@@ -299,6 +300,8 @@ void SdfSceneImpl::recordRound(const Round& round) {
         s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
         s.bindings.storageBuffers.push({4, freeStack_, {}, Access::Read});
         s.bindings.storageBuffers.push({5, brickOwners_, {}, Access::Write});
+        s.bindings.storageBuffers.push({6, splitBricks_, {}, Access::Write});
+        s.bindings.storageBuffers.push({7, splitWork_, {}, Access::Write});
         device_.dispatchIndirect(s, args_, layout::kArgsPerTouched64);
         prepare(1);
     }
@@ -325,12 +328,34 @@ void SdfSceneImpl::recordRound(const Round& round) {
         s.bindings.readBuffers.push({3, cascadeTable_, {}});
         s.bindings.readBuffers.push({4, materialTable_, {}});
         s.bindings.readBuffers.push({5, baseMaps_, {}});
+        s.bindings.readBuffers.push({6, splitBricks_, {}});
+        s.bindings.readBuffers.push({7, splitWork_, {}});
         s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
         s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::ReadWrite});
         s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
         s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({4, splitMinima_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({5, splitMaterials_, {}, Access::Write});
         s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::ReadWrite});
         device_.dispatchIndirect(s, args_, layout::kArgsPerTouchedBrick);
+    }
+    {
+        Marker m(device_, "finalize split bricks");
+        rhi::DispatchState s;
+        s.shader = shaders_.finalizeSplit;
+        s.label = "sdf finalize split bricks";
+        s.bindings.readBuffers.push({0, touched_, {}});
+        s.bindings.readBuffers.push({1, cascadeTable_, {}});
+        s.bindings.readBuffers.push({2, baseMaps_, {}});
+        s.bindings.readBuffers.push({3, splitBricks_, {}});
+        s.bindings.readBuffers.push({4, splitMaterials_, {}});
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
+        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::ReadWrite});
+        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({4, splitMinima_, {}, Access::ReadWrite});
+        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::ReadWrite});
+        device_.dispatchIndirect(s, args_, layout::kArgsPerSplitBrick);
     }
 }
 
@@ -374,6 +399,7 @@ void SdfSceneImpl::pollStats() {
         s.referencesProcessed = c[layout::RefsInUpdate];
         s.voxelsBuilt = c[layout::VoxelsBuilt];
         s.voxelsDeferredGpu = c[layout::VoxelsDeferred];
+        s.bricksSplit = c[layout::BricksSplit];
         stats_ = s;
         // The GPU left voxels of these jobs unbuilt (references or bricks ran out): build them again.
         // While the pool is exhausted this retries every update; the stats say why.

@@ -132,6 +132,7 @@ struct Stats {
     uint32_t referencesProcessed = 0;
     uint32_t voxelsBuilt = 0;        // voxels that got a brick or were found empty
     uint32_t voxelsDeferredGpu = 0;  // voxels left unbuilt because the references or the brick pool ran out
+    uint32_t bricksSplit = 0;        // bricks whose many references the brick pass split over several groups
 };
 
 // Work done or deferred by the latest update(), known on the CPU at once.

@@ -5,7 +5,8 @@
 // One thread per touched voxel: takes a brick from the top of the free stack (the stack only shrinks in
 // this pass; prepare_args commits the count) and a range of the sorted reference list. A voxel that
 // lost its references to the budget, or finds the pool empty, stays UNBUILT (deferred). The brick's owner
-// entry gets the voxel and the brick's next allocation generation.
+// entry gets the voxel and the brick's next allocation generation. A voxel with more references than one
+// group of the brick pass should take is split into chunks (emit_distances.comp), while there is room.
 layout(local_size_x = 64) in;
 BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
 BL_STORAGE_BUFFER(1) VoxelRefs { uint voxelRefs[]; };
@@ -13,6 +14,8 @@ BL_STORAGE_BUFFER(2) Touched { uvec4 touched[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
 BL_STORAGE_BUFFER(4) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(5) BrickOwners { uint brickOwners[]; };
+BL_STORAGE_BUFFER(6) SplitBricks { uvec4 splitBricks[]; };  // touched index, first split work item, chunks
+BL_STORAGE_BUFFER(7) SplitWork { uvec2 splitWork[]; };      // split brick, chunk
 
 void main() {
     uint t = gl_GlobalInvocationID.y * (BL_SDF_WIDE_GROUPS * 64u) + gl_GlobalInvocationID.x;
@@ -30,7 +33,19 @@ void main() {
     uint brick = freeStack[available - 1u - k];
     uint count = voxelRefs[2u * key];
     uint first = atomicAdd(counters[C_SORTED_CURSOR], count);
-    touched[t] = uvec4(entry.x, count, first, brick);
+    uint flag = 0u;
+    if (count > BL_SDF_REFS_PER_GROUP) {
+        uint split = atomicAdd(counters[C_SPLIT_CURSOR], 1u);
+        if (split < BL_SDF_MAX_SPLIT_BRICKS) {
+            uint chunks = (count + BL_SDF_REFS_PER_GROUP - 1u) / BL_SDF_REFS_PER_GROUP;
+            uint work = atomicAdd(counters[C_SPLIT_WORK_CURSOR], chunks);
+            splitBricks[split] = uvec4(t, work, chunks, 0u);
+            for (uint chunk = 0u; chunk < chunks; ++chunk) splitWork[work + chunk] = uvec2(split, chunk);
+            flag = BL_SDF_SPLIT_FLAG;
+            atomicAdd(counters[C_BRICKS_SPLIT], 1u);
+        }
+    }
+    touched[t] = uvec4(entry.x, count | flag, first, brick);
     brickMaps[key] = brick;
     // A new generation, so that caches keyed by brick id see a new owner even where the brick comes back
     // to the voxel it was freed from (sdf_layout.glsl).

@@ -20,11 +20,15 @@
 #define C_REFS_STORED 11
 #define C_FREE_AT_ALLOCATION 12
 #define C_REFS_IN_UPDATE 13
+#define C_SPLIT_CURSOR 14        // bricks split over several groups (may pass BL_SDF_MAX_SPLIT_BRICKS: not split then)
+#define C_SPLIT_WORK_CURSOR 15   // their chunks
+#define C_BRICKS_SPLIT 16        // stats: bricks split, over the update's rounds
 
 // Indirect argument slots (3 uints each) in the args buffer.
 #define ARGS_PER_TOUCHED_64 0   // one thread per touched voxel, 64 per group
 #define ARGS_PER_TOUCHED_BRICK 3 // one group per touched voxel (2D: x < 32768)
 #define ARGS_PER_REFERENCE_64 6  // one thread per stored reference
+#define ARGS_PER_SPLIT_BRICK 9   // one group per split brick (finalize)
 #define BL_SDF_WIDE_GROUPS 32768u
 
 // Job table: per-cascade bounds of this update's jobs, then the jobs.
@@ -33,8 +37,15 @@
 //   this update's job-voxel numbering (w)
 #define BL_SDF_JOB_TABLE_BODY ivec4 cascadeBounds[2 * BL_SDF_MAX_CASCADES]; ivec4 jobs[];
 
-// Touched voxel entries (uvec4): x = cascade << 24 | physical voxel, y = reference count, z = first
-// sorted reference, w = brick (or BL_SDF_UNBUILT when none was allocated).
+// Touched voxel entries (uvec4): x = cascade << 24 | physical voxel, y = reference count (| BL_SDF_SPLIT_FLAG
+// when its references are split over several groups), z = first sorted reference, w = brick (or
+// BL_SDF_UNBUILT when none was allocated).
+#define BL_SDF_SPLIT_FLAG 0x80000000u
+#define BL_SDF_NO_SPLIT 0xFFFFFFFFu
+// A brick with more references than this is split into chunks of this many, one group each.
+#define BL_SDF_REFS_PER_GROUP 2048u
+#define BL_SDF_MAX_SPLIT_BRICKS 2048u
+#define BL_SDF_SPLIT_MINIMUM_CLEAR 0x7F800000u  // +inf: the split minima between rounds
 
 // Triangle scratch: 3 vec4 per triangle, world space; v0.w = max cascade, or -1 for a rejected triangle;
 // v1.w = 1 for an alpha-tested instance's triangle; v2.w = the instance's material tag: 1 + its index in the

@@ -33,6 +33,11 @@
 // monotonic, so this equals rounding the exact minimum), and the box, the alpha flag and the opaque cells are
 // the union of the base's and the dynamic triangles' (a brixel is within an interval of a surface of either
 // kind exactly when it is within one of the minimum). The material mixes the two by their surface brixels.
+// A brick with more than BL_SDF_REFS_PER_GROUP references (a dense mesh in a coarse voxel: a 100k-triangle
+// object's every triangle in one brick) is split by allocate_bricks.comp into chunks of that many, one group
+// each after the touched voxels' groups: a chunk's group takes the minima of its references and adds them to
+// the brick's in global memory (atomic minimum), with its material sums beside; finalize_split_bricks.comp
+// then stores the brick. One group per brick would leave the device idle behind a few such bricks.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 8) in;
 BL_READ_BUFFER(0) Triangles { vec4 triangles[]; };
 BL_READ_BUFFER(1) SortedReferences { uint sortedReferences[]; };
@@ -40,18 +45,17 @@ BL_READ_BUFFER(2) Touched { uvec4 touched[]; };
 BL_READ_BUFFER(3) CascadeTable { BL_SDF_CASCADE_TABLE_BODY } table;
 BL_READ_BUFFER(4) MaterialTable { vec4 materialTable[]; };  // per tag - 1: albedo, emission
 BL_READ_BUFFER(5) BaseMaps { uint baseMaps[]; };
+BL_READ_BUFFER(6) SplitBricks { uvec4 splitBricks[]; };  // touched index, first split work item, chunks
+BL_READ_BUFFER(7) SplitWork { uvec2 splitWork[]; };      // split brick, chunk
 BL_STORAGE_BUFFER(0) BrickMaps { uint brickMaps[]; };
 BL_STORAGE_BUFFER(1) BrickAabbs { uint brickAabbs[]; };
 BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
+BL_STORAGE_BUFFER(4) SplitMinima { uint splitMinima[]; };      // 1024 per split brick (opaque, alpha-tested)
+BL_STORAGE_BUFFER(5) SplitMaterials { vec4 splitMaterials[]; };  // 2 per split work item
 BL_IMAGE(0, r8) uniform image3D atlas;
 
-shared uint best[512];       // squared distance to the nearest opaque triangle (float bits)
-shared uint bestAlpha[512];  // ... to the nearest alpha-tested triangle
-shared uint boxMin[3], boxMax[3], keep, alphaTested, opaqueCells[2];
-shared uint baseSurface, ownSurface;  // brixels within an interval of the base's / the dynamic triangles' surfaces
-shared vec4 albedoSum[256];    // rgb: albedo · pairs, w: pairs
-shared vec3 emissionSum[256];
+#include "emit_brick.glsl"
 
 // Adds `pairs` (triangle, brixel) pairs of the triangle with material tag `tag` to a thread's sums.
 void addMaterial(uint tag, float pairs, inout vec4 albedo, inout vec3 emission) {
@@ -61,10 +65,23 @@ void addMaterial(uint tag, float pairs, inout vec4 albedo, inout vec3 emission) 
 }
 
 void main() {
-    uint t = gl_WorkGroupID.y * BL_SDF_WIDE_GROUPS + gl_WorkGroupID.x;
-    if (t >= counters[C_TOUCHED_COUNT]) return;  // uniform per group
-    uvec4 entry = touched[t];
-    if (entry.w == BL_SDF_UNBUILT) return;
+    uint g = gl_WorkGroupID.y * BL_SDF_WIDE_GROUPS + gl_WorkGroupID.x;
+    uint touchedCount = counters[C_TOUCHED_COUNT];
+    uint begin = 0u, end = 0u, split = BL_SDF_NO_SPLIT, work = 0u;
+    uvec4 entry;
+    if (g < touchedCount) {  // uniform per group
+        entry = touched[g];
+        if (entry.w == BL_SDF_UNBUILT || (entry.y & BL_SDF_SPLIT_FLAG) != 0u) return;
+        end = entry.y;
+    } else {
+        work = g - touchedCount;
+        if (work >= counters[C_SPLIT_WORK_CURSOR]) return;
+        uvec2 item = splitWork[work];
+        split = item.x;
+        entry = touched[splitBricks[split].x];
+        begin = item.y * BL_SDF_REFS_PER_GROUP;
+        end = min(entry.y & ~BL_SDF_SPLIT_FLAG, begin + BL_SDF_REFS_PER_GROUP);
+    }
     uint lane = gl_LocalInvocationIndex;
     uint cascade = entry.x >> 24;
     uint physical = entry.x & 0xFFFFFFu;
@@ -75,31 +92,17 @@ void main() {
     float band = table.cascades[cascade].voxelSize.w;
     float brixel = vs / 7.0;
     vec3 voxelMin = vec3(voxel) * vs;
-
-    best[lane] = floatBitsToUint(band * band);
-    bestAlpha[lane] = floatBitsToUint(band * band);
-    if (lane < 3u) {
-        boxMin[lane] = 7u;
-        boxMax[lane] = 0u;
-    }
-    if (lane < 2u) opaqueCells[lane] = 0u;
-    if (lane == 0u) {
-        keep = 0u;
-        alphaTested = 0u;
-        baseSurface = 0u;
-        ownSurface = 0u;
-    }
-    barrier();
+    blSdfBeginBrick(lane, band);
 
     ivec3 own = ivec3(gl_LocalInvocationID);
     vec4 albedo = vec4(0.0);
     vec3 emission = vec3(0.0);
     float near2 = brixel * brixel;  // a brixel within one interval of a triangle is on its surface
-    if (entry.y <= 32u) {
+    if (end - begin <= 32u) {
         // Few references (large triangles): every brixel evaluates all of them, so all threads work.
         vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
         float d2 = band * band, d2Alpha = band * band;
-        for (uint r = 0u; r < entry.y; ++r) {
+        for (uint r = begin; r < end; ++r) {
             uint tri = sortedReferences[entry.z + r];
             vec4 b = triangles[3u * tri + 1u], c = triangles[3u * tri + 2u];
             float e2 = blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, b.xyz, c.xyz);
@@ -110,7 +113,7 @@ void main() {
         best[lane] = floatBitsToUint(d2);
         bestAlpha[lane] = floatBitsToUint(d2Alpha);
     } else {
-        for (uint r = lane; r < entry.y; r += 512u) {
+        for (uint r = begin + lane; r < end; r += 512u) {
             uint tri = sortedReferences[entry.z + r];
             vec4 bw = triangles[3u * tri + 1u], cw = triangles[3u * tri + 2u];
             vec3 a = triangles[3u * tri].xyz, b = bw.xyz, c = cw.xyz;
@@ -142,106 +145,18 @@ void main() {
             addMaterial(uint(cw.w), pairs, albedo, emission);
         }
     }
+    if (split == BL_SDF_NO_SPLIT) {
+        blSdfFinishBrick(entry, cascade, physical, lane, band, brixel, albedo, emission);
+        return;
+    }
+    // A chunk of a split brick: its minima into the brick's, its material sums beside.
     barrier();
-
-    float dOpaque = sqrt(uintBitsToFloat(best[lane])), dAlpha = sqrt(uintBitsToFloat(bestAlpha[lane]));
-    float d = min(dOpaque, dAlpha);
-    uint q = uint(floor(min(d, band) / band * 255.0 + 0.5));
-    uint brick = entry.w;
-    uint key = cascade * BL_SDF_CASCADE_VOXELS + physical;
-    uint base = baseMaps[key];
-    if (base < BL_SDF_FIRST_STATE) {
-        // Within an interval of a surface of the base: the sample at most the rounding of one interval.
-        uint qBase = uint(imageLoad(atlas, blSdfBrickTexel(base, table.header.y) + own).r * 255.0 + 0.5);
-        if (qBase <= uint(floor(255.0 / BL_SDF_BAND_BRIXELS + 0.5))) atomicAdd(baseSurface, 1u);
-        q = min(q, qBase);
+    uint at = 1024u * split + lane;
+    if (best[lane] < splitMinima[at]) atomicMin(splitMinima[at], best[lane]);
+    if (bestAlpha[lane] < splitMinima[at + 512u]) atomicMin(splitMinima[at + 512u], bestAlpha[lane]);
+    blSdfSumMaterials(lane, albedo, emission);
+    if (lane == 0u) {
+        splitMaterials[2u * work] = albedoSum[0];
+        splitMaterials[2u * work + 1u] = vec4(emissionSum[0], 0.0);
     }
-    if (d <= brixel) atomicAdd(ownSurface, 1u);
-    imageStore(atlas, blSdfBrickTexel(brick, table.header.y) + own, vec4(float(q) / 255.0));
-    if (q < 255u) atomicOr(keep, 1u);
-    if (d <= brixel) {
-        for (int axis = 0; axis < 3; ++axis) {
-            atomicMin(boxMin[axis], uint(own[axis]));
-            atomicMax(boxMax[axis], uint(own[axis]));
-        }
-    }
-    if (dAlpha <= brixel) atomicOr(alphaTested, 1u);
-    if (dOpaque <= brixel) {
-        // Lattice points 0..7 over the voxel; cell k of 4 holds points 2k and 2k + 1 (k/4 <= i/7 < (k+1)/4).
-        uvec3 cell = min(uvec3(own) * 4u / 7u, uvec3(3u));
-        uint bit = (cell.z * 4u + cell.y) * 4u + cell.x;
-        atomicOr(opaqueCells[bit >> 5], 1u << (bit & 31u));
-    }
-    // The material sums over the group: the upper half folds onto the lower, then a tree.
-    if (lane >= 256u) {
-        albedoSum[lane - 256u] = albedo;
-        emissionSum[lane - 256u] = emission;
-    }
-    barrier();
-    if (lane < 256u) {
-        albedoSum[lane] += albedo;
-        emissionSum[lane] += emission;
-    }
-    barrier();
-    for (uint stride = 128u; stride > 0u; stride >>= 1) {
-        if (lane < stride) {
-            albedoSum[lane] += albedoSum[lane + stride];
-            emissionSum[lane] += emissionSum[lane + stride];
-        }
-        barrier();
-    }
-    if (lane != 0u) return;
-    uint materialAt = table.header.z * (1u + BL_SDF_OPAQUE_CELL_WORDS) + BL_SDF_MATERIAL_WORDS * entry.w;
-    vec4 total = albedoSum[0];
-    bool known = keep != 0u && total.w > 0.0;
-    vec3 albedoMean = known ? clamp(total.rgb / total.w, 0.0, 1.0) : vec3(0.0);
-    vec3 emissionMean = known ? emissionSum[0] / total.w : vec3(0.0);
-    uint baseBox = BL_SDF_AABB_NONE;
-    if (base < BL_SDF_FIRST_STATE) {
-        baseBox = brickAabbs[base];
-        uint baseMaterialAt = table.header.z * (1u + BL_SDF_OPAQUE_CELL_WORDS) + BL_SDF_MATERIAL_WORDS * base;
-        uint baseAlbedo = brickAabbs[baseMaterialAt];
-        if ((baseAlbedo >> 24) != 0u) {
-            // Both known: the mean over both kinds' surface brixels; else whichever is known.
-            float wBase = float(max(baseSurface, 1u)), wOwn = known ? float(ownSurface) : 0.0;
-            vec3 baseEmission = blDecodeRgb9e5(brickAabbs[baseMaterialAt + 1u]);
-            albedoMean = (unpackUnorm4x8(baseAlbedo).rgb * wBase + albedoMean * wOwn) / (wBase + wOwn);
-            emissionMean = (baseEmission * wBase + emissionMean * wOwn) / (wBase + wOwn);
-            known = true;
-        }
-        if (baseBox != BL_SDF_AABB_NONE) {
-            // The base's box (stored grown by one and clamped, which commutes with the union) and its flags.
-            if ((baseBox & BL_SDF_AABB_ALPHA_TESTED) != 0u) alphaTested = 1u;
-            uint cells = table.header.z + 2u * base;
-            opaqueCells[0] |= brickAabbs[cells];
-            opaqueCells[1] |= brickAabbs[cells + 1u];
-        }
-    }
-    brickAabbs[materialAt] = known ? packUnorm4x8(vec4(albedoMean, 1.0)) : 0u;
-    brickAabbs[materialAt + 1u] = known ? blEncodeRgb9e5(emissionMean) : 0u;
-    if (keep == 0u) {
-        brickMaps[key] = BL_SDF_EMPTY;
-        brickAabbs[brick] = BL_SDF_AABB_NONE;
-        uint top = atomicAdd(counters[C_FREE_COUNT], 1u);
-        freeStack[top] = brick;
-        atomicAdd(counters[C_BRICKS_FREED], 1u);
-    } else if (boxMin[0] > boxMax[0] && baseBox == BL_SDF_AABB_NONE) {
-        brickAabbs[brick] = BL_SDF_AABB_NONE;  // distances only: no surface inside the voxel
-    } else {
-        uvec3 lo = uvec3(7u), hi = uvec3(0u);
-        if (boxMin[0] <= boxMax[0]) {
-            lo = uvec3(max(ivec3(boxMin[0], boxMin[1], boxMin[2]) - 1, ivec3(0)));
-            hi = uvec3(min(ivec3(boxMax[0], boxMax[1], boxMax[2]) + 1, ivec3(7)));
-        }
-        if (baseBox != BL_SDF_AABB_NONE) {
-            lo = min(lo, uvec3(baseBox, baseBox >> 3, baseBox >> 6) & 7u);
-            hi = max(hi, uvec3(baseBox >> 9, baseBox >> 12, baseBox >> 15) & 7u);
-        }
-        uint flags = alphaTested != 0u ? BL_SDF_AABB_ALPHA_TESTED : 0u;
-        brickAabbs[brick] = lo.x | (lo.y << 3) | (lo.z << 6) | (hi.x << 9) | (hi.y << 12) | (hi.z << 15) | flags;
-        uint cells = table.header.z + 2u * brick;
-        brickAabbs[cells] = opaqueCells[0];
-        brickAabbs[cells + 1u] = opaqueCells[1];
-    }
-    atomicAdd(counters[C_VOXELS_BUILT], 1u);
 }

@@ -5,7 +5,8 @@
 // One thread, between passes, so that the following dispatches size themselves on the GPU:
 //   stage 0 (after counting references): args for one thread per touched voxel;
 //   stage 1 (after allocating bricks): commits the bricks taken from the free list and writes args for
-//            one group per touched voxel and one thread per stored reference.
+//            the brick pass (one group per touched voxel and per chunk of a split one), one thread per
+//            stored reference, and one group per split brick.
 layout(local_size_x = 1) in;
 BL_CONSTANTS(0) uniform Params { uint stage; uint maxReferences; } params;
 BL_STORAGE_BUFFER(0) Counters { uint counters[]; };
@@ -29,6 +30,8 @@ void main() {
     uint stored = min(counters[C_REF_CURSOR], params.maxReferences);
     counters[C_REFS_STORED] = stored;  // this round's, for the scatter pass
     counters[C_REFS_IN_UPDATE] += stored;  // over the update's rounds (full, then overlay), for the stats
-    wide(ARGS_PER_TOUCHED_BRICK, touchedCount);
+    // The brick pass: a group per touched voxel, then one per chunk of the split ones; their finalize.
+    wide(ARGS_PER_TOUCHED_BRICK, touchedCount + counters[C_SPLIT_WORK_CURSOR]);
+    wide(ARGS_PER_SPLIT_BRICK, min(counters[C_SPLIT_CURSOR], BL_SDF_MAX_SPLIT_BRICKS));
     wide(ARGS_PER_REFERENCE_64, (stored + 63u) / 64u);
 }

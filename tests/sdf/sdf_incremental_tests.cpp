@@ -207,6 +207,7 @@ void poolExhausted(const std::string& backend) {
 // triangles only (no full job, no static triangle), and a deforming one — its vertices rewritten in the
 // application's own buffer every update — too. Either way the field equals, brixel by brixel, a from-scratch
 // build with every instance static, in which one brick pass takes the minimum over all triangles at once.
+// The mover is dense enough that its coarse bricks are split over several groups of the brick pass.
 void moversGatherTheirOwnTriangles(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
@@ -242,7 +243,12 @@ void moversGatherTheirOwnTriangles(const std::string& backend) {
     REQUIRE(deformingMesh);
     const glm::mat4 deformingAt = glm::translate(glm::mat4(1.0f), glm::vec3(400.0f, 300.0f, 300.0f));
     scene->addInstance({deformingMesh, deformingAt, true});
-    sdf::InstanceHandle mover = scene->addInstance({meshes[w.torusMesh], torusAt({200, 60, 200}, 0.0f), true});
+    // The mover is dense enough that the brick pass splits its coarse bricks over several groups.
+    const scenes::TriangleMesh dense = scenes::torus(60.0f, 20.0f, 24000);
+    sdf::MeshHandle denseMesh = scene->createMesh({dense.positions.data(), uint32_t(dense.positions.size() / 3), dense.indices.data(),
+                                                   uint32_t(dense.indices.size()), "dense torus"});
+    const uint32_t denseTriangles = uint32_t(dense.indices.size() / 3);
+    sdf::InstanceHandle mover = scene->addInstance({denseMesh, torusAt({200, 60, 200}, 0.0f), true});
 
     const glm::vec3 center(278, 274, 280);
     scene->update(center);  // the walls: full jobs
@@ -259,18 +265,21 @@ void moversGatherTheirOwnTriangles(const std::string& backend) {
         INFO("frame " << frame << ": " << r.jobs << " jobs (" << r.overlayJobs << " overlay), " << r.trianglesGathered << " triangles gathered ("
                       << r.overlayTrianglesGathered << " by the overlay), " << r.instancesGathered << " instances");
         CHECK(r.jobs == r.overlayJobs);
-        CHECK(r.trianglesGathered == 2 * torusTriangles);
-        CHECK(r.overlayTrianglesGathered == 2 * torusTriangles);
+        CHECK(r.trianglesGathered == torusTriangles + denseTriangles);
+        CHECK(r.overlayTrianglesGathered == torusTriangles + denseTriangles);
         CHECK(r.instancesGathered == 2);
         CHECK(r.jobsDeferred == 0);
     }
     sdf::FieldSnapshot incremental = scene->readField();
+    const sdf::Stats stats = scene->latestStats();
 
     auto scratch = sdf::SdfScene::create(dev, sceneDesc(td));
     REQUIRE(scratch);
     std::vector<sdf::MeshHandle> scratchMeshes = createMeshes(*scratch, w.geometry);
     for (uint32_t m = 0; m < w.torusMesh; ++m) scratch->addInstance({scratchMeshes[m], glm::mat4(1.0f)});
-    scratch->addInstance({scratchMeshes[w.torusMesh], moverAt});
+    sdf::MeshHandle scratchDense = scratch->createMesh({dense.positions.data(), uint32_t(dense.positions.size() / 3), dense.indices.data(),
+                                                        uint32_t(dense.indices.size()), "dense torus"});
+    scratch->addInstance({scratchDense, moverAt});
     const std::vector<float> last = deformed(frame - 1);
     sdf::MeshHandle lastShape = scratch->createMesh({last.data(), uint32_t(last.size() / 3), torus.indices.data(),
                                                      uint32_t(torus.indices.size()), "deformed torus, last frame"});
@@ -285,6 +294,8 @@ void moversGatherTheirOwnTriangles(const std::string& backend) {
     INFO(backend << ": " << diff.stateMismatches << " state mismatches (first: " << diff.firstMismatch << "), " << diff.brixelsDiffering
                  << " brixels differ, largest difference " << diff.maxBrixelDifference << "; " << bases << " static bricks under composites");
     CHECK(bases > 0);  // the mover passes near the floor: composites over static bricks were made
+    INFO("stats of update " << stats.update << ": " << stats.bricksSplit << " bricks split over several groups");
+    CHECK(stats.bricksSplit > 0);
     CHECK(diff.stateMismatches == 0);
     CHECK(diff.maxBrixelDifference == 0);
     dev.destroy(vb);
