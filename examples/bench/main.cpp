@@ -164,7 +164,7 @@ Options parse(int argc, char** argv) {
 // A pass that runs in both of an update's rounds (full, overlay) counts both.
 const char* kPasses[] = {"sdf update/invalidate", "sdf update/prepare overlay", "sdf update/gather", "sdf update/count references",
                          "sdf update/allocate bricks", "sdf update/scatter references", "sdf update/emit distances",
-                         "sdf update/resolve empty", "sdf update/resolve overlay", "sdf trees"};
+                         "sdf update/finalize split bricks", "sdf update/resolve empty", "sdf update/resolve overlay", "sdf trees"};
 
 double updateTotal(const PhaseTimes& t) { return t.perFrame("sdf update") + t.perFrame("sdf trees"); }
 
