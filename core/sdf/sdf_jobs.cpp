@@ -175,13 +175,22 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
             out.push_back({c, glm::ivec3(glm::ceil((box.min - b) / vs)) - 1, glm::ivec3(glm::floor((box.max + b) / vs)) + 1});
         }
     };
-    // Dynamic instances: their old and new footprints are the overlay, every update.
+    // Dynamic instances: their old and new footprints are the overlay, every update — except those that cannot
+    // have changed: the same transform and a mesh from CPU arrays (its vertices are the scene's, fixed; a mesh in
+    // the application's buffers may deform under the same transform). Those stay as built, unless a full job
+    // rebuilds their voxels (below).
     std::vector<Job> overlay;
+    std::vector<const Instance*> still;
     for (auto& [id, inst] : instances_)
         if (inst.dynamic) {
+            if (inst.built && inst.transform == inst.builtTransform && meshes_.at(inst.mesh.id).owned) {
+                still.push_back(&inst);
+                continue;
+            }
             if (inst.built) jobsFor(inst.builtBounds, inst.maxCascade, overlay);
             jobsFor(inst.bounds, inst.maxCascade, overlay);
             inst.builtBounds = inst.bounds;
+            inst.builtTransform = inst.transform;
             inst.built = true;
         }
     std::vector<Job> candidates = std::move(pending_);
@@ -190,10 +199,21 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
     dirtyBoxes_.clear();
     dirtyMaxCascade_.clear();
     if (candidates.size() <= 4096) dropContainedJobs(candidates);  // quadratic: skipped for floods
-    if (overlay.size() <= 4096) dropContainedJobs(overlay);
 
     Plan plan;
     planRound(std::move(candidates), false, plan.full, plan.changedCascades);
+    // A full job builds the static field alone: a still dynamic instance in its voxels is composited again.
+    for (const Instance* inst : still) {
+        std::vector<Job> footprint;
+        jobsFor(inst->bounds, inst->maxCascade, footprint);
+        for (const Job& f : footprint)
+            for (const Job& j : plan.full.jobs) {
+                if (j.cascade != f.cascade) continue;
+                Job both{f.cascade, glm::max(f.min, j.min), glm::min(f.max, j.max)};
+                if (glm::all(glm::lessThan(both.min, both.max))) overlay.push_back(both);
+            }
+    }
+    if (overlay.size() <= 4096) dropContainedJobs(overlay);
     planRound(std::move(overlay), true, plan.overlay, plan.changedCascades);
     const Budgets& budgets = desc_.budgets;
     // Jobs deferred for the first time are invalidated now, so that no voxel shows what its toroidal slot

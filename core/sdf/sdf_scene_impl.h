@@ -45,6 +45,7 @@ struct Instance {
     std::optional<SurfaceMaterial> material;
     WorldBox bounds;       // of the current transform
     WorldBox builtBounds;  // what the field holds of it (dynamic: last update)
+    glm::mat4 builtTransform{1.0f};  // dynamic: the transform the field holds it at
     bool built = false;
 };
 

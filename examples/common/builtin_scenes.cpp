@@ -175,6 +175,7 @@ SceneGeometry dynamicRoom() {
     light.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from below: emits downwards
     light.emission = glm::vec3(30.0f, 27.0f, 22.0f);
     addMesh(s, std::move(light));
+    s.instances[1].dynamic = s.instances[2].dynamic = true;
     s.animate = [](SceneGeometry& g, uint32_t frame) {
         const float t = 0.1f * float(frame);
         g.instances[1].transform = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.5f * std::cos(t), 0.7f, 1.5f * std::sin(t))),

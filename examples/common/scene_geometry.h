@@ -91,6 +91,9 @@ struct Camera {
 struct MeshInstance {
     uint32_t mesh = 0;
     glm::mat4 transform{1.0f};
+    // Moved by `SceneGeometry::animate`: the renderers register it as a dynamic instance of the distance field
+    // (rebuilt over the static field every frame, docs/sdf.md *Update model*), not a static one moved.
+    bool dynamic = false;
 };
 
 struct SceneGeometry {

@@ -59,6 +59,7 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
         id.mesh = meshes[i.mesh];
         id.transform = i.transform;
         id.alphaTested = alphaTested && options_.foliage == FoliageMode::AlphaAware;
+        id.dynamic = i.dynamic;
         id.material = fieldMaterialOf(scene.meshes[i.mesh]);
         sdfInstances_.push_back(sdf_->addInstance(id));
         if (!sdfInstances_.back()) return fail("the distance field rejected an instance: " + sdf_->lastError().message);

@@ -105,7 +105,9 @@ struct SurfaceMaterial {
 struct InstanceDesc {
     MeshHandle mesh;
     glm::mat4 transform{1.0f};  // affine (last row 0,0,0,1)
-    // Static instances persist until moved or removed; dynamic ones are rebuilt at every update.
+    // Static instances persist until moved or removed (a move rebuilds their old and new regions from every
+    // static instance there). Dynamic ones are rebuilt from their own triangles over the static field at every
+    // update in which they may have changed: moved, or their mesh is in the application's buffers (deforming).
     bool dynamic = false;
     uint32_t maxCascade = kMaxCascades - 1;  // keeps small props out of coarse cascades
     // Alpha-tested geometry (grass and leaf cards, fences): the field is built on the whole triangles, as for

@@ -207,7 +207,8 @@ void poolExhausted(const std::string& backend) {
 // triangles only (no full job, no static triangle), and a deforming one — its vertices rewritten in the
 // application's own buffer every update — too. Either way the field equals, brixel by brixel, a from-scratch
 // build with every instance static, in which one brick pass takes the minimum over all triangles at once.
-// The mover is dense enough that its coarse bricks are split over several groups of the brick pass.
+// The mover is dense enough that its coarse bricks are split over several groups of the brick pass. When it
+// stops it costs nothing, until a static box placed under it rebuilds its voxels: it is composited again.
 void moversGatherTheirOwnTriangles(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
@@ -270,6 +271,39 @@ void moversGatherTheirOwnTriangles(const std::string& backend) {
         CHECK(r.instancesGathered == 2);
         CHECK(r.jobsDeferred == 0);
     }
+    // The mover stops: it costs nothing more (its mesh is the scene's, fixed), the deforming one goes on.
+    {
+        const std::vector<float> p = deformed(frame);
+        dev.writeBuffer(vb, 0, p.data(), p.size() * 4);
+        const sdf::UpdateReport r = scene->update(center);
+        dev.endFrame();
+        INFO("the mover still: " << r.trianglesGathered << " triangles gathered");
+        CHECK(r.trianglesGathered == torusTriangles);
+        ++frame;
+    }
+    // A static box placed where the still mover is: its full job builds the static field alone there, and the
+    // still mover is composited over it again.
+    std::vector<float> boxPositions;
+    std::vector<uint32_t> boxIndices;
+    {
+        scenes::TriangleMesh box;
+        scenes::addBox(box, glm::vec3(150.0f, 0.0f, 220.0f), glm::vec3(330.0f, 30.0f, 290.0f));
+        boxPositions = box.positions;
+        boxIndices = box.indices;
+    }
+    sdf::MeshHandle boxMesh = scene->createMesh({boxPositions.data(), uint32_t(boxPositions.size() / 3), boxIndices.data(),
+                                                 uint32_t(boxIndices.size()), "box under the mover"});
+    scene->addInstance({boxMesh, glm::mat4(1.0f)});
+    {
+        const std::vector<float> p = deformed(frame);
+        dev.writeBuffer(vb, 0, p.data(), p.size() * 4);
+        const sdf::UpdateReport r = scene->update(center);
+        dev.endFrame();
+        INFO("a static box under the still mover: " << r.jobs << " jobs (" << r.overlayJobs << " overlay), " << r.overlayTrianglesGathered
+                                                     << " triangles gathered by the overlay");
+        CHECK(r.overlayTrianglesGathered == torusTriangles + denseTriangles);
+        ++frame;
+    }
     sdf::FieldSnapshot incremental = scene->readField();
     const sdf::Stats stats = scene->latestStats();
 
@@ -284,6 +318,9 @@ void moversGatherTheirOwnTriangles(const std::string& backend) {
     sdf::MeshHandle lastShape = scratch->createMesh({last.data(), uint32_t(last.size() / 3), torus.indices.data(),
                                                      uint32_t(torus.indices.size()), "deformed torus, last frame"});
     scratch->addInstance({lastShape, deformingAt});
+    sdf::MeshHandle scratchBox = scratch->createMesh({boxPositions.data(), uint32_t(boxPositions.size() / 3), boxIndices.data(),
+                                                      uint32_t(boxIndices.size()), "box under the mover"});
+    scratch->addInstance({scratchBox, glm::mat4(1.0f)});
     scratch->update(center);
     sdf::FieldSnapshot reference = scratch->readField();
     REQUIRE_NO_MESSAGES(td);
