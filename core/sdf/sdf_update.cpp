@@ -198,6 +198,14 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
 }
 
 void SdfSceneImpl::recordRound(const Round& round) {
+    // What storing a brick writes (emit_brick.glsl), in emit distances and in finalize split bricks.
+    auto bindBrickOutputs = [&](rhi::DispatchState& s) {
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
+        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::ReadWrite});
+        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::ReadWrite});
+    };
     {
         // The gathered instances' materials, indexed by the tag gather gives their triangles (0: none).
         std::vector<glm::vec4> materials;
@@ -330,13 +338,9 @@ void SdfSceneImpl::recordRound(const Round& round) {
         s.bindings.readBuffers.push({5, baseMaps_, {}});
         s.bindings.readBuffers.push({6, splitBricks_, {}});
         s.bindings.readBuffers.push({7, splitWork_, {}});
-        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
-        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::ReadWrite});
-        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
-        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        bindBrickOutputs(s);
         s.bindings.storageBuffers.push({4, splitMinima_, {}, Access::Atomic});
         s.bindings.storageBuffers.push({5, splitMaterials_, {}, Access::Write});
-        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::ReadWrite});
         device_.dispatchIndirect(s, args_, layout::kArgsPerTouchedBrick);
     }
     {
@@ -349,12 +353,8 @@ void SdfSceneImpl::recordRound(const Round& round) {
         s.bindings.readBuffers.push({2, baseMaps_, {}});
         s.bindings.readBuffers.push({3, splitBricks_, {}});
         s.bindings.readBuffers.push({4, splitMaterials_, {}});
-        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Write});
-        s.bindings.storageBuffers.push({1, brickAabbs_, {}, Access::ReadWrite});
-        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
-        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        bindBrickOutputs(s);
         s.bindings.storageBuffers.push({4, splitMinima_, {}, Access::ReadWrite});
-        s.bindings.storageImages.push({0, rhi::wholeTexture(atlas_), Access::ReadWrite});
         device_.dispatchIndirect(s, args_, layout::kArgsPerSplitBrick);
     }
 }

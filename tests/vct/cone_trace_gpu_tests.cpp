@@ -60,7 +60,6 @@ void conesInsideAnEmissiveBox(const std::string& backend, vct::EmittanceMode mod
         INFO("cone " << i << " direction " << cones[i].direction.x << "," << cones[i].direction.y << "," << cones[i].direction.z << " factor "
                      << cones[i].origin.w << ": radiance " << r.radiance.x << " ambient " << r.ambient << " opacity " << r.finalOpacity
                      << " samples " << r.samples);
-        const float factor = cones[i].origin.w;
         const bool diagonal = std::abs(cones[i].direction.x) < 0.9f && std::abs(cones[i].direction.y) < 0.9f && std::abs(cones[i].direction.z) < 0.9f;
         CHECK(r.ambient > 0.95f);  // nothing within 3 voxels of the centre
         CHECK(r.radiance.y == Approx(r.radiance.x).epsilon(1e-3));
