@@ -116,6 +116,15 @@ static void dispatchPerJobVoxel(rhi::IDevice& device, rhi::DispatchState& s, uin
 
 void SdfSceneImpl::recordBuild(const Plan& plan) {
     Marker all(device_, "sdf update");
+    // Invalidate and prepare overlay: per job voxel, a state change that frees bricks and resets the counts.
+    auto bindVoxelReset = [&](rhi::DispatchState& s) {
+        s.bindings.readBuffers.push({0, jobTable_, {}});
+        s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
+        s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
+        s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({4, baseMaps_, {}, Access::Atomic});
+    };
     device_.clearBuffer(counters_, {4, (layout::CounterCount - 1) * 4}, 0);  // all but the free count
     if (!plan.full.jobs.empty() || !plan.invalidateOnly.empty()) {
         writeJobTable(plan.full.jobs, plan.invalidateOnly);
@@ -132,12 +141,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
             s.shader = shaders_.invalidate;
             s.label = "sdf invalidate jobs";
             s.bindings.constants.push(rhi::constants(0, p));
-            s.bindings.readBuffers.push({0, jobTable_, {}});
-            s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
-            s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
-            s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
-            s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
-            s.bindings.storageBuffers.push({4, baseMaps_, {}, Access::Atomic});
+            bindVoxelReset(s);
             dispatchPerJobVoxel(device_, s, invalidated);
         }
         if (!plan.full.jobs.empty()) {
@@ -166,12 +170,7 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
             s.shader = shaders_.prepareOverlay;
             s.label = "sdf prepare overlay";
             s.bindings.constants.push(rhi::constants(0, p));
-            s.bindings.readBuffers.push({0, jobTable_, {}});
-            s.bindings.storageBuffers.push({0, brickMaps_, {}, Access::Atomic});
-            s.bindings.storageBuffers.push({1, voxelRefs_, {}, Access::Write});
-            s.bindings.storageBuffers.push({2, freeStack_, {}, Access::Write});
-            s.bindings.storageBuffers.push({3, counters_, {}, Access::Atomic});
-            s.bindings.storageBuffers.push({4, baseMaps_, {}, Access::ReadWrite});
+            bindVoxelReset(s);
             dispatchPerJobVoxel(device_, s, plan.overlay.voxels);
         }
         recordRound(plan.overlay);
