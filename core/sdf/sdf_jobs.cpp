@@ -63,7 +63,7 @@ uint32_t SdfSceneImpl::trianglesFor(const Job& job, bool dynamic, std::vector<ch
         const size_t i = index++;
         if (chosen[i] || inst.dynamic != dynamic || inst.maxCascade < job.cascade) continue;
         if (glm::any(glm::lessThan(inst.bounds.max, lo)) || glm::any(glm::greaterThan(inst.bounds.min, hi))) continue;
-        total += meshes_.at(inst.mesh.id).triangleCount;
+        total += inst.moverGrid >= 0 ? moverChunks(inst, 0.0f, 0, nullptr) : meshes_.at(inst.mesh.id).triangleCount;
         picked.push_back(uint32_t(i));
     }
     return total;
@@ -158,6 +158,10 @@ void SdfSceneImpl::planRound(std::vector<Job> candidates, bool dynamic, Round& r
         for (uint32_t i : picked) {
             chosen[i] = 1;
             round.instances.push_back(instanceOrder[i]);
+            const Instance& inst = instances_.at(instanceOrder[i]);
+            if (inst.moverGrid < 0) continue;
+            ++round.movers;
+            round.moverChunks += moverChunks(inst, 0.0f, 0, nullptr);
         }
         round.triangles += extra;
         round.voxels += job.voxels();
@@ -231,10 +235,11 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
     report.jobs = uint32_t(plan.full.jobs.size() + plan.overlay.jobs.size());
     report.voxels = uint32_t(plan.full.voxels + plan.overlay.voxels);
     report.instancesGathered = uint32_t(plan.full.instances.size() + plan.overlay.instances.size());
-    report.trianglesGathered = plan.full.triangles + plan.overlay.triangles;
+    report.trianglesGathered = plan.full.triangles + plan.overlay.triangles - plan.overlay.moverChunks;
     report.overlayJobs = uint32_t(plan.overlay.jobs.size());
     report.overlayVoxels = uint32_t(plan.overlay.voxels);
-    report.overlayTrianglesGathered = plan.overlay.triangles;
+    report.overlayTrianglesGathered = plan.overlay.triangles - plan.overlay.moverChunks;
+    report.moverGridInstances = plan.overlay.movers;
     report.jobsDeferred = uint32_t(pending_.size());
     for (const Job& j : pending_) report.voxelsDeferred += uint32_t(j.voxels());
     return plan;

@@ -72,7 +72,14 @@ constexpr uint64_t kArgsPerReference64 = 24;
 constexpr uint64_t kArgsPerSplitBrick = 36;
 constexpr uint64_t kArgsBytes = 48;
 
-constexpr uint32_t kWideGroups = 32768;  // dispatches wider than this use a second dimension
+constexpr uint32_t kWideGroups = 32768;
+
+// Mover grids (mover_grid.glsl).
+constexpr float kMoverTag = 2.0f;
+constexpr uint32_t kMoverMaxTriangles = 1u << 20;    // triangle bits of a key
+constexpr uint64_t kMoverMaxSamples = 1ull << 23;    // per grid (32 MiB of keys); larger meshes re-voxelize
+constexpr int kMoverMarginCells = 5;                 // lattice beyond the mesh's bounds: > band + a cell's diagonal
+constexpr int kMoverChunkVoxels = 4;                 // a chunk references at most 4³ voxels  // dispatches wider than this use a second dimension
 
 struct GpuCascade {
     int32_t origin[4];    // xyz origin voxel, w: exists

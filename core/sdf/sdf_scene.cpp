@@ -53,13 +53,14 @@ SdfSceneImpl::~SdfSceneImpl() {
             device_.destroy(m.indexBuffer);
         }
     for (rhi::BufferHandle b : {cascadeTable_, brickMaps_, baseMaps_, splitBricks_, splitWork_, splitMinima_, splitMaterials_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
-                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
+                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_,
+                                moverGridData_, moverGridTable_})
         if (b) device_.destroy(b);
     if (atlas_) device_.destroy(atlas_);
     if (atlasSampler_) device_.destroy(atlasSampler_);
     for (rhi::ShaderHandle s : {shaders_.invalidate, shaders_.gather, shaders_.count, shaders_.prepare, shaders_.allocate,
                                 shaders_.scatter, shaders_.emit, shaders_.finalizeSplit, shaders_.resolve, shaders_.prepareOverlay, shaders_.resolveOverlay,
-                                shaders_.treeBottom, shaders_.treeTop, shaders_.debug})
+                                shaders_.treeBottom, shaders_.treeTop, shaders_.debug, shaders_.buildMoverGrid})
         if (s) device_.destroy(s);
 }
 
@@ -151,7 +152,8 @@ bool SdfSceneImpl::init(Error* error) {
         !shader("sdf/resolve_empty.comp", &shaders_.resolve) || !shader("sdf/prepare_overlay.comp", &shaders_.prepareOverlay) ||
         !shader("sdf/resolve_overlay.comp", &shaders_.resolveOverlay) ||
         !shader("sdf/finalize_split_bricks.comp", &shaders_.finalizeSplit) || !shader("sdf/build_tree_bottom.comp", &shaders_.treeBottom) ||
-        !shader("sdf/build_tree_top.comp", &shaders_.treeTop) || !shader("sdf/debug_view.comp", &shaders_.debug))
+        !shader("sdf/build_tree_top.comp", &shaders_.treeTop) || !shader("sdf/debug_view.comp", &shaders_.debug) ||
+        !shader("sdf/build_mover_grid.comp", &shaders_.buildMoverGrid))
         return false;
 
     using namespace rhi::BufferUsage;
@@ -210,9 +212,13 @@ bool SdfSceneImpl::init(Error* error) {
     materialTable_ = makeBuffer("materialTable", uint64_t(std::max(1u, d.maxInstances)) * layout::kMaterialTableBytesPerInstance, ShaderRead);
     jobTable_ = makeBuffer("jobTable", (layout::kJobTableHeadInts + 4ull * b.maxJobsPerUpdate) * 16, ShaderRead);
     overlays_ = makeBuffer("debugOverlays", 32ull * std::max(1u, d.maxBoundsOverlays), ShaderRead);
+    // Bound by the brick pass always; replaced when the first mover grid is built (sdf_mover_grids.cpp).
+    moverGridData_ = makeBuffer("moverGridData", 16, rw);
+    moverGridTable_ = makeBuffer("moverGridTable", 64, rw);
 
     for (rhi::BufferHandle h : {cascadeTable_, brickMaps_, baseMaps_, splitBricks_, splitWork_, splitMinima_, splitMaterials_, trees_, brickAabbs_, brickOwners_, freeStack_, counters_, args_,
-                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_})
+                                voxelRefs_, triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_,
+                                moverGridData_, moverGridTable_})
         if (!h) return bad(ErrorCode::DeviceFailure, "the device could not create the field's buffers (see the device's messages)");
     if (!atlas_ || !atlasSampler_) return bad(ErrorCode::DeviceFailure, "the device could not create the brick atlas (see the device's messages)");
 
@@ -237,7 +243,8 @@ MemoryUse SdfSceneImpl::memoryUse() const {
              {"freeStack", freeStack_}, {"voxelReferenceCounts", voxelRefs_}, {"cascadeTable", cascadeTable_},
              {"counters+args", counters_}, {"triangles (scratch)", triangles_}, {"references (scratch)", references_},
              {"sortedReferences (scratch)", sortedReferences_}, {"touchedVoxels (scratch)", touched_},
-             {"jobTable", jobTable_}, {"materialTable", materialTable_}, {"debugOverlays", overlays_}}) {
+             {"jobTable", jobTable_}, {"materialTable", materialTable_}, {"debugOverlays", overlays_},
+             {"mover grids (triangles, nearest-triangle keys)", moverGridData_}, {"mover grid table", moverGridTable_}}) {
         const rhi::BufferDesc* bd = device_.describe(h);
         add(name, bd ? bd->size : 0);
     }

@@ -47,6 +47,22 @@ struct Instance {
     WorldBox builtBounds;  // what the field holds of it (dynamic: last update)
     glm::mat4 builtTransform{1.0f};  // dynamic: the transform the field holds it at
     bool built = false;
+    int32_t moverGrid = -1;  // this update: the mover grid it is composited from (index in moverGrids_), or none
+};
+
+// A mesh's grid of nearest triangles at one scale (mover_grid.glsl), one level per cascade.
+struct MoverGrid {
+    uint32_t mesh = 0;
+    float scale = 1.0f;
+    uint32_t firstTriangle = 0;  // in moverGridData_, in triangles (12 words)
+    uint32_t firstLevelRow = 0;  // in moverGridTable_
+    struct Level {
+        glm::vec3 origin{0.0f};  // object space
+        float spacing = 0.0f;
+        glm::uvec3 dims{0u};
+        uint32_t firstKey = 0;  // word in moverGridData_
+    };
+    std::vector<Level> levels;
 };
 
 // A rebuild region: world voxel coordinates of one cascade, [min, max).
@@ -64,8 +80,10 @@ struct Job {
 struct Round {
     std::vector<Job> jobs;
     std::vector<uint32_t> instances;  // ids to gather
-    uint32_t triangles = 0;
+    uint32_t triangles = 0;  // gathered triangles, then mover grid chunks (moverChunks of them)
     uint64_t voxels = 0;
+    uint32_t moverChunks = 0;
+    uint32_t movers = 0;  // instances composited from mover grids
 };
 
 // What update() decided to do, before recording. Full jobs build the static field from the static
@@ -136,7 +154,14 @@ private:
     uint32_t trianglesFor(const Job& job, bool dynamic, std::vector<char>& chosen, std::vector<uint32_t>& picked) const;
     void planRound(std::vector<Job> candidates, bool dynamic, Round& round, uint32_t& changedCascades);
 
+    // sdf_mover_grids.cpp
+    void prepareMoverGrids(UpdateReport& report);  // which movers use grids; builds the grids first needed
+    uint32_t moverChunks(const Instance& inst, float tag, uint32_t materialTag, std::vector<glm::vec4>* out) const;
+    void writeMovers(const Round& round, std::vector<glm::vec4>& chunks);  // the round's mover rows and chunks
+
     // sdf_update.cpp
+    void recordGather(const Mesh& mesh, const glm::mat4& transform, uint32_t first, uint32_t maxCascade, bool alphaTested,
+                      uint32_t materialTag, rhi::BufferHandle out, bool afterGather);
     void writeCascadeTable();
     void recordBuild(const Plan& plan);
     void writeJobTable(const std::vector<Job>& build, const std::vector<Job>& invalidateOnly);
@@ -151,7 +176,7 @@ private:
 
     struct Shaders {
         rhi::ShaderHandle invalidate, gather, count, prepare, allocate, scatter, emit, finalizeSplit, resolve, prepareOverlay,
-            resolveOverlay, treeBottom, treeTop, debug;
+            resolveOverlay, treeBottom, treeTop, debug, buildMoverGrid;
     } shaders_;
 
     // Persistent resources.
@@ -166,6 +191,11 @@ private:
     // Per-update scratch, sized by the budgets.
     rhi::BufferHandle triangles_, references_, sortedReferences_, touched_, jobTable_, materialTable_, overlays_;
     uint32_t touchedCapacity_ = 0;
+    // Mover grids: their triangles and keys, and the table of their levels and this round's movers.
+    std::vector<MoverGrid> moverGrids_;
+    rhi::BufferHandle moverGridData_, moverGridTable_;
+    uint32_t moverLevelRows_ = 0;  // the table's first mover row (a multiple of 4)
+    std::vector<glm::uvec4> moverLevelTable_;  // its level rows
 
     std::map<uint32_t, Mesh> meshes_;
     std::map<uint32_t, Instance> instances_;

@@ -63,6 +63,7 @@ UpdateReport SdfSceneImpl::update(const glm::vec3& center) {
     std::vector<glm::ivec3> before;
     for (const CascadeState& c : cascades_) before.push_back(c.origin);
     scrollCascades(center);
+    prepareMoverGrids(report);
     Plan plan = planUpdate(report);
     for (uint32_t c = 0; c < desc_.cascadeCount; ++c)
         if (cascades_[c].origin != before[c]) plan.changedCascades |= 1u << c;
@@ -196,6 +197,50 @@ void SdfSceneImpl::recordBuild(const Plan& plan) {
     if (f.ticket) inFlight_.push_back(std::move(f));
 }
 
+// Appends a mesh's triangles, transformed, to `out` from triangle `first` on (gather_triangles.comp).
+void SdfSceneImpl::recordGather(const Mesh& mesh, const glm::mat4& transform, uint32_t first, uint32_t maxCascade, bool alphaTested,
+                                uint32_t materialTag, rhi::BufferHandle out, bool afterGather) {
+    struct {
+        float rows[3][4];
+        float boundsMin[4], boundsMax[4];
+        uint32_t vertex[4], index[4], misc[4];
+    } p{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) p.rows[r][c] = transform[c][r];
+    // Tolerance for the bounds check: positions read back as half floats round.
+    const float extent = glm::length(mesh.boundsMax - mesh.boundsMin);
+    const float tolerance = mesh.positionFormat == PositionFormat::Half4 ? 1e-3f * extent + 1e-3f : 1e-6f * extent;
+    for (int a = 0; a < 3; ++a) {
+        p.boundsMin[a] = mesh.boundsMin[a];
+        p.boundsMax[a] = mesh.boundsMax[a];
+    }
+    p.boundsMin[3] = tolerance;
+    p.vertex[0] = uint32_t(mesh.vertexOffset);
+    p.vertex[1] = mesh.vertexStride;
+    p.vertex[2] = mesh.positionFormat == PositionFormat::Float3 ? 0 : 1;
+    p.vertex[3] = mesh.vertexCount;
+    p.index[0] = uint32_t(mesh.indexOffset);
+    p.index[1] = mesh.indexFormat == rhi::IndexFormat::U16 ? 0 : 1;
+    p.index[2] = mesh.triangleCount;
+    p.index[3] = first;
+    p.misc[0] = maxCascade;
+    p.misc[1] = alphaTested ? 1u : 0u;
+    p.misc[2] = materialTag;
+    rhi::DispatchState s;
+    s.shader = shaders_.gather;
+    s.label = "sdf gather triangles";
+    // Disjoint ranges of the output; the first of a round waits for the previous round's readers.
+    if (afterGather) s.flags = rhi::DispatchFlags::NoBarrierWithPreviousWriter;
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.readBuffers.push({0, mesh.vertexBuffer, {}});
+    s.bindings.readBuffers.push({1, mesh.indexBuffer, {}});
+    s.bindings.storageBuffers.push({0, out, {}, Access::Write});
+    s.bindings.storageBuffers.push({1, counters_, {}, Access::Atomic});
+    uint32_t gx, gy;
+    wideGroups(mesh.triangleCount, &gx, &gy);
+    device_.dispatch(s, gx, gy, 1);
+}
+
 void SdfSceneImpl::recordRound(const Round& round) {
     // What storing a brick writes (emit_brick.glsl), in emit distances and in finalize split bricks.
     auto bindBrickOutputs = [&](rhi::DispatchState& s) {
@@ -220,50 +265,20 @@ void SdfSceneImpl::recordRound(const Round& round) {
     {
         Marker m(device_, "gather");
         uint32_t first = 0, materialTag = 0;
-        bool firstDispatch = true;
+        bool afterGather = false;
         for (uint32_t id : round.instances) {
             const Instance& inst = instances_.at(id);
+            const uint32_t tag = inst.material ? ++materialTag : 0u;
+            if (inst.moverGrid >= 0) continue;  // composited from its grid: chunks below
             const Mesh& mesh = meshes_.at(inst.mesh.id);
-            struct {
-                float rows[3][4];
-                float boundsMin[4], boundsMax[4];
-                uint32_t vertex[4], index[4], misc[4];
-            } p{};
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 4; ++c) p.rows[r][c] = inst.transform[c][r];
-            // Tolerance for the bounds check: positions read back as half floats round.
-            const float extent = glm::length(mesh.boundsMax - mesh.boundsMin);
-            const float tolerance = mesh.positionFormat == PositionFormat::Half4 ? 1e-3f * extent + 1e-3f : 1e-6f * extent;
-            for (int a = 0; a < 3; ++a) {
-                p.boundsMin[a] = mesh.boundsMin[a];
-                p.boundsMax[a] = mesh.boundsMax[a];
-            }
-            p.boundsMin[3] = tolerance;
-            p.vertex[0] = uint32_t(mesh.vertexOffset);
-            p.vertex[1] = mesh.vertexStride;
-            p.vertex[2] = mesh.positionFormat == PositionFormat::Float3 ? 0 : 1;
-            p.vertex[3] = mesh.vertexCount;
-            p.index[0] = uint32_t(mesh.indexOffset);
-            p.index[1] = mesh.indexFormat == rhi::IndexFormat::U16 ? 0 : 1;
-            p.index[2] = mesh.triangleCount;
-            p.index[3] = first;
-            p.misc[0] = inst.maxCascade;
-            p.misc[1] = inst.alphaTested ? 1u : 0u;
-            p.misc[2] = inst.material ? ++materialTag : 0u;
-            rhi::DispatchState s;
-            s.shader = shaders_.gather;
-            s.label = "sdf gather triangles";
-            // Disjoint ranges of the scratch; the first of a round waits for the previous round's readers.
-            if (!firstDispatch) s.flags = rhi::DispatchFlags::NoBarrierWithPreviousWriter;
-            firstDispatch = false;
-            s.bindings.constants.push(rhi::constants(0, p));
-            s.bindings.readBuffers.push({0, mesh.vertexBuffer, {}});
-            s.bindings.readBuffers.push({1, mesh.indexBuffer, {}});
-            s.bindings.storageBuffers.push({0, triangles_, {}, Access::Write});
-            s.bindings.storageBuffers.push({1, counters_, {}, Access::Atomic});
-            wideGroups(mesh.triangleCount, &gx, &gy);
-            device_.dispatch(s, gx, gy, 1);
+            recordGather(mesh, inst.transform, first, inst.maxCascade, inst.alphaTested, tag, triangles_, afterGather);
+            afterGather = true;
             first += mesh.triangleCount;
+        }
+        if (round.movers) {
+            std::vector<glm::vec4> chunks;
+            writeMovers(round, chunks);
+            device_.writeBuffer(triangles_, uint64_t(first) * 48, chunks.data(), chunks.size() * sizeof(glm::vec4));
         }
     }
     {
@@ -340,6 +355,8 @@ void SdfSceneImpl::recordRound(const Round& round) {
         bindBrickOutputs(s);
         s.bindings.storageBuffers.push({4, splitMinima_, {}, Access::Atomic});
         s.bindings.storageBuffers.push({5, splitMaterials_, {}, Access::Write});
+        s.bindings.storageBuffers.push({6, moverGridTable_, {}, Access::Read});
+        s.bindings.storageBuffers.push({7, moverGridData_, {}, Access::Read});
         device_.dispatchIndirect(s, args_, layout::kArgsPerTouchedBrick);
     }
     {

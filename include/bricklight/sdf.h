@@ -55,6 +55,12 @@ struct SceneDesc {
     uint32_t maxBoundsOverlays = 256;   // boxes drawn by the debug view
     Budgets budgets;
     std::string debugName = "sdf";
+    // Rigid movers at their footprint's cost: a dynamic instance of a mesh from CPU arrays, opaque, under a
+    // transform without shear or non-uniform scale, is composited from a grid of its mesh's nearest triangles
+    // built once per mesh and scale (docs/sdf.md, *Mover grids*) instead of re-voxelizing its triangles. Its
+    // distances are then exact to the nearest of the triangles nearest to the 8 grid points around each
+    // sample; false re-voxelizes every mover (exact everywhere, cost ~ its triangles).
+    bool moverGrids = true;
     // Receives the builder's own messages (bad meshes, instances, budgets); stderr when empty. GPU-side
     // messages come through the device's callback.
     rhi::ErrorCallback errorCallback;
@@ -153,6 +159,8 @@ struct UpdateReport {
     uint32_t overlayJobs = 0;
     uint32_t overlayVoxels = 0;
     uint32_t overlayTrianglesGathered = 0;
+    uint32_t moverGridInstances = 0;  // of the overlay's instances, those composited from mover grids
+    uint32_t moverGridsBuilt = 0;     // mover grids built by this update (a mesh or scale seen first)
 };
 
 using MemoryUse = bricklight::MemoryUse;  // bricklight/memory_use.h

@@ -2,9 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "build_common.glsl"
+#include "mover_grid.glsl"
 // One thread per gathered triangle: for every cascade the triangle goes into, every BUILDING voxel within
 // the distance band of the triangle gets a reference (voxel, triangle, index within the voxel). The loop
 // runs over the columns of the triangle's dominant plane with a depth range per column (cost ~ area).
+// A mover grid's reference chunk (mover_grid.glsl) references every BUILDING voxel of its box in its cascade.
 // When the reference budget runs out the voxel is put back to UNBUILT (deferred, retried later).
 layout(local_size_x = 64) in;
 BL_CONSTANTS(0) uniform Params { uint triangleCount; uint cascadeCount; uint maxReferences; uint touchedCapacity; } params;
@@ -44,9 +46,19 @@ void main() {
     barrier();
     uint tri = gl_GlobalInvocationID.y * (BL_SDF_WIDE_GROUPS * 64u) + gl_GlobalInvocationID.x;
     vec4 v0 = tri < params.triangleCount ? triangles[3u * tri] : vec4(0.0, 0.0, 0.0, -1.0);
-    if (v0.w >= 0.0) {
+    vec4 v1 = tri < params.triangleCount ? triangles[3u * tri + 1u] : vec4(0.0);
+    if (v0.w >= 0.0 && v1.w > BL_SDF_MOVER_TAG - 0.5) {
+        uint cascade = uint(v0.w);
+        ivec4 bmin = jobTable.cascadeBounds[2u * cascade];
+        ivec4 bmax = jobTable.cascadeBounds[2u * cascade + 1u];
+        ivec3 lo = max(ivec3(v0.xyz), bmin.xyz), hi = min(ivec3(v1.xyz), bmax.xyz - 1);
+        if (bmin.w != 0)
+            for (int z = lo.z; z <= hi.z; ++z)
+                for (int y = lo.y; y <= hi.y; ++y)
+                    for (int x = lo.x; x <= hi.x; ++x) emitReference(cascade, ivec3(x, y, z), tri);
+    } else if (v0.w >= 0.0) {
         atomicAdd(groupProcessed, 1u);
-        vec3 a = v0.xyz, b = triangles[3u * tri + 1u].xyz, c = triangles[3u * tri + 2u].xyz;
+        vec3 a = v0.xyz, b = v1.xyz, c = triangles[3u * tri + 2u].xyz;
         vec3 n = cross(b - a, c - a);
         float nLength = length(n);
         uint lastCascade = min(uint(v0.w), params.cascadeCount - 1u);

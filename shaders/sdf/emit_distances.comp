@@ -33,6 +33,8 @@
 // monotonic, so this equals rounding the exact minimum), and the box, the alpha flag and the opaque cells are
 // the union of the base's and the dynamic triangles' (a brixel is within an interval of a surface of either
 // kind exactly when it is within one of the minimum). The material mixes the two by their surface brixels.
+// A reference to a mover grid's chunk (mover_grid.glsl) stands for a rigid mover's whole mesh: each brixel
+// takes its distance from the grid, as an opaque triangle of the mover's material would give it.
 // A brick with more than BL_SDF_REFS_PER_GROUP references (a dense mesh in a coarse voxel: a 100k-triangle
 // object's every triangle in one brick) is split by allocate_bricks.comp into chunks of that many, one group
 // each after the touched voxels' groups: a chunk's group takes the minima of its references and adds them to
@@ -53,9 +55,13 @@ BL_STORAGE_BUFFER(2) FreeStack { uint freeStack[]; };
 BL_STORAGE_BUFFER(3) Counters { uint counters[]; };
 BL_STORAGE_BUFFER(4) SplitMinima { uint splitMinima[]; };      // 1024 per split brick (opaque, alpha-tested)
 BL_STORAGE_BUFFER(5) SplitMaterials { vec4 splitMaterials[]; };  // 2 per split work item
+BL_STORAGE_BUFFER(6) MoverGridTable { uvec4 moverGridTable[]; };  // read only
+BL_STORAGE_BUFFER(7) MoverGridData { uint moverGridData[]; };      // read only
 BL_IMAGE(0, r8) uniform image3D atlas;
 
 #include "emit_brick.glsl"
+#define BL_SDF_MOVER_SAMPLING
+#include "mover_grid.glsl"
 
 // Adds `pairs` (triangle, brixel) pairs of the triangle with material tag `tag` to a thread's sums.
 void addMaterial(uint tag, float pairs, inout vec4 albedo, inout vec3 emission) {
@@ -105,8 +111,10 @@ void main() {
         for (uint r = begin; r < end; ++r) {
             uint tri = sortedReferences[entry.z + r];
             vec4 b = triangles[3u * tri + 1u], c = triangles[3u * tri + 2u];
-            float e2 = blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, b.xyz, c.xyz);
-            if (b.w > 0.5) d2Alpha = min(d2Alpha, e2);
+            bool mover = b.w > BL_SDF_MOVER_TAG - 0.5;
+            float e2 = mover ? blSdfMoverDistanceSq(uint(b.w - BL_SDF_MOVER_TAG + 0.5), cascade, p, band * band)
+                             : blPointTriangleDistanceSq(p, triangles[3u * tri].xyz, b.xyz, c.xyz);
+            if (b.w > 0.5 && !mover) d2Alpha = min(d2Alpha, e2);
             else d2 = min(d2, e2);
             if (e2 < near2) addMaterial(uint(c.w), 1.0 - sqrt(e2) / brixel, albedo, emission);
         }
@@ -116,6 +124,19 @@ void main() {
         for (uint r = begin + lane; r < end; r += 512u) {
             uint tri = sortedReferences[entry.z + r];
             vec4 bw = triangles[3u * tri + 1u], cw = triangles[3u * tri + 2u];
+            if (bw.w > BL_SDF_MOVER_TAG - 0.5) {
+                // A mover grid's chunk among many triangles: this thread samples it at all 512 brixels.
+                uint m = uint(bw.w - BL_SDF_MOVER_TAG + 0.5);
+                float moverPairs = 0.0;
+                for (uint index = 0u; index < 512u; ++index) {
+                    vec3 p = (vec3(voxel) + vec3(index & 7u, (index >> 3) & 7u, index >> 6) / 7.0) * vs;
+                    float d2 = blSdfMoverDistanceSq(m, cascade, p, band * band);
+                    if (d2 < near2) moverPairs += 1.0 - sqrt(d2) / brixel;
+                    if (floatBitsToUint(d2) < best[index]) SHARED_ATOMIC_MIN(best[index], floatBitsToUint(d2));
+                }
+                addMaterial(uint(cw.w), moverPairs, albedo, emission);
+                continue;
+            }
             vec3 a = triangles[3u * tri].xyz, b = bw.xyz, c = cw.xyz;
             float pairs = 0.0;
             bool alphaTri = bw.w > 0.5;
