@@ -36,9 +36,27 @@ struct GpuFrame {  // BL_CONSTANTS(1)
     uint32_t relight[4];    // light count, relight flags (RelightFlags), unused, unused
     glm::vec4 traceLimits;  // iterations per cascade of every GI ray, diffuse rays' coarsenAfterVoxels (TraceParams)
     uint32_t probes[4];     // probe tile side in internal pixels, unused, unused, unused
-    uint32_t cache[4];      // radiance cache slots kept for injections that carry light, unused, unused, unused
+    uint32_t cache[4];      // radiance cache slots kept for injections that carry light, changed regions, unused, unused
 };
 static_assert(sizeof(GpuFrame) == 224);
+
+// Where the field's geometry changed (SdfScene::latestChanges: a mover's old and new bounds), GI refreshes its
+// light. Last frame's image, which the cache learns from, and the pixels' history hold the light of before the
+// change: for kChangeFeedbackFrames frames the radiance cache of the bricks there is dropped and nothing is
+// injected there (probes light those hits as surfaces never seen), and for kChangeFrames frames the pixels there
+// keep a history of at most kChangeHistory samples. A change reaches as far as the changed box's largest side
+// (an object's colour bleeding and shadow are strongest within about its size), at least kChangeReachVoxels
+// finest traced voxels. At most kMaxChangedRegions boxes: more are merged (the least added volume first).
+constexpr uint32_t kMaxChangedRegions = 8;
+constexpr float kChangeReachVoxels = 2.0f;
+constexpr uint32_t kChangeHistory = 2;
+constexpr uint64_t kChangeFrames = 8;
+constexpr uint32_t kChangeFeedbackFrames = 2;
+
+struct GpuChangedRegions {  // BL_CONSTANTS(3) of clear_freed_bricks.comp and interpolate.comp
+    glm::vec4 boxes[2 * kMaxChangedRegions];  // world min, max (grown by the reach); GpuFrame::cache[1] of them
+};
+static_assert(sizeof(GpuChangedRegions) == 256);
 
 enum RelightFlags : uint32_t {
     RelightAlbedo = 1u,    // DispatchDesc::diffuseAlbedo given: bricks learn their albedo, unseen texels are re-lit

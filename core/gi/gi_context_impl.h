@@ -68,6 +68,7 @@ private:
     bool checkLights(const DispatchDesc& d);
     // gi_dispatch.cpp
     void fillConstants(const DispatchDesc& d);
+    void writeChangedRegions();  // gi_dispatch.cpp
     void uploadLights(const DispatchDesc& d);
     void addTrace(rhi::Bindings& b) const;
     // The alpha cache at storage buffer 7 (gi_alpha.glsl), for the passes that trace rays through foliage (atomic:
@@ -118,6 +119,13 @@ private:
 
     GpuCamera camera_{};
     GpuFrame frame_{};
+    GpuChangedRegions changed_{};  // this frame's (writeChangedRegions)
+    struct RecentChange {
+        glm::vec3 min, max;  // grown by the reach
+        uint64_t frame;      // frameIndex_ when seen
+    };
+    std::vector<RecentChange> recentChanges_;
+    uint64_t changesSeenAt_ = 0;  // the field's update whose changes are in recentChanges_
     uint64_t frameIndex_ = 0;
     int lastFrame_ = 0;  // [cur] of the latest dispatch (for the debug views)
     bool historyValid_ = false;

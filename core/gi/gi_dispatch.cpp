@@ -118,6 +118,54 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
                         (d.lightUnseenSurfaces ? uint32_t(RelightUnseenHits) : 0u);
     frame_.probes[0] = probeTile_;
     frame_.cache[0] = cacheSlots_ / 4;  // inject_radiance.comp: the last quarter goes to bricks that receive light
+    writeChangedRegions();
+}
+
+// frame_.cache[1] and changed_ from the field's latest changes.
+void GiContextImpl::writeChangedRegions() {
+    struct Box {
+        glm::vec3 min, max;
+        float age = 0.0f;  // frames since the change; a merged box takes the younger
+        float volume() const {
+            const glm::vec3 s = glm::max(max - min, glm::vec3(0.0f));
+            return s.x * s.y * s.z;
+        }
+    };
+    // A change stays a region for kChangeFrames frames: the screen's feedback (last frame's image injected into
+    // the cache, the history) carries the light of before the change for that long.
+    const uint64_t update = scene_.updateCount();
+    // Before the first frame there is no light to refresh (the first update adds everything).
+    if (update != changesSeenAt_ && frameIndex_ == 0) changesSeenAt_ = update;
+    if (update != changesSeenAt_) {
+        changesSeenAt_ = update;
+        const float voxel = frame_.camera.w;
+        for (const sdf::SdfScene::ChangedBox& c : scene_.latestChanges()) {
+            const glm::vec3 size = c.max - c.min;
+            const float reach = std::max(kChangeReachVoxels * voxel, std::max(size.x, std::max(size.y, size.z)));
+            recentChanges_.push_back({c.min - reach, c.max + reach, frameIndex_});
+        }
+    }
+    std::erase_if(recentChanges_, [&](const RecentChange& c) { return frameIndex_ >= c.frame + kChangeFrames; });
+    std::vector<Box> boxes;
+    for (const RecentChange& c : recentChanges_) boxes.push_back({c.min, c.max, float(frameIndex_ - c.frame)});
+    while (boxes.size() > kMaxChangedRegions) {
+        size_t bi = 0, bj = 1;
+        float best = INFINITY;
+        for (size_t i = 0; i < boxes.size(); ++i)
+            for (size_t j = i + 1; j < boxes.size(); ++j) {
+                const Box u{glm::min(boxes[i].min, boxes[j].min), glm::max(boxes[i].max, boxes[j].max), 0.0f};
+                const float added = u.volume() - boxes[i].volume() - boxes[j].volume();
+                if (added < best) best = added, bi = i, bj = j;
+            }
+        boxes[bi] = {glm::min(boxes[bi].min, boxes[bj].min), glm::max(boxes[bi].max, boxes[bj].max), std::min(boxes[bi].age, boxes[bj].age)};
+        boxes.erase(boxes.begin() + long(bj));
+    }
+    frame_.cache[1] = uint32_t(boxes.size());
+    changed_ = {};
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        changed_.boxes[2 * i] = glm::vec4(boxes[i].min, boxes[i].age);
+        changed_.boxes[2 * i + 1] = glm::vec4(boxes[i].max, 0.0f);
+    }
 }
 
 void GiContextImpl::uploadLights(const DispatchDesc& d) {
@@ -194,6 +242,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         addInputs(s.bindings);
         addTrace(s.bindings);
         addAlphaCache(s.bindings, Access::ReadWrite);  // forgets the alpha cells of reallocated bricks
+        s.bindings.constants.push(rhi::constants(3, changed_));
         run("clear freed bricks", shaders_.clearFreed, s, std::min(groups(capacity, 64), kMaxGroups), groups(groups(capacity, 64), kMaxGroups));
         // The pass's cells are old now (only a frame with an alpha pass set the word: alphaPassState).
         if ((desc_.flags & ContextFlags::AlphaCache) && alphaPassClearedAt_ == frameIndex_ + 1) device_.clearBuffer(alphaCache_, {4, 4}, 0);
@@ -223,6 +272,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         storageBuffer(s.bindings, 1, slotOfBrick_, Access::ReadWrite);
         storageBuffer(s.bindings, 2, freeSlots_, Access::ReadWrite);
         addTrace(s.bindings);
+        s.bindings.constants.push(rhi::constants(3, changed_));
         run("inject radiance", shaders_.inject, s, groups(groups(width_, tile), 8), groups(groups(height_, tile), 8));
     }
     {  // 7. reproject screen probes
@@ -334,6 +384,7 @@ bool GiContextImpl::dispatch(const DispatchDesc& d) {
         image(s.bindings, 0, diffuseHistory_[cur], Access::ReadWrite);
         image(s.bindings, 1, specularHistory_[cur], Access::ReadWrite);
         addTrace(s.bindings);
+        s.bindings.constants.push(rhi::constants(3, changed_));
         run("interpolate", shaders_.interpolate, s, groups(width_, 8), groups(height_, 8));
     }
     // 13. emit the probes into the brick SH irradiance cache (after the interpolation, the last pass of the

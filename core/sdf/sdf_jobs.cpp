@@ -185,14 +185,20 @@ Plan SdfSceneImpl::planUpdate(UpdateReport& report) {
     // rebuilds their voxels (below).
     std::vector<Job> overlay;
     std::vector<const Instance*> still;
+    changes_.clear();
+    for (const WorldBox& b : dirtyBoxes_) changes_.push_back({b.min, b.max});
     for (auto& [id, inst] : instances_)
         if (inst.dynamic) {
             if (inst.built && inst.transform == inst.builtTransform && meshes_.at(inst.mesh.id).owned) {
                 still.push_back(&inst);
                 continue;
             }
-            if (inst.built) jobsFor(inst.builtBounds, inst.maxCascade, overlay);
+            if (inst.built) {
+                jobsFor(inst.builtBounds, inst.maxCascade, overlay);
+                changes_.push_back({inst.builtBounds.min, inst.builtBounds.max});
+            }
             jobsFor(inst.bounds, inst.maxCascade, overlay);
+            changes_.push_back({inst.bounds.min, inst.bounds.max});
             inst.builtBounds = inst.bounds;
             inst.builtTransform = inst.transform;
             inst.built = true;

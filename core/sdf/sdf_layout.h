@@ -78,7 +78,7 @@ constexpr uint32_t kWideGroups = 32768;
 constexpr float kMoverTag = 2.0f;
 constexpr uint32_t kMoverMaxTriangles = 1u << 20;    // triangle bits of a key
 constexpr uint64_t kMoverMaxSamples = 1ull << 23;    // per grid (32 MiB of keys); larger meshes re-voxelize
-constexpr int kMoverMarginCells = 5;                 // lattice beyond the mesh's bounds: > band + a cell's diagonal
+constexpr int kMoverMarginCells = 10;                // lattice beyond the mesh's bounds: > the keys' reach
 constexpr int kMoverChunkVoxels = 4;                 // a chunk references at most 4³ voxels  // dispatches wider than this use a second dimension
 
 struct GpuCascade {

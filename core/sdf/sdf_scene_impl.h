@@ -135,6 +135,7 @@ public:
     std::vector<Diagnostic> diagnostics() const override { return log_.diagnostics(); }
     std::weak_ptr<const void> lifetimeToken() const override { return alive_; }
     uint64_t updateCount() const override { return updateIndex_; }
+    const std::vector<ChangedBox>& latestChanges() const override { return changes_; }
 
 private:
     bool fail(ErrorCode code, const std::string& message);  // reports, returns false
@@ -209,6 +210,7 @@ private:
     std::vector<WorldBox> dirtyBoxes_;
     std::vector<uint32_t> dirtyMaxCascade_;
     std::vector<Job> pending_;  // jobs carried over (budgets) or re-queued (GPU overflow)
+    std::vector<ChangedBox> changes_;  // of the latest update
 
     uint64_t updateIndex_ = 0;
     std::deque<InFlightStats> inFlight_;

@@ -297,6 +297,8 @@ void SdfSceneImpl::recordRound(const Round& round) {
         s.bindings.storageBuffers.push({2, references_, {}, Access::Write});
         s.bindings.storageBuffers.push({3, touched_, {}, Access::Write});
         s.bindings.storageBuffers.push({4, counters_, {}, Access::Atomic});
+        s.bindings.storageBuffers.push({5, moverGridTable_, {}, Access::Read});
+        s.bindings.storageBuffers.push({6, moverGridData_, {}, Access::Read});
         wideGroups(round.triangles, &gx, &gy);
         if (round.triangles) device_.dispatch(s, gx, gy, 1);
     }

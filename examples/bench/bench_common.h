@@ -21,6 +21,7 @@ struct Options {
     std::string json;
     uint32_t cascades = 8;
     uint32_t dynamicMaxCascade = 15;
+    bool moverGrids = true;  // sdf: rigid movers from mover grids (sdf::SceneDesc::moverGrids)
     uint32_t frames = 16;
     uint32_t width = 1920, height = 1080;
     uint32_t scalePercent = 50;  // gi: internal resolution

@@ -154,7 +154,7 @@ SceneGeometry atrium() {
     return s;
 }
 
-SceneGeometry dynamicRoom() {
+SceneGeometry dynamicRoom(DynamicRoomContent content) {
     SceneGeometry s;
     s.name = "dynamic";
     TriangleMesh room = named("room", glm::vec3(0.75f));
@@ -176,11 +176,55 @@ SceneGeometry dynamicRoom() {
     light.emission = glm::vec3(30.0f, 27.0f, 22.0f);
     addMesh(s, std::move(light));
     s.instances[1].dynamic = s.instances[2].dynamic = true;
-    s.animate = [](SceneGeometry& g, uint32_t frame) {
+    // A crowd: 12 boxes of one mesh walking a circle on the floor (rigid movers).
+    constexpr uint32_t kCrowd = 12;
+    const uint32_t crowdFirst = uint32_t(s.instances.size());
+    if (content.crowd) {
+        TriangleMesh walker = named("crowd walker", glm::vec3(0.8f, 0.55f, 0.3f));
+        addBox(walker, {-0.12f, 0.0f, -0.08f}, {0.12f, 0.45f, 0.08f});
+        addMesh(s, std::move(walker));
+        const uint32_t mesh = s.instances.back().mesh;
+        for (uint32_t i = 1; i < kCrowd; ++i) s.instances.push_back({mesh, glm::mat4(1.0f)});
+        for (uint32_t i = 0; i < kCrowd; ++i) s.instances[crowdFirst + i].dynamic = true;
+    }
+    // A deforming torus in a corner: its tube swells in a wave running round it (positions rewritten).
+    const uint32_t deformingInstance = uint32_t(s.instances.size());
+    TriangleMesh restShape;
+    if (content.deforming) {
+        TriangleMesh blob = torus(0.35f, 0.12f, 1500);
+        blob.name = "deforming torus";
+        blob.albedo = glm::vec3(0.8f, 0.2f, 0.15f);
+        blob.deforming = true;
+        blob.deformingBoundsMin = glm::vec3(-0.6f, -0.25f, -0.6f);
+        blob.deformingBoundsMax = glm::vec3(0.6f, 0.25f, 0.6f);
+        restShape = blob;
+        addMesh(s, std::move(blob));
+        s.instances.back().transform = glm::translate(glm::mat4(1.0f), glm::vec3(-2.2f, 0.35f, 2.0f));
+        s.instances.back().dynamic = true;
+    }
+    s.animate = [content, crowdFirst, deformingInstance, restShape](SceneGeometry& g, uint32_t frame) {
         const float t = 0.1f * float(frame);
         g.instances[1].transform = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.5f * std::cos(t), 0.7f, 1.5f * std::sin(t))),
                                                2.0f * t, glm::vec3(1.0f, 0.3f, 0.0f));
         g.instances[2].transform = glm::translate(glm::mat4(1.0f), glm::vec3(1.8f * std::sin(0.7f * t), 2.95f, -1.0f + std::cos(0.5f * t)));
+        if (content.crowd)
+            for (uint32_t i = 0; i < kCrowd; ++i) {
+                const float a = 0.6f * t + 2.0f * glm::pi<float>() * float(i) / float(kCrowd);
+                const float r = 2.3f + 0.25f * std::sin(1.3f * t + float(i));
+                g.instances[crowdFirst + i].transform =
+                    glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(r * std::cos(a), 0.0f, r * std::sin(a))), -a, glm::vec3(0, 1, 0));
+            }
+        if (content.deforming) {
+            std::vector<float>& p = g.meshes[g.instances[deformingInstance].mesh].positions;
+            p = restShape.positions;
+            for (size_t v = 0; v < p.size(); v += 3) {
+                // Around the ring's centre line: the tube's radius scaled by a wave along the ring.
+                const float around = std::atan2(p[v + 2], p[v]);
+                const glm::vec3 centre(0.35f * std::cos(around), 0.0f, 0.35f * std::sin(around));
+                const float swell = 1.0f + 0.6f * std::max(0.0f, std::sin(3.0f * around - 2.0f * t));
+                for (int k = 0; k < 3; ++k) p[v + size_t(k)] = centre[k] + (p[v + size_t(k)] - centre[k]) * swell;
+            }
+        }
     };
     s.animate(s, 0);
     s.camera = {glm::vec3(0.0f, 1.6f, -2.9f), glm::vec3(0.0f, 0.8f, 1.0f), glm::vec3(0, 1, 0), 75.0f};

@@ -62,6 +62,11 @@ struct TriangleMesh {
     std::string alphaTexture;
     bool alphaTested() const { return alphaCutoff > 0.0f; }
     uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
+    // Deforming (skinning, cloth): `SceneGeometry::animate` rewrites `positions` (same vertex count and
+    // indices); they stay within these local bounds at every frame. Renderers keep such a mesh in a buffer of
+    // their own, rewritten each frame, and give it to the distance field as the application's buffers.
+    bool deforming = false;
+    glm::vec3 deformingBoundsMin{0.0f}, deformingBoundsMax{0.0f};
 };
 
 // Light from outside the geometry: a uniform sky and an optional sun (a directional light).
@@ -135,7 +140,13 @@ SceneGeometry twoRooms(float wallThickness);
 // A colonnade courtyard (pillars, arches, a gallery roof, a thin hanging cloth, open to the sky) under sun and sky.
 SceneGeometry atrium();
 // A closed room with a torus that moves and a small ceiling light that travels over a scripted path.
-SceneGeometry dynamicRoom();
+// What the `dynamic` room holds besides the room: a moving torus and a moving ceiling light (always), a
+// crowd of rigid movers, a deforming mesh.
+struct DynamicRoomContent {
+    bool crowd = true;
+    bool deforming = true;
+};
+SceneGeometry dynamicRoom(DynamicRoomContent content = {});
 // The Cornell box with a glass sphere (ior 1.5, roughness 0.1, 1280 triangles) in place of the short block, in
 // front of the tall one: the renderer's example of a custom material that traces cones (docs/vct.md).
 SceneGeometry cornellGlass();

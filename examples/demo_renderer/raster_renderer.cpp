@@ -147,6 +147,9 @@ RasterRenderer::~RasterRenderer() {
     destroyDirectHistory();
     gi_.reset();
     sdf_.reset();
+    for (const DeformingMesh& d : sdfDeforming_)
+        for (rhi::BufferHandle b : {d.positions, d.indices})
+            if (b) device_.destroy(b);
     coneTracer_.reset();
     clipmap_.reset();
     for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_, glassFragment_, alphaPassVertex_, alphaPassFragment_})

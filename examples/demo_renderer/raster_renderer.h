@@ -318,6 +318,11 @@ private:
     std::unique_ptr<sdf::SdfScene> sdf_;
     std::vector<sdf::InstanceHandle> sdfInstances_;
     std::vector<glm::mat4> sdfTransforms_;
+    struct DeformingMesh {
+        uint32_t mesh = 0;  // in the scene
+        rhi::BufferHandle positions, indices;
+    };
+    std::vector<DeformingMesh> sdfDeforming_;
     glm::vec3 sdfCenter_{0.0f}, sceneCenter_{0.0f};
     std::unique_ptr<gi::GiContext> gi_;
     std::unique_ptr<vct::Clipmap> clipmap_;

@@ -39,6 +39,26 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
     if (!sdf_) return fail("the distance field for GI: " + why.message);
     std::vector<sdf::MeshHandle> meshes;
     for (const scenes::TriangleMesh& m : scene.meshes) {
+        if (m.deforming) {
+            // Rewritten every frame (syncSdf): our own buffers, given to the field as the application's.
+            DeformingMesh d;
+            d.mesh = uint32_t(&m - scene.meshes.data());
+            d.positions = device_.createBuffer({m.positions.size() * 4, 0, rhi::BufferUsage::ShaderRead, m.name + " positions"}, m.positions.data());
+            d.indices = device_.createBuffer({m.indices.size() * 4, 0, rhi::BufferUsage::ShaderRead, m.name + " indices"}, m.indices.data());
+            if (!d.positions || !d.indices) return fail("could not create the buffers of deforming mesh '" + m.name + "'");
+            sdfDeforming_.push_back(d);
+            sdf::MeshBuffers b;
+            b.vertexBuffer = d.positions;
+            b.vertexCount = uint32_t(m.positions.size() / 3);
+            b.indexBuffer = d.indices;
+            b.triangleCount = m.triangleCount();
+            b.boundsMin = m.deformingBoundsMin;
+            b.boundsMax = m.deformingBoundsMax;
+            b.name = m.name;
+            meshes.push_back(sdf_->createMesh(b));
+            if (!meshes.back()) return fail("the distance field rejected mesh '" + m.name + "': " + sdf_->lastError().message);
+            continue;
+        }
         sdf::MeshArrays a;
         a.positions = m.positions.data();
         a.vertexCount = uint32_t(m.positions.size() / 3);
@@ -70,6 +90,10 @@ bool RasterRenderer::createSdf(const scenes::SceneGeometry& scene, std::string* 
 
 void RasterRenderer::syncSdf(const scenes::SceneGeometry& scene) {
     if (!sdf_) return;
+    for (const DeformingMesh& d : sdfDeforming_) {
+        const std::vector<float>& p = scene.meshes[d.mesh].positions;
+        device_.writeBuffer(d.positions, 0, p.data(), p.size() * 4);
+    }
     for (size_t i = 0; i < scene.instances.size() && i < sdfInstances_.size(); ++i)
         if (sdfInstances_[i] && scene.instances[i].transform != sdfTransforms_[i]) {
             sdf_->setTransform(sdfInstances_[i], scene.instances[i].transform);

@@ -265,6 +265,13 @@ public:
     virtual std::vector<Diagnostic> diagnostics() const = 0;
     // update() calls so far (GI warns when it is dispatched on a scene never updated).
     virtual uint64_t updateCount() const = 0;
+    // Where the latest update() changed geometry, in world units: the bounds before and after of every instance
+    // added, moved or removed, and of every dynamic instance rebuilt (moved or deforming). GI refreshes its
+    // light there (docs/gi.md, *Movers*).
+    struct ChangedBox {
+        glm::vec3 min{0.0f}, max{0.0f};
+    };
+    virtual const std::vector<ChangedBox>& latestChanges() const = 0;
     // Expires when the scene is destroyed: objects that follow the scene (a gi::GiContext) check it, so that
     // destroying the scene first is a clear error on their next call, never a crash.
     virtual std::weak_ptr<const void> lifetimeToken() const = 0;

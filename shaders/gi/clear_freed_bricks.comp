@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
+#define GI_USES_CHANGED_REGIONS
 #include "gi_common.glsl"
 #include "gi_alpha.glsl"
 // Pass 3: forget the cache entries of bricks the SDF freed, and pick this frame's bricks to re-light.
@@ -93,6 +94,25 @@ void main() {
             freeSlots[atomicAdd(freeSlotCount, 1)] = slot;
         }
         return;
+    }
+    if (owner != BL_SDF_NO_OWNER && giFrame.cache.y > 0u) {
+        // Where the field's geometry just changed (a mover's old and new place, grown by its reach) the cached
+        // light is dropped: it holds the light of the scene before the change (colour bled from the mover
+        // where it was, its shadow), which the screen's feedback loop would otherwise carry for many frames.
+        // The material stays (the brick's geometry did not change, or its owner would have).
+        uint cascade;
+        ivec3 voxel = giOwnerVoxel(owner, cascade);
+        float size = giVoxelSize(cascade);
+        if (giInChangedRegion(vec3(voxel) * size, vec3(voxel + 1) * size, GI_CHANGE_FEEDBACK_FRAMES)) {
+            for (uint i = 0u; i < 9u; ++i) brickSH[brick * 9u + i] = uvec2(0u);
+            uint slot = giCacheSlots[brick];
+            giCacheSlots[brick] = GI_SLOT_NONE;
+            if (slot < GI_SLOT_PENDING) {
+                ivec3 base = giCacheSlotBase(slot);
+                for (int k = 0; k < 64; ++k) imageStore(radianceCache, base + ivec3(k & 3, (k >> 2) & 3, k >> 4), uvec4(0u));
+                freeSlots[atomicAdd(freeSlotCount, 1)] = slot;
+            }
+        }
     }
     if ((giFrame.relight.y & GI_RELIGHT_ALBEDO) == 0u || owner == BL_SDF_NO_OWNER) return;
     uint seen = brickMaterial[m + 2u];

@@ -28,8 +28,27 @@ BL_CONSTANTS(1) uniform GiFrame {
     uvec4 relight;       // x light count, y relight flags (GI_RELIGHT_*)
     vec4 traceLimits;    // x iterations per cascade of every GI ray, y diffuse rays' coarsen-after voxels
     uvec4 probes;        // x probe tile side in internal pixels (8 or 16; ContextDesc::probeTile)
-    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp)
+    uvec4 cache;         // x radiance cache slots kept for injections that carry light (inject_radiance.comp),
+                         // y changed regions (GiChangedRegions)
 } giFrame;
+
+#define GI_CHANGE_HISTORY 2.0       // core/gi/gi_constants.h: kChangeHistory
+#define GI_CHANGE_FEEDBACK_FRAMES 2.0  // ... kChangeFeedbackFrames
+
+#ifdef GI_USES_CHANGED_REGIONS
+// World boxes (min, max) where the field's geometry just changed (a mover's old and new place), grown by their
+// reach (core/gi/gi_constants.h: kMaxChangedRegions, kChangeReachVoxels); giFrame.cache.y of them.
+BL_CONSTANTS(3) uniform GiChangedRegions { vec4 boxes[16]; } giChanged;
+
+// Whether the box [lo, hi] touches one of them that changed less than `frames` frames ago (boxes[2i].w: its age).
+bool giInChangedRegion(vec3 lo, vec3 hi, float frames) {
+    for (uint i = 0u; i < giFrame.cache.y; ++i)
+        if (giChanged.boxes[2u * i].w < frames && all(lessThanEqual(giChanged.boxes[2u * i].xyz, hi)) &&
+            all(lessThanEqual(lo, giChanged.boxes[2u * i + 1u].xyz)))
+            return true;
+    return false;
+}
+#endif
 
 #define GI_RELIGHT_ALBEDO 1u    // bricks learn their albedo; unseen texels are re-lit (relight_cache.comp)
 #define GI_RELIGHT_EMISSION 2u  // ...and their emission

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
+#define GI_USES_CHANGED_REGIONS
 #include "gi_common.glsl"
 // Pass 4: the previous frame's lit image into the radiance cache. One pixel per GI_INJECT_TILE² tile per frame
 // (rotating through the tile), reprojected into last frame's image where the disocclusion mask says it saw
@@ -72,6 +73,9 @@ void main() {
     vec3 lit = textureLod(previousLit, uv - texelFetch(motionNow, ivec2(pixel), 0).xy, 0.0).rgb;
     if (!giFinite(lit) || any(lessThan(lit, vec3(0.0)))) return;  // never let a bad input into the cache
     vec3 p = giWorldPosition(uv, depth, giCamera.inverseViewProjection);
+    // Where geometry just changed, last frame's image holds the light of before the change (clear_freed_bricks.comp
+    // dropped the cache there): nothing is injected until the region is old enough.
+    if (giInChangedRegion(p, p, GI_CHANGE_FEEDBACK_FRAMES)) return;
     vec3 n = giSurfaceNormal(texelFetch(surfaceNow, ivec2(pixel), 0).r);
     vec3 toCamera = normalize(giFrame.camera.xyz - p);
     if (dot(n, toCamera) < 0.0) n = -n;

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
+#define GI_USES_CHANGED_REGIONS
 #include "gi_common.glsl"
 #include "gi_sh.glsl"
 // Pass 14: resolve each pixel's GI and accumulate it over time. Diffuse: the irradiance SH (the screen
@@ -56,12 +57,17 @@ void main() {
     vec3 irradiance, lobe;
     bool have = giIrradiance(pixel, p, n, reads, irradiance, lobe);
     vec4 diffuse = imageLoad(diffuseHistory, ivec2(pixel));
+    // Where geometry just changed (a mover's old and new place) the history is cut short, so that the light
+    // follows the mover instead of trailing it.
+    bool changed = giInChangedRegion(p, p, 1e30);
+    if (changed) diffuse.a = min(diffuse.a, GI_CHANGE_HISTORY - 1.0);
     if (have) diffuse = giAccumulate(diffuse, irradiance, float(giFrame.inputs.w));
     imageStore(diffuseHistory, ivec2(pixel), diffuse);
 
     vec4 traced = texelFetch(specularTraced, ivec2(pixel), 0);
     vec3 value = traced.a > 0.0 ? traced.rgb : lobe;
     vec4 specular = imageLoad(specularHistory, ivec2(pixel));
+    if (changed) specular.a = min(specular.a, GI_CHANGE_HISTORY - 1.0);
     if (traced.a > 0.0 || have) specular = giAccumulate(specular, value, min(mix(8.0, 64.0, sqrt(roughness)), float(giFrame.inputs.w)));
     imageStore(specularHistory, ivec2(pixel), specular);
 }

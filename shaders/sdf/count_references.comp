@@ -2,11 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
 #include "build_common.glsl"
-#include "mover_grid.glsl"
 // One thread per gathered triangle: for every cascade the triangle goes into, every BUILDING voxel within
 // the distance band of the triangle gets a reference (voxel, triangle, index within the voxel). The loop
 // runs over the columns of the triangle's dominant plane with a depth range per column (cost ~ area).
-// A mover grid's reference chunk (mover_grid.glsl) references every BUILDING voxel of its box in its cascade.
+// A mover grid's reference chunk (mover_grid.glsl) references the BUILDING voxels of its box in its cascade that
+// the mover's surface may reach within the band.
 // When the reference budget runs out the voxel is put back to UNBUILT (deferred, retried later).
 layout(local_size_x = 64) in;
 BL_CONSTANTS(0) uniform Params { uint triangleCount; uint cascadeCount; uint maxReferences; uint touchedCapacity; } params;
@@ -18,6 +18,10 @@ BL_STORAGE_BUFFER(1) VoxelRefs { uint voxelRefs[]; };
 BL_STORAGE_BUFFER(2) References { uint references[]; };  // 3 per reference: key, triangle, index in voxel
 BL_STORAGE_BUFFER(3) Touched { uvec4 touched[]; };
 BL_STORAGE_BUFFER(4) Counters { uint counters[]; };
+BL_STORAGE_BUFFER(5) MoverGridTable { uvec4 moverGridTable[]; };  // read only
+BL_STORAGE_BUFFER(6) MoverGridData { uint moverGridData[]; };      // read only
+#define BL_SDF_MOVER_SAMPLING
+#include "mover_grid.glsl"
 
 shared uint groupProcessed;
 
@@ -52,10 +56,17 @@ void main() {
         ivec4 bmin = jobTable.cascadeBounds[2u * cascade];
         ivec4 bmax = jobTable.cascadeBounds[2u * cascade + 1u];
         ivec3 lo = max(ivec3(v0.xyz), bmin.xyz), hi = min(ivec3(v1.xyz), bmax.xyz - 1);
+        // Voxels of the chunk whose centre is farther from the mesh than the band plus the voxel's half diagonal
+        // have no sample within the band: not referenced (most of a footprint box, around a compact mesh).
+        uint m = uint(v1.w - BL_SDF_MOVER_TAG + 0.5);
+        float vs = table.cascades[cascade].voxelSize.x;
+        float needed = table.cascades[cascade].voxelSize.w + 0.8660254 * vs;
         if (bmin.w != 0)
             for (int z = lo.z; z <= hi.z; ++z)
                 for (int y = lo.y; y <= hi.y; ++y)
-                    for (int x = lo.x; x <= hi.x; ++x) emitReference(cascade, ivec3(x, y, z), tri);
+                    for (int x = lo.x; x <= hi.x; ++x)
+                        if (blSdfMoverLowerBound(m, cascade, (vec3(x, y, z) + 0.5) * vs) < needed)
+                            emitReference(cascade, ivec3(x, y, z), tri);
     } else if (v0.w >= 0.0) {
         atomicAdd(groupProcessed, 1u);
         vec3 a = v0.xyz, b = v1.xyz, c = triangles[3u * tri + 2u].xyz;

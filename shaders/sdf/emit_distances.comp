@@ -63,6 +63,9 @@ BL_IMAGE(0, r8) uniform image3D atlas;
 #define BL_SDF_MOVER_SAMPLING
 #include "mover_grid.glsl"
 
+shared uint moverList[512];  // a brick's mover chunks (many-reference path)
+shared uint moverCount;
+
 // Adds `pairs` (triangle, brixel) pairs of the triangle with material tag `tag` to a thread's sums.
 void addMaterial(uint tag, float pairs, inout vec4 albedo, inout vec3 emission) {
     if (tag == 0u || pairs == 0.0) return;
@@ -121,11 +124,37 @@ void main() {
         best[lane] = floatBitsToUint(d2);
         bestAlpha[lane] = floatBitsToUint(d2Alpha);
     } else {
+        // Mover chunks among many references (many movers in a coarse voxel, or movers beside triangles): listed
+        // first, then every thread samples them at its own brixel.
+        if (lane == 0u) moverCount = 0u;
+        barrier();
+        for (uint r = begin + lane; r < end; r += 512u) {
+            uint tri = sortedReferences[entry.z + r];
+            if (triangles[3u * tri + 1u].w > BL_SDF_MOVER_TAG - 0.5) {
+                uint k = atomicAdd(moverCount, 1u);
+                if (k < 512u) moverList[k] = tri;
+            }
+        }
+        barrier();
+        uint listed = moverCount <= 512u ? moverCount : 0u;  // more: each sampled by one thread, below
+        if (listed > 0u) {
+            vec3 p = (vec3(voxel) + vec3(own) / 7.0) * vs;
+            float d2 = uintBitsToFloat(best[lane]);
+            for (uint k = 0u; k < listed; ++k) {
+                uint tri = moverList[k];
+                float e2 = blSdfMoverDistanceSq(uint(triangles[3u * tri + 1u].w - BL_SDF_MOVER_TAG + 0.5), cascade, p, band * band);
+                d2 = min(d2, e2);
+                if (e2 < near2) addMaterial(uint(triangles[3u * tri + 2u].w), 1.0 - sqrt(e2) / brixel, albedo, emission);
+            }
+            best[lane] = floatBitsToUint(d2);
+        }
+        barrier();
         for (uint r = begin + lane; r < end; r += 512u) {
             uint tri = sortedReferences[entry.z + r];
             vec4 bw = triangles[3u * tri + 1u], cw = triangles[3u * tri + 2u];
             if (bw.w > BL_SDF_MOVER_TAG - 0.5) {
-                // A mover grid's chunk among many triangles: this thread samples it at all 512 brixels.
+                // Sampled above, unless there were more than 512: then this thread samples it at all 512 brixels.
+                if (moverCount <= 512u) continue;
                 uint m = uint(bw.w - BL_SDF_MOVER_TAG + 0.5);
                 float moverPairs = 0.0;
                 for (uint index = 0u; index < 512u; ++index) {

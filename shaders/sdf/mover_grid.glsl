@@ -22,16 +22,43 @@
 #define BL_SDF_MOVER_NO_KEY 0xFFFFFFFFu
 #define BL_SDF_MOVER_TRIANGLE_BITS 20u
 #define BL_SDF_MOVER_TRIANGLE_MASK 0xFFFFFu
-// Keys cover distances up to the band plus a cell's diagonal: every lattice point around a sample within the
-// band of the mesh has one.
-#define BL_SDF_MOVER_REACH_CELLS (BL_SDF_BAND_BRIXELS + 1.7320509)
+// Keys cover distances up to the band plus a voxel's half diagonal (7 cells × 0.866) plus a cell's (the lattice
+// point nearest to a voxel's centre is up to that far from it): every lattice point around a sample within the
+// band has one, and the point nearest to a voxel's centre tells whether the mover reaches the voxel at all
+// (count_references.comp).
+#define BL_SDF_MOVER_REACH_CELLS (BL_SDF_BAND_BRIXELS + 7.0)
 
 #ifdef BL_SDF_MOVER_SAMPLING
+// A lower bound of the world distance from p to mover m's mesh at cascade `level`, from the key of the lattice
+// point nearest to p alone (distances are 1-Lipschitz: d(p) >= d(point) - |p - point|).
+float blSdfMoverLowerBound(uint m, uint level, vec3 p) {
+    uvec4 info = moverGridTable[4u * m + 3u];
+    vec4 h = vec4(p, 1.0);
+    vec3 q = vec3(dot(uintBitsToFloat(moverGridTable[4u * m]), h), dot(uintBitsToFloat(moverGridTable[4u * m + 1u]), h),
+                  dot(uintBitsToFloat(moverGridTable[4u * m + 2u]), h));
+    uvec4 l0 = moverGridTable[info.w + 2u * level], l1 = moverGridTable[info.w + 2u * level + 1u];
+    float inv = uintBitsToFloat(l0.w);
+    vec3 g = (q - uintBitsToFloat(l0.xyz)) * inv;
+    ivec3 dims = ivec3(l1.xyz);
+    vec3 inside = clamp(g, vec3(0.0), vec3(dims - 1));
+    ivec3 centre = ivec3(round(inside));
+    uint key = moverGridData[l1.w + uint((centre.z * dims.y + centre.y) * dims.x + centre.x)];
+    // No key: the point is farther than the reach. Off the lattice: the lattice's edge is as near as p can be.
+    float cells = key == BL_SDF_MOVER_NO_KEY ? BL_SDF_MOVER_REACH_CELLS : float(key >> BL_SDF_MOVER_TRIANGLE_BITS) * BL_SDF_MOVER_REACH_CELLS / 4095.0;
+    return max(cells - length(g - vec3(centre)), 0.0) / inv * uintBitsToFloat(info.x);
+}
+
 vec3 blSdfMoverTriangleVertex(uint word) {
     return uintBitsToFloat(uvec3(moverGridData[word], moverGridData[word + 1u], moverGridData[word + 2u]));
 }
 
-// Squared world distance from world point p to mover m's mesh at cascade `level`, at most cap2.
+uint blSdfMoverKey(uvec4 level, ivec3 dims, ivec3 i) { return moverGridData[level.w + uint((i.z * dims.y + i.y) * dims.x + i.x)]; }
+
+// Squared world distance from world point p to mover m's mesh at cascade `level`, at most cap2. The lattice
+// point nearest to p first, then the other 26 around it; a key whose point is farther from its triangle than
+// the best so far plus the point's distance to p cannot give a nearer triangle (triangle inequality) and is
+// skipped before its triangle is read. Most samples of a footprint are far from the surface: the nearest
+// point's key alone says so.
 float blSdfMoverDistanceSq(uint m, uint level, vec3 p, float cap2) {
     uvec4 info = moverGridTable[4u * m + 3u];
     vec4 h = vec4(p, 1.0);
@@ -39,17 +66,30 @@ float blSdfMoverDistanceSq(uint m, uint level, vec3 p, float cap2) {
                   dot(uintBitsToFloat(moverGridTable[4u * m + 2u]), h));
     float scale = uintBitsToFloat(info.x);
     uvec4 l0 = moverGridTable[info.w + 2u * level], l1 = moverGridTable[info.w + 2u * level + 1u];
-    vec3 g = (q - uintBitsToFloat(l0.xyz)) * uintBitsToFloat(l0.w);
+    float inv = uintBitsToFloat(l0.w);
+    vec3 g = (q - uintBitsToFloat(l0.xyz)) * inv;
     ivec3 dims = ivec3(l1.xyz);
     // Outside the lattice: farther than the band from the mesh's bounds.
     if (any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(dims - 1)))) return cap2;
-    ivec3 i0 = clamp(ivec3(round(g)), ivec3(1), dims - 2) - 1;
+    ivec3 centre = clamp(ivec3(round(g)), ivec3(1), dims - 2);
+    float cellsToObject = 1.0 / inv;                                // lattice units to object units
+    float keyToObject = BL_SDF_MOVER_REACH_CELLS * cellsToObject / 4095.0;  // a key's distance step
+    // The nearest point without a key: it is farther than the reach, p farther than the band. With one, p is at
+    // least its distance less |p − point| away (1-Lipschitz): most samples of a footprint end here.
+    uint key = blSdfMoverKey(l1, dims, centre);
+    if (key == BL_SDF_MOVER_NO_KEY) return cap2;
     float best = cap2 / (scale * scale);
+    float nearest = float(key >> BL_SDF_MOVER_TRIANGLE_BITS) * keyToObject - length(g - vec3(centre)) * cellsToObject;
+    if (nearest > 0.0 && nearest * nearest >= best) return cap2;
     uint last = BL_SDF_MOVER_NO_KEY;
-    for (int corner = 0; corner < 27; ++corner) {
-        ivec3 i = i0 + ivec3(corner % 3, (corner / 3) % 3, corner / 9);
-        uint key = moverGridData[l1.w + uint((i.z * dims.y + i.y) * dims.x + i.x)];
+    for (int k = 0; k < 27; ++k) {
+        // k = 0 is the centre (offset slot 13); slot 13 of k takes the offset (-1, -1, -1) of slot 0.
+        int o = k == 0 ? 13 : (k == 13 ? 0 : k);
+        ivec3 i = centre + ivec3(o % 3, (o / 3) % 3, o / 9) - 1;
+        if (k > 0) key = blSdfMoverKey(l1, dims, i);
         if (key == BL_SDF_MOVER_NO_KEY) continue;
+        float lower = float(key >> BL_SDF_MOVER_TRIANGLE_BITS) * keyToObject - length(g - vec3(i)) * cellsToObject;
+        if (lower > 0.0 && lower * lower >= best) continue;
         uint t = key & BL_SDF_MOVER_TRIANGLE_MASK;
         if (t == last) continue;
         last = t;

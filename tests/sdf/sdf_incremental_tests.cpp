@@ -379,6 +379,9 @@ void moverGridsComposite(const std::string& backend) {
     sdf::InstanceDesc moverDesc{meshes[w.torusMesh], torusAt({200, 60, 200}, 0.0f), true};
     moverDesc.material = sdf::SurfaceMaterial{glm::vec3(0.2f, 0.7f, 0.3f), glm::vec3(0.0f)};
     sdf::InstanceHandle mover = scene->addInstance(moverDesc);
+    // A second mover of the same mesh (one grid for both), beside the deforming torus: coarse voxels hold both
+    // movers' chunks among the deforming triangles (the brick pass's many-reference path).
+    sdf::InstanceHandle second = scene->addInstance({meshes[w.torusMesh], torusAt({380, 250, 330}, 1.0f), true});
 
     const glm::vec3 center(278, 274, 280);
     scene->update(center);
@@ -389,14 +392,15 @@ void moverGridsComposite(const std::string& backend) {
         const float scale = frame >= 4 ? 1.25f : 1.0f;  // a new scale: its grid is built once
         moverAt = glm::scale(moverAt, glm::vec3(scale));
         scene->setTransform(mover, moverAt);
+        scene->setTransform(second, torusAt({380.0f - 5.0f * float(frame), 250.0f, 330.0f}, 1.0f + 0.2f * float(frame)));
         const sdf::UpdateReport r = scene->update(center);
         dev.endFrame();
         INFO("frame " << frame << ": " << r.overlayTrianglesGathered << " triangles gathered by the overlay, " << r.moverGridInstances
                       << " movers from grids, " << r.moverGridsBuilt << " grids built");
         CHECK(r.jobs == r.overlayJobs);
         CHECK(r.overlayTrianglesGathered == torusTriangles);  // the deforming torus alone
-        CHECK(r.moverGridInstances == 1);
-        CHECK(r.moverGridsBuilt == (frame == 4 ? 1u : 0u));
+        CHECK(r.moverGridInstances == 2);
+        CHECK(r.moverGridsBuilt == (frame == 4 ? 2u : 0u));  // a new scale: the grids are laid out and built again
     }
     sdf::FieldSnapshot composited = scene->readField();
 
@@ -408,6 +412,7 @@ void moverGridsComposite(const std::string& backend) {
     sdf::InstanceDesc still{scratchMeshes[w.torusMesh], moverAt};
     still.material = moverDesc.material;
     scratch->addInstance(still);
+    scratch->addInstance({scratchMeshes[w.torusMesh], torusAt({380.0f - 25.0f, 250.0f, 330.0f}, 2.0f)});
     sdf::MeshHandle shapeMesh = scratch->createMesh({shape.data(), uint32_t(shape.size() / 3), torus.indices.data(),
                                                      uint32_t(torus.indices.size()), "deformed torus"});
     scratch->addInstance({shapeMesh, deformingAt});
