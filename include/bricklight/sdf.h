@@ -58,8 +58,9 @@ struct SceneDesc {
     // Rigid movers at their footprint's cost: a dynamic instance of a mesh from CPU arrays, opaque, under a
     // transform without shear or non-uniform scale, is composited from a grid of its mesh's nearest triangles
     // built once per mesh and scale (docs/sdf.md, *Mover grids*) instead of re-voxelizing its triangles. Its
-    // distances are then exact to the nearest of the triangles nearest to the 8 grid points around each
-    // sample; false re-voxelizes every mover (exact everywhere, cost ~ its triangles).
+    // samples are then the exact distance to the nearest of the triangles nearest to the 27 grid points
+    // around each (never nearer than exact; farther only where a surface curves within a grid cell); false
+    // re-voxelizes every mover (exact everywhere, cost ~ its triangles).
     bool moverGrids = true;
     // Receives the builder's own messages (bad meshes, instances, budgets); stderr when empty. GPU-side
     // messages come through the device's callback.

@@ -7,8 +7,8 @@
 // per level ℓ (one per cascade, spacing = cascade ℓ's brixel / scale) one key per lattice point:
 // (quantized distance << 20) | triangle, for the nearest triangle within BL_SDF_MOVER_REACH_CELLS cells of
 // the point, else BL_SDF_MOVER_NO_KEY. A sample p of the instance is then the exact distance to the nearest of
-// the (up to 8) keys' triangles around p: exact wherever p's nearest triangle is nearest to one of the 8
-// points, and a real triangle's distance (never below the true one) everywhere.
+// the triangles of the 27 lattice points around p: exact wherever p's nearest triangle is nearest to one of
+// them, and a real triangle's distance (never below the true one) everywhere.
 //
 // moverGridTable, per mover (this round's index): rows 0-2 the world-to-object transform (3x4, float bits),
 // row 3 (scale, material tag, first triangle's vec4 index / 3, first level row); per grid level two rows:

@@ -344,7 +344,7 @@ void moversGatherTheirOwnTriangles(const std::string& backend) {
 // its mover grid — no triangle of it is gathered, whatever it does: translate, rotate, scale uniformly — while
 // a deforming one beside it is re-voxelized. The field then equals a from-scratch build with every instance
 // static (exact distances) in its states and, within the stated tolerance, in its samples: a mover's sample
-// is the exact distance to the nearest of the triangles nearest to its 8 grid points, which is its exact
+// is the exact distance to the nearest of the triangles nearest to its 27 lattice points, which is its exact
 // distance wherever its own nearest triangle is among them.
 void moverGridsComposite(const std::string& backend) {
     TestDevice td = makeDevice(backend);
