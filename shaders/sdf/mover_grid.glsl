@@ -29,30 +29,56 @@
 #define BL_SDF_MOVER_REACH_CELLS (BL_SDF_BAND_BRIXELS + 7.0)
 
 #ifdef BL_SDF_MOVER_SAMPLING
-// A lower bound of the world distance from p to mover m's mesh at cascade `level`, from the key of the lattice
-// point nearest to p alone (distances are 1-Lipschitz: d(p) >= d(point) - |p - point|).
-float blSdfMoverLowerBound(uint m, uint level, vec3 p) {
+// A world point in mover m's grid at cascade `level`: its object-space position, lattice coordinate and the
+// level's rows.
+struct BlSdfMoverPoint {
+    vec3 q;       // object space
+    vec3 g;       // lattice units (0 .. dims - 1 on the lattice)
+    ivec3 dims;
+    uvec4 level;  // the level's second row: dims, first key's word
+    float cellsToObject;
+    float scale;  // object to world distances
+    uint firstTriangle;
+};
+
+BlSdfMoverPoint blSdfMoverLocate(uint m, uint level, vec3 p) {
+    BlSdfMoverPoint r;
     uvec4 info = moverGridTable[4u * m + 3u];
     vec4 h = vec4(p, 1.0);
-    vec3 q = vec3(dot(uintBitsToFloat(moverGridTable[4u * m]), h), dot(uintBitsToFloat(moverGridTable[4u * m + 1u]), h),
-                  dot(uintBitsToFloat(moverGridTable[4u * m + 2u]), h));
-    uvec4 l0 = moverGridTable[info.w + 2u * level], l1 = moverGridTable[info.w + 2u * level + 1u];
+    r.q = vec3(dot(uintBitsToFloat(moverGridTable[4u * m]), h), dot(uintBitsToFloat(moverGridTable[4u * m + 1u]), h),
+               dot(uintBitsToFloat(moverGridTable[4u * m + 2u]), h));
+    uvec4 l0 = moverGridTable[info.w + 2u * level];
+    r.level = moverGridTable[info.w + 2u * level + 1u];
     float inv = uintBitsToFloat(l0.w);
-    vec3 g = (q - uintBitsToFloat(l0.xyz)) * inv;
-    ivec3 dims = ivec3(l1.xyz);
-    vec3 inside = clamp(g, vec3(0.0), vec3(dims - 1));
-    ivec3 centre = ivec3(round(inside));
-    uint key = moverGridData[l1.w + uint((centre.z * dims.y + centre.y) * dims.x + centre.x)];
-    // No key: the point is farther than the reach. Off the lattice: the lattice's edge is as near as p can be.
+    r.g = (r.q - uintBitsToFloat(l0.xyz)) * inv;
+    r.dims = ivec3(r.level.xyz);
+    r.cellsToObject = 1.0 / inv;
+    r.scale = uintBitsToFloat(info.x);
+    r.firstTriangle = info.z;
+    return r;
+}
+
+uint blSdfMoverKey(BlSdfMoverPoint r, ivec3 i) { return moverGridData[r.level.w + uint((i.z * r.dims.y + i.y) * r.dims.x + i.x)]; }
+
+// A key's distance (object units, rounded down to its 12-bit step); BL_SDF_MOVER_NO_KEY: the reach.
+float blSdfMoverKeyDistance(BlSdfMoverPoint r, uint key) {
     float cells = key == BL_SDF_MOVER_NO_KEY ? BL_SDF_MOVER_REACH_CELLS : float(key >> BL_SDF_MOVER_TRIANGLE_BITS) * BL_SDF_MOVER_REACH_CELLS / 4095.0;
-    return max(cells - length(g - vec3(centre)), 0.0) / inv * uintBitsToFloat(info.x);
+    return cells * r.cellsToObject;
+}
+
+// A lower bound of the world distance from p to mover m's mesh at cascade `level`, from the key of the lattice
+// point nearest to p alone (distances are 1-Lipschitz: d(p) >= d(point) - |p - point|). No key: the point is
+// farther than the reach. Off the lattice: the lattice's edge is as near as p can be.
+float blSdfMoverLowerBound(uint m, uint level, vec3 p) {
+    BlSdfMoverPoint r = blSdfMoverLocate(m, level, p);
+    ivec3 centre = ivec3(round(clamp(r.g, vec3(0.0), vec3(r.dims - 1))));
+    float lower = blSdfMoverKeyDistance(r, blSdfMoverKey(r, centre)) - length(r.g - vec3(centre)) * r.cellsToObject;
+    return max(lower, 0.0) * r.scale;
 }
 
 vec3 blSdfMoverTriangleVertex(uint word) {
     return uintBitsToFloat(uvec3(moverGridData[word], moverGridData[word + 1u], moverGridData[word + 2u]));
 }
-
-uint blSdfMoverKey(uvec4 level, ivec3 dims, ivec3 i) { return moverGridData[level.w + uint((i.z * dims.y + i.y) * dims.x + i.x)]; }
 
 // Squared world distance from world point p to mover m's mesh at cascade `level`, at most cap2. The lattice
 // point nearest to p first, then the other 26 around it; a key whose point is farther from its triangle than
@@ -60,44 +86,34 @@ uint blSdfMoverKey(uvec4 level, ivec3 dims, ivec3 i) { return moverGridData[leve
 // skipped before its triangle is read. Most samples of a footprint are far from the surface: the nearest
 // point's key alone says so.
 float blSdfMoverDistanceSq(uint m, uint level, vec3 p, float cap2) {
-    uvec4 info = moverGridTable[4u * m + 3u];
-    vec4 h = vec4(p, 1.0);
-    vec3 q = vec3(dot(uintBitsToFloat(moverGridTable[4u * m]), h), dot(uintBitsToFloat(moverGridTable[4u * m + 1u]), h),
-                  dot(uintBitsToFloat(moverGridTable[4u * m + 2u]), h));
-    float scale = uintBitsToFloat(info.x);
-    uvec4 l0 = moverGridTable[info.w + 2u * level], l1 = moverGridTable[info.w + 2u * level + 1u];
-    float inv = uintBitsToFloat(l0.w);
-    vec3 g = (q - uintBitsToFloat(l0.xyz)) * inv;
-    ivec3 dims = ivec3(l1.xyz);
+    BlSdfMoverPoint r = blSdfMoverLocate(m, level, p);
     // Outside the lattice: farther than the band from the mesh's bounds.
-    if (any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(dims - 1)))) return cap2;
-    ivec3 centre = clamp(ivec3(round(g)), ivec3(1), dims - 2);
-    float cellsToObject = 1.0 / inv;                                // lattice units to object units
-    float keyToObject = BL_SDF_MOVER_REACH_CELLS * cellsToObject / 4095.0;  // a key's distance step
+    if (any(lessThan(r.g, vec3(0.0))) || any(greaterThan(r.g, vec3(r.dims - 1)))) return cap2;
+    ivec3 centre = clamp(ivec3(round(r.g)), ivec3(1), r.dims - 2);
     // The nearest point without a key: it is farther than the reach, p farther than the band. With one, p is at
     // least its distance less |p − point| away (1-Lipschitz): most samples of a footprint end here.
-    uint key = blSdfMoverKey(l1, dims, centre);
+    uint key = blSdfMoverKey(r, centre);
     if (key == BL_SDF_MOVER_NO_KEY) return cap2;
-    float best = cap2 / (scale * scale);
-    float nearest = float(key >> BL_SDF_MOVER_TRIANGLE_BITS) * keyToObject - length(g - vec3(centre)) * cellsToObject;
+    float best = cap2 / (r.scale * r.scale);
+    float nearest = blSdfMoverKeyDistance(r, key) - length(r.g - vec3(centre)) * r.cellsToObject;
     if (nearest > 0.0 && nearest * nearest >= best) return cap2;
     uint last = BL_SDF_MOVER_NO_KEY;
     for (int k = 0; k < 27; ++k) {
         // k = 0 is the centre (offset slot 13); slot 13 of k takes the offset (-1, -1, -1) of slot 0.
         int o = k == 0 ? 13 : (k == 13 ? 0 : k);
         ivec3 i = centre + ivec3(o % 3, (o / 3) % 3, o / 9) - 1;
-        if (k > 0) key = blSdfMoverKey(l1, dims, i);
+        if (k > 0) key = blSdfMoverKey(r, i);
         if (key == BL_SDF_MOVER_NO_KEY) continue;
-        float lower = float(key >> BL_SDF_MOVER_TRIANGLE_BITS) * keyToObject - length(g - vec3(i)) * cellsToObject;
+        float lower = blSdfMoverKeyDistance(r, key) - length(r.g - vec3(i)) * r.cellsToObject;
         if (lower > 0.0 && lower * lower >= best) continue;
         uint t = key & BL_SDF_MOVER_TRIANGLE_MASK;
         if (t == last) continue;
         last = t;
-        uint at = 12u * (info.z + t);
-        best = min(best, blPointTriangleDistanceSq(q, blSdfMoverTriangleVertex(at), blSdfMoverTriangleVertex(at + 4u),
+        uint at = 12u * (r.firstTriangle + t);
+        best = min(best, blPointTriangleDistanceSq(r.q, blSdfMoverTriangleVertex(at), blSdfMoverTriangleVertex(at + 4u),
                                                    blSdfMoverTriangleVertex(at + 8u)));
     }
-    return best * scale * scale;
+    return best * r.scale * r.scale;
 }
 #endif
 
