@@ -27,6 +27,7 @@ const FormatInfo kFormats[] = {
     {"RGBA32_FLOAT", 16, 4, K::Float},
     {"RGBA32_UINT", 16, 4, K::Uint},
     {"R11G11B10_FLOAT", 4, 3, K::PackedFloat},
+    {"RGB9E5_FLOAT", 4, 3, K::PackedFloat},
     {"D32_FLOAT", 4, 1, K::Depth},
 };
 static_assert(sizeof(kFormats) / sizeof(kFormats[0]) == static_cast<size_t>(Format::Count));

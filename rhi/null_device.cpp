@@ -37,7 +37,7 @@ Capabilities defaultCapabilities() {
             bits |= FormatSupport::RenderTarget;
             if (info.kind != FormatInfo::Kind::Uint && info.kind != FormatInfo::Kind::Sint)
                 bits |= FormatSupport::Filterable | FormatSupport::Blendable;
-            if (format != Format::RGBA8_SRGB && format != Format::R11G11B10_FLOAT) bits |= FormatSupport::Storage;
+            if (format != Format::RGBA8_SRGB && format != Format::R11G11B10_FLOAT && format != Format::RGB9E5_FLOAT) bits |= FormatSupport::Storage;
             if (format == Format::R32_UINT || format == Format::R32_SINT) bits |= FormatSupport::StorageAtomic;
         }
         c.formatSupport[f] = bits;

@@ -76,8 +76,7 @@ bool resolveView(const TextureDesc& d, const TextureView& v, const std::string& 
         const FormatInfo& a = formatInfo(v.format);
         const FormatInfo& b = formatInfo(d.format);
         if (v.format >= Format::Count || a.bytesPerTexel != b.bytesPerTexel || a.kind == FormatInfo::Kind::Depth ||
-            b.kind == FormatInfo::Kind::Depth || a.kind == FormatInfo::Kind::PackedFloat ||
-            b.kind == FormatInfo::Kind::PackedFloat) {
+            b.kind == FormatInfo::Kind::Depth) {
             r.error(field + ": view format " + formatName(v.format) + " cannot reinterpret texture '" + d.debugName +
                     "' of format " + formatName(d.format) + " (same texel size, colour formats only)");
             return false;

@@ -57,7 +57,7 @@ bool Device::resolveView(const Call& call, const std::string& field, const Textu
         const FormatInfo& b = formatInfo(d.format);
         using K = FormatInfo::Kind;
         if (out->format >= Format::Count || a.bytesPerTexel != b.bytesPerTexel || a.kind == K::Depth ||
-            b.kind == K::Depth || a.kind == K::PackedFloat || b.kind == K::PackedFloat)
+            b.kind == K::Depth)
             return fail(call, field + ": view format " + formatName(out->format) + " cannot reinterpret " +
                                   detail::describe(t) + " of format " + formatName(d.format) +
                                   " (same texel size, colour formats only)");

@@ -26,6 +26,7 @@ const GlFormat& glFormat(Format format) {
         {GL_RGBA32F, GL_RGBA, GL_FLOAT},                                    // RGBA32_FLOAT
         {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT},                    // RGBA32_UINT
         {GL_R11F_G11F_B10F, GL_RGB, GL_UNSIGNED_INT_10F_11F_11F_REV},       // R11G11B10_FLOAT (= Vulkan B10G11R11)
+        {GL_RGB9_E5, GL_RGB, GL_UNSIGNED_INT_5_9_9_9_REV},                  // RGB9E5_FLOAT (= Vulkan E5B9G9R9)
         {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT},              // D32_FLOAT
     };
     static_assert(sizeof(kTable) / sizeof(kTable[0]) == static_cast<size_t>(Format::Count));
@@ -67,8 +68,8 @@ void queryFormatSupport(const Functions& gl, uint32_t* support) {
         } else {
             if (yes(query(ifmt, GL_FRAMEBUFFER_RENDERABLE))) bits |= FS::RenderTarget;
             if (yes(query(ifmt, GL_FRAMEBUFFER_BLEND))) bits |= FS::Blendable;
-            // Contract: sRGB and R11G11B10 are never storage, whatever the driver says (Vulkan parity).
-            const bool storageAllowed = format != Format::RGBA8_SRGB && format != Format::R11G11B10_FLOAT;
+            // Contract: sRGB and the packed floats are never storage, whatever the driver says (Vulkan parity).
+            const bool storageAllowed = format != Format::RGBA8_SRGB && format != Format::R11G11B10_FLOAT && format != Format::RGB9E5_FLOAT;
             if (storageAllowed && yes(query(ifmt, GL_SHADER_IMAGE_LOAD)) && yes(query(ifmt, GL_SHADER_IMAGE_STORE)))
                 bits |= FS::Storage;
             // GLSL image atomics exist only for r32ui / r32i: the driver's answer is ANDed with that (the spec

@@ -23,6 +23,7 @@ VkFormat toVkFormat(Format f) {
         case Format::RGBA32_FLOAT: return VK_FORMAT_R32G32B32A32_SFLOAT;
         case Format::RGBA32_UINT: return VK_FORMAT_R32G32B32A32_UINT;
         case Format::R11G11B10_FLOAT: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+        case Format::RGB9E5_FLOAT: return VK_FORMAT_E5B9G9R9_UFLOAT_PACK32;
         case Format::D32_FLOAT: return VK_FORMAT_D32_SFLOAT;
         default: return VK_FORMAT_UNDEFINED;
     }
@@ -172,7 +173,7 @@ uint32_t formatSupportBits(Format format, VkFormatFeatureFlags f) {
     // Every texture is created with TRANSFER_SRC|DST; a format without them is unusable here.
     const VkFormatFeatureFlags transfer = VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
     if ((f & transfer) != transfer) bits = 0;
-    if (format == Format::R11G11B10_FLOAT) bits &= ~(S::Storage | S::StorageAtomic);
+    if (format == Format::R11G11B10_FLOAT || format == Format::RGB9E5_FLOAT) bits &= ~(S::Storage | S::StorageAtomic);
     return bits;
 }
 

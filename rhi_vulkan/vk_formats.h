@@ -27,7 +27,7 @@ VkBlendOp toVkBlendOp(rhi::BlendOp op);
 VkPrimitiveTopology toVkTopology(rhi::PrimitiveTopology topology);
 VkCullModeFlags toVkCullMode(rhi::CullMode mode);
 
-// FormatSupport bits from Vulkan optimal-tiling features (R11G11B10 is sampled-only by contract).
+// FormatSupport bits from Vulkan optimal-tiling features (R11G11B10 and RGB9E5 are sampled-only by contract).
 uint32_t formatSupportBits(rhi::Format format, VkFormatFeatureFlags features);
 
 }  // namespace bricklight::vulkan::detail

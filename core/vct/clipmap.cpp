@@ -79,7 +79,10 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     td.debugName = "vct traced opacity";
     c->tracedOpacity_ = device.createTexture(td);
     const uint32_t directions = desc.emittance == EmittanceMode::Anisotropic ? 6 : 1;
-    td.format = rhi::Format::RGBA16_FLOAT;
+    // Radiance as RGB9E5_FLOAT (4 bytes a voxel and direction; a shared exponent keeps grey grey, where R11G11B10's
+    // 5-bit blue mantissa tints it): that format is never storage-capable, so the volumes are R32_UINT, written
+    // packed (bricklight/rgb9e5.glsl) and sampled through RGB9E5 views.
+    td.format = rhi::Format::R32_UINT;
     if (desc.emittance == EmittanceMode::None) td.width = td.height = td.depthOrLayers = 1;
     static const char* kDirectionNames[6] = {"+x", "+y", "+z", "-x", "-y", "-z"};
     for (uint32_t d = 0; d < directions; ++d) {
@@ -385,7 +388,7 @@ bool Clipmap::debugView(const DebugViewDesc& d, Error* error) {
 void Clipmap::traceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_t frameSlot) const {
     bindings.textures.push(rhi::TextureBinding{textureBase, rhi::wholeTexture(tracedOpacity_), tracedSampler_});
     for (uint8_t d = 0; d < 6; ++d)
-        bindings.textures.push(rhi::TextureBinding{uint8_t(textureBase + 1 + d), rhi::wholeTexture(tracedEmittance(d)), tracedSampler_});
+        bindings.textures.push(rhi::TextureBinding{uint8_t(textureBase + 1 + d), tracedEmittanceView(d), tracedSampler_});
     for (const rhi::ReadBufferBinding& b : bindings.readBuffers)
         if (b.slot == frameSlot && b.buffer == frame_) return;  // a voxelization record has it already
     bindings.readBuffers.push(rhi::ReadBufferBinding{frameSlot, frame_, {}});

@@ -56,7 +56,8 @@ uint64_t clipmapBytes(const ClipmapDesc& d) {
     const uint64_t rasterSize = uint64_t(d.resolution) * d.resolution * 4;
     const uint64_t tracedVoxels = uint64_t(d.resolution) * d.resolution * detail::tracedSlices(d.levels, d.resolution);
     const uint64_t directions = d.emittance == EmittanceMode::Anisotropic ? 6 : 1;
-    const uint64_t traced = tracedVoxels * 4 + (d.emittance == EmittanceMode::None ? 8 : tracedVoxels * 8 * directions);
+    // Opacity RGBA8, then RGB9E5 radiance per direction (a 1-texel stand-in without emittance).
+    const uint64_t traced = tracedVoxels * 4 + (d.emittance == EmittanceMode::None ? 4 : tracedVoxels * 4 * directions);
     const uint64_t frame = detail::kFrameBufferBytes, counters = detail::kCounterWords * 4;
     return opacity + emittance + rasterSize + traced + frame + counters;
 }

@@ -111,17 +111,15 @@ vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint
     vec3 w = abs(dir);
     uint words = blVctFrame.params.z;  // 0: no emittance (opacity only), 3: isotropic, 18: six directions
     if (words == 0u) return vec4(0.0, 0.0, 0.0, min(dot(w, textureLod(blVctOpacityVolume, uvw, 0.0).rgb), 1.0));
-    vec4 ex = dir.x > 0.0 ? textureLod(blVctEmittanceNX, uvw, 0.0) : textureLod(blVctEmittancePX, uvw, 0.0);
-    vec4 ey = dir.y > 0.0 ? textureLod(blVctEmittanceNY, uvw, 0.0) : textureLod(blVctEmittancePY, uvw, 0.0);
-    vec4 ez = dir.z > 0.0 ? textureLod(blVctEmittanceNZ, uvw, 0.0) : textureLod(blVctEmittancePZ, uvw, 0.0);
-    // Six directions: each face's alpha is the opacity along its axis (three fetches in all); isotropic: the
-    // opacity volume.
-    vec3 axes = words == 18u ? vec3(ex.a, ey.a, ez.a) : textureLod(blVctOpacityVolume, uvw, 0.0).rgb;
+    vec3 ex = dir.x > 0.0 ? textureLod(blVctEmittanceNX, uvw, 0.0).rgb : textureLod(blVctEmittancePX, uvw, 0.0).rgb;
+    vec3 ey = dir.y > 0.0 ? textureLod(blVctEmittanceNY, uvw, 0.0).rgb : textureLod(blVctEmittancePY, uvw, 0.0).rgb;
+    vec3 ez = dir.z > 0.0 ? textureLod(blVctEmittanceNZ, uvw, 0.0).rgb : textureLod(blVctEmittancePZ, uvw, 0.0).rgb;
+    vec3 axes = textureLod(blVctOpacityVolume, uvw, 0.0).rgb;
     // Where the weighted opacities sum past 1 (a corner, a solid voxel seen diagonally) the opacity saturates; the
     // light is scaled with it, so that a sample's light per unit of opacity — the surfaces' radiance — stays as it
     // is (unscaled, a diagonal cone into a corner read up to √3 times the walls' radiance).
     float opacity = dot(w, axes);
-    vec3 light = w.x * ex.rgb + w.y * ey.rgb + w.z * ez.rgb;
+    vec3 light = w.x * ex + w.y * ey + w.z * ez;
     return opacity > 1.0 ? vec4(light / opacity, 1.0) : vec4(light, opacity);
 }
 

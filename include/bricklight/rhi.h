@@ -31,8 +31,9 @@ using SamplerHandle = Handle<struct SamplerTag>;
 using ShaderHandle = Handle<struct ShaderTag>;
 
 // ---------------------------------------------------------------------------------------------------
-// Formats. Every backend reports per-format support in Capabilities; R11G11B10_FLOAT is sampled-only by
-// contract (use R32_UINT packing or RGBA16_FLOAT for storage).
+// Formats. Every backend reports per-format support in Capabilities; R11G11B10_FLOAT and RGB9E5_FLOAT are
+// sampled-only by contract (write their bits into an R32_UINT texture and sample it through a view in the packed
+// format, or use RGBA16_FLOAT for storage).
 // ---------------------------------------------------------------------------------------------------
 enum class Format : uint8_t {
     Unknown = 0,
@@ -53,6 +54,7 @@ enum class Format : uint8_t {
     RGBA32_FLOAT,
     RGBA32_UINT,
     R11G11B10_FLOAT,
+    RGB9E5_FLOAT,  // shared exponent: 9-bit mantissas (R bits 0–8, G 9–17, B 18–26), exponent bits 27–31, bias 15
     D32_FLOAT,
     Count
 };

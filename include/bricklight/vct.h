@@ -244,11 +244,17 @@ public:
     const ClipmapPlacement& placement() const { return placement_; }
     const ClipmapDesc& desc() const { return placement_.desc(); }
     rhi::TextureHandle opacityVolume() const { return opacity_; }
-    // The traced volumes: opacity along x, y, z (RGBA8_UNORM) and emittance radiance (RGBA16_FLOAT; six for anisotropic, one
-    // for isotropic, a 1³ zero texture without emittance), levels stacked in z with a border slice each side, then a
-    // slab with the coarsest level's mips (vct_layout.glsl).
+    // The traced volumes: opacity along x, y, z (RGBA8_UNORM) and emittance radiance (R32_UINT volumes holding
+    // RGB9E5_FLOAT bits, sampled through tracedEmittanceView; six for anisotropic, one for isotropic, a 1³ zero
+    // texture without emittance), levels stacked in z with a border slice each side, then a slab with the coarsest
+    // level's mips (vct_layout.glsl).
     rhi::TextureHandle tracedOpacity() const { return tracedOpacity_; }
     rhi::TextureHandle tracedEmittance(uint32_t direction) const { return tracedEmittance_[std::min<size_t>(direction, tracedEmittance_.size() - 1)]; }
+    rhi::TextureView tracedEmittanceView(uint32_t direction) const {
+        rhi::TextureView v = rhi::wholeTexture(tracedEmittance(direction));
+        v.format = rhi::Format::RGB9E5_FLOAT;
+        return v;
+    }
     rhi::BufferHandle emittanceBuffer() const { return emittance_; }
     MemoryUse memoryUse() const;
 

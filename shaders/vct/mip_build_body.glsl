@@ -7,6 +7,7 @@
 //    through it, the four columns' sum / 4; isotropic: the mean of that over the six directions.
 // Children outside the source's region count as empty, so a mip voxel that reaches past the coarsest level holds
 // only the part inside it. Every texel of the mip's box is written, its empty border too.
+#include "bricklight/rgb9e5.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 BL_CONSTANTS(0) uniform Mip {
     ivec4 target;     // xyz: the mip's box in the traced volumes, w: its size per axis
@@ -17,37 +18,37 @@ BL_CONSTANTS(0) uniform Mip {
 } mip;
 BL_IMAGE(0, rgba8) uniform image3D tracedOpacity;  // rgb: along x, y, z
 #if BL_VCT_DIRECTIONS >= 1
-BL_IMAGE(1, rgba16f) uniform image3D tracedEmittance0;
+BL_IMAGE(1, r32ui) uniform uimage3D tracedEmittance0;  // RGB9E5_FLOAT, packed (bricklight/rgb9e5.glsl)
 #endif
 #if BL_VCT_DIRECTIONS == 6
-BL_IMAGE(2, rgba16f) uniform image3D tracedEmittance1;
-BL_IMAGE(3, rgba16f) uniform image3D tracedEmittance2;
-BL_IMAGE(4, rgba16f) uniform image3D tracedEmittance3;
-BL_IMAGE(5, rgba16f) uniform image3D tracedEmittance4;
-BL_IMAGE(6, rgba16f) uniform image3D tracedEmittance5;
+BL_IMAGE(2, r32ui) uniform uimage3D tracedEmittance1;
+BL_IMAGE(3, r32ui) uniform uimage3D tracedEmittance2;
+BL_IMAGE(4, r32ui) uniform uimage3D tracedEmittance3;
+BL_IMAGE(5, r32ui) uniform uimage3D tracedEmittance4;
+BL_IMAGE(6, r32ui) uniform uimage3D tracedEmittance5;
 #endif
 
 vec3 loadEmittance(ivec3 t, uint d, bool valid) {
     if (!valid) return vec3(0.0);
+    uint bits = 0u;
 #if BL_VCT_DIRECTIONS == 1
-    return imageLoad(tracedEmittance0, t).rgb;
+    bits = imageLoad(tracedEmittance0, t).x;
 #elif BL_VCT_DIRECTIONS == 6
-    if (d == 0u) return imageLoad(tracedEmittance0, t).rgb;
-    if (d == 1u) return imageLoad(tracedEmittance1, t).rgb;
-    if (d == 2u) return imageLoad(tracedEmittance2, t).rgb;
-    if (d == 3u) return imageLoad(tracedEmittance3, t).rgb;
-    if (d == 4u) return imageLoad(tracedEmittance4, t).rgb;
-    return imageLoad(tracedEmittance5, t).rgb;
-#else
-    return vec3(0.0);
+    if (d == 0u) bits = imageLoad(tracedEmittance0, t).x;
+    else if (d == 1u) bits = imageLoad(tracedEmittance1, t).x;
+    else if (d == 2u) bits = imageLoad(tracedEmittance2, t).x;
+    else if (d == 3u) bits = imageLoad(tracedEmittance3, t).x;
+    else if (d == 4u) bits = imageLoad(tracedEmittance4, t).x;
+    else bits = imageLoad(tracedEmittance5, t).x;
 #endif
+    return blDecodeRgb9e5(bits);
 }
 
-void storeEmittance(ivec3 t, uint d, vec3 e, float alpha) {
+void storeEmittance(ivec3 t, uint d, vec3 e) {
+    uvec4 v = uvec4(blPackRgb9e5(e), 0u, 0u, 0u);
 #if BL_VCT_DIRECTIONS == 1
-    imageStore(tracedEmittance0, t, vec4(e, 0.0));
+    imageStore(tracedEmittance0, t, v);
 #elif BL_VCT_DIRECTIONS == 6
-    vec4 v = vec4(e, alpha);
     if (d == 0u) imageStore(tracedEmittance0, t, v);
     if (d == 1u) imageStore(tracedEmittance1, t, v);
     if (d == 2u) imageStore(tracedEmittance2, t, v);
@@ -105,11 +106,11 @@ void main() {
             sum *= 0.25;
             mean += sum / 6.0;
 #if BL_VCT_DIRECTIONS == 6
-            storeEmittance(t, d, sum, opacity[axis]);
+            storeEmittance(t, d, sum);
 #endif
         }
 #if BL_VCT_DIRECTIONS == 1
-    storeEmittance(t, 0u, mean, 0.0);
+    storeEmittance(t, 0u, mean);
 #endif
 #endif
 }

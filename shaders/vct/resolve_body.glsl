@@ -1,9 +1,10 @@
 // Turns one box of one level's accumulation words into the volumes cones sample (included by
 // resolve_opacity.comp, resolve_isotropic.comp and resolve_anisotropic.comp, which define BL_VCT_DIRECTIONS 0,
 // 1 or 6): opacity as a
-// float, emittance as radiance (RGBA16F), in the traced layout — levels stacked in z with one border slice on
+// float, emittance as radiance (RGB9E5_FLOAT, written packed through R32_UINT), in the traced layout — levels stacked in z with one border slice on
 // each side holding the level's opposite (toroidally adjacent) slice, so that hardware filtering wraps in z
 // as the sampler's repeat mode does in x and y.
+#include "bricklight/rgb9e5.glsl"
 // Rows of 32 along x: neighbouring threads touch neighbouring texels and emittance words (coalesced).
 layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
@@ -16,38 +17,37 @@ BL_IMAGE(0, r32ui) uniform readonly uimage3D opacityWords;
 BL_READ_BUFFER(0) Emittance { uint words[]; } emittance;
 BL_IMAGE(1, rgba8) uniform writeonly image3D tracedOpacity;  // rgb: along x, y, z
 #if BL_VCT_DIRECTIONS >= 1
-BL_IMAGE(2, rgba16f) uniform writeonly image3D tracedEmittance0;
+BL_IMAGE(2, r32ui) uniform writeonly uimage3D tracedEmittance0;
 #endif
 #if BL_VCT_DIRECTIONS == 6
-BL_IMAGE(3, rgba16f) uniform writeonly image3D tracedEmittance1;
-BL_IMAGE(4, rgba16f) uniform writeonly image3D tracedEmittance2;
-BL_IMAGE(5, rgba16f) uniform writeonly image3D tracedEmittance3;
-BL_IMAGE(6, rgba16f) uniform writeonly image3D tracedEmittance4;
-BL_IMAGE(7, rgba16f) uniform writeonly image3D tracedEmittance5;
+BL_IMAGE(3, r32ui) uniform writeonly uimage3D tracedEmittance1;
+BL_IMAGE(4, r32ui) uniform writeonly uimage3D tracedEmittance2;
+BL_IMAGE(5, r32ui) uniform writeonly uimage3D tracedEmittance3;
+BL_IMAGE(6, r32ui) uniform writeonly uimage3D tracedEmittance4;
+BL_IMAGE(7, r32ui) uniform writeonly uimage3D tracedEmittance5;
 #endif
 
-vec4 radianceOf(uint texel, uint direction) {
-    if (texel == ~0u) return vec4(0.0);  // an empty voxel
+// The radiance one direction's words hold, packed as RGB9E5_FLOAT.
+uvec4 radianceOf(uint texel, uint direction) {
+    if (texel == ~0u) return uvec4(0u);  // an empty voxel
     uint texelCount = box.params.x * box.params.x * box.params.x * box.params.z;
     uint w = direction * 3u;
-    return vec4(float(emittance.words[vctWordIndex(texel, w, texelCount)]), float(emittance.words[vctWordIndex(texel, w + 1u, texelCount)]),
-                float(emittance.words[vctWordIndex(texel, w + 2u, texelCount)]), 0.0) * box.scales.x;
+    vec3 radiance = vec3(float(emittance.words[vctWordIndex(texel, w, texelCount)]), float(emittance.words[vctWordIndex(texel, w + 1u, texelCount)]),
+                         float(emittance.words[vctWordIndex(texel, w + 2u, texelCount)])) * box.scales.x;
+    return uvec4(blPackRgb9e5(radiance), 0u, 0u, 0u);
 }
 
-// With six directions each face's alpha also holds the opacity along its axis, so that a cone's sample reads
-// light and opacity in the same three fetches (bricklight/cone_trace.glsl).
 void store(ivec3 t, vec3 opacity, uint base) {
     imageStore(tracedOpacity, t, vec4(opacity, 0.0));
-#if BL_VCT_DIRECTIONS == 1
+#if BL_VCT_DIRECTIONS >= 1
     imageStore(tracedEmittance0, t, radianceOf(base, 0u));
 #endif
 #if BL_VCT_DIRECTIONS == 6
-    imageStore(tracedEmittance0, t, vec4(radianceOf(base, 0u).rgb, opacity.x));
-    imageStore(tracedEmittance1, t, vec4(radianceOf(base, 1u).rgb, opacity.y));
-    imageStore(tracedEmittance2, t, vec4(radianceOf(base, 2u).rgb, opacity.z));
-    imageStore(tracedEmittance3, t, vec4(radianceOf(base, 3u).rgb, opacity.x));
-    imageStore(tracedEmittance4, t, vec4(radianceOf(base, 4u).rgb, opacity.y));
-    imageStore(tracedEmittance5, t, vec4(radianceOf(base, 5u).rgb, opacity.z));
+    imageStore(tracedEmittance1, t, radianceOf(base, 1u));
+    imageStore(tracedEmittance2, t, radianceOf(base, 2u));
+    imageStore(tracedEmittance3, t, radianceOf(base, 3u));
+    imageStore(tracedEmittance4, t, radianceOf(base, 4u));
+    imageStore(tracedEmittance5, t, radianceOf(base, 5u));
 #endif
 }
 

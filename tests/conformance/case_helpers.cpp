@@ -36,6 +36,11 @@ void decodeR11G11B10(uint32_t p, float out[3]) {
     out[2] = smallFloat((p >> 27) & 31, (p >> 22) & 31, 5);
 }
 
+void decodeRgb9e5(uint32_t p, float out[3]) {
+    const int exponent = int(p >> 27) - 15 - 9;
+    for (int c = 0; c < 3; ++c) out[c] = std::ldexp(float((p >> (9 * c)) & 511u), exponent);
+}
+
 float srgbToLinear(uint8_t v) {
     float c = v / 255.0f;
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
@@ -80,6 +85,12 @@ void decodeTexel(rhi::Format format, const uint8_t* t, float out[4]) {
             uint32_t p;
             std::memcpy(&p, t, 4);
             decodeR11G11B10(p, out);
+            break;
+        }
+        case F::RGB9E5_FLOAT: {
+            uint32_t p;
+            std::memcpy(&p, t, 4);
+            decodeRgb9e5(p, out);
             break;
         }
         default: break;

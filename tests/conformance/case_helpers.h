@@ -15,6 +15,8 @@ using bricklight::halfToFloat;
 uint16_t floatToHalf(float f);
 // Decodes an R11G11B10_FLOAT texel to three floats.
 void decodeR11G11B10(uint32_t packed, float out[3]);
+// Decodes an RGB9E5_FLOAT texel (shared exponent) to three floats.
+void decodeRgb9e5(uint32_t packed, float out[3]);
 float srgbToLinear(uint8_t v);
 // Decodes one texel of any colour format to the vec4 that a shader's texelFetch returns (missing
 // channels read as 0, alpha as 1).

@@ -48,6 +48,13 @@ std::vector<uint8_t> formatData(Format f, uint32_t seed) {
                 std::memcpy(p, &packed, 4);
             }
             break;
+        case Format::RGB9E5_FLOAT:  // every exponent but 31 (GL and Vulkan agree on all of them)
+            for (size_t t = 0; t < texels; ++t) {
+                uint8_t* p = &bytes[t * 4];
+                uint32_t packed = uint32_t(p[0] | p[1] << 8 | p[2] << 16 | (p[3] & 7) << 24) | uint32_t(p[3] % 31) << 27;
+                std::memcpy(p, &packed, 4);
+            }
+            break;
         default: break;
     }
     return bytes;
@@ -152,6 +159,7 @@ void appendFormatCases(std::vector<Case>& out) {
         FORMAT_CASE(RGBA32_FLOAT),
         FORMAT_CASE(RGBA32_UINT),
         FORMAT_CASE(R11G11B10_FLOAT),
+        FORMAT_CASE(RGB9E5_FLOAT),
         FORMAT_CASE(D32_FLOAT),
     });
 }

@@ -181,12 +181,58 @@ static void view_cube_faces(CaseContext& ctx) {
     ctx.output("faces", bytesOf(got), {Tolerance::Kind::Float32, 1e-5});
 }
 
+// The packed floats (R11G11B10_FLOAT, RGB9E5_FLOAT) are never storage-capable: a shader writes their bits into an
+// R32_UINT texture, and samplers read them through a view in the packed format (the clip-map's traced radiance
+// does this with RGB9E5).
+static void packedFloatView(CaseContext& ctx, Format format, std::vector<uint32_t> init, void (*decode)(uint32_t, float[3])) {
+    while (init.size() < 16) init.push_back(uint32_t(init.size()) * 0x0813A2C5u & 0xF7BDEFBDu);  // no exponent of 31
+    rhi::TextureDesc d = texture2D(Format::R32_UINT, 4, 4, rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage, "packed radiance");
+    rhi::TextureHandle tex = ctx.texture(d, init.data());
+    rhi::TextureView view{tex};
+    view.format = format;
+    rhi::BufferHandle out = ctx.buffer(4 * 4 * 16, kStorageUsage, nullptr, "out");
+    struct { int32_t w, h, lod; } p{4, 4, 0};
+    rhi::DispatchState s;
+    s.shader = ctx.shader("rhi_tests/fetch_float.comp");
+    s.label = "fetch packed float view";
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.textures.push({0, view, nearestSampler(ctx)});
+    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.device.dispatch(s, 1, 1, 1);
+    auto got = ctx.read<float>(out, 16 * 4);
+    for (uint32_t i = 0; i < 16; ++i) {
+        float want[3];
+        decode(init[i], want);
+        for (int c = 0; c < 3; ++c)
+            ctx.check(got[i * 4 + c] == want[c], std::string(rhi::formatName(format)) + " texel " + std::to_string(i) + " channel " +
+                                                     std::to_string(c) + " read " + std::to_string(got[i * 4 + c]) + ", its bits say " +
+                                                     std::to_string(want[c]));
+    }
+    ctx.check(got[0] == 1.0f && got[1] == 0.5f && got[2] == 2.0f, std::string(rhi::formatName(format)) + " view does not decode (1, 0.5, 2)");
+    ctx.output(rhi::formatName(format), bytesOf(got));
+}
+
+static void view_packed_float_of_uint(CaseContext& ctx) {
+    // (1, 0.5, 2), (0.25, 4, 0.125), denormals, zero, the largest values, then a spread of words.
+    packedFloatView(ctx, Format::R11G11B10_FLOAT,
+                    {0x3C0u | (0x380u << 11) | (0x200u << 22), 0x340u | (0x440u << 11) | (0x180u << 22),
+                     0x001u | (0x03Fu << 11) | (0x01Fu << 22), 0u, 0x7BFu | (0x7BFu << 11) | (0x3DFu << 22)},
+                    decodeR11G11B10);
+    // Exponent 17 (× 2^-7): 128, 64, 256 → (1, 0.5, 2); then 0.25, 4, 0.125 at exponent 18 (× 2^-6); small values
+    // at exponent 0; zero; the largest.
+    packedFloatView(ctx, Format::RGB9E5_FLOAT,
+                    {128u | (64u << 9) | (256u << 18) | (17u << 27), 16u | (256u << 9) | (8u << 18) | (18u << 27),
+                     1u | (2u << 9) | (511u << 18), 0u, 511u | (511u << 9) | (511u << 18) | (31u << 27)},
+                    decodeRgb9e5);
+}
+
 void appendViewCases(std::vector<Case>& out) {
     out.insert(out.end(), {
         BL_CASE(view_mip_range, "TextureView.baseMip/mipCount on a sampled 2D texture; readTexture of each mip"),
         BL_CASE(view_array_layers, "2D array textures: layer views (2D of one layer, 2D array of a range), layered storage writes"),
         BL_CASE(view_3d_storage_and_sampled, "3D textures: storage image of one mip (all slices), texelFetch of a 3D mip, readTexture of all slices"),
         BL_CASE(view_cube_faces, "cube textures: initial data per face, samplerCube along the six axes"),
+        BL_CASE(view_packed_float_of_uint, "R11G11B10_FLOAT and RGB9E5_FLOAT views of an R32_UINT texture decode the bits written into it"),
     });
 }
 
