@@ -21,8 +21,8 @@ namespace bricklight::rhi {
 std::unique_ptr<IDevice> createValidationDevice(IDevice& inner);
 
 // A device that creates handles and checks nothing; reads return zeros. `capabilities` defaults to a
-// device that supports every format for everything except what the contract excludes (R11G11B10_FLOAT
-// and RGBA8_SRGB storage) and Vulkan's minimum limits.
+// device that supports every format for everything except what the contract excludes (R11G11B10_FLOAT,
+// RGB9E5_FLOAT and RGBA8_SRGB storage) and Vulkan's minimum limits.
 std::unique_ptr<IDevice> createNullDevice(const Capabilities* capabilities = nullptr);
 
 // Writes every call made on the wrapper to `out` as one JSON object per line, then forwards it to
