@@ -14,6 +14,19 @@ rhi::SamplerHandle nearestSampler(CaseContext& ctx) {
     return ctx.sampler(sd);
 }
 
+// texelFetch of every texel of lod 0 of a 4 × 4 view (rhi_tests/fetch_float.comp) into `out`: 16 vec4s, row-major.
+std::vector<float> fetch4x4(CaseContext& ctx, const rhi::TextureView& view, rhi::BufferHandle out, const char* label) {
+    struct { int32_t w, h, lod; } p{4, 4, 0};
+    rhi::DispatchState s;
+    s.shader = ctx.shader("rhi_tests/fetch_float.comp");
+    s.label = label;
+    s.bindings.constants.push(rhi::constants(0, p));
+    s.bindings.textures.push({0, view, nearestSampler(ctx)});
+    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
+    ctx.device.dispatch(s, 1, 1, 1);
+    return ctx.read<float>(out, 16 * 4);
+}
+
 // Fills texel (x, y) of mip m / layer l with a value that names it: x + 16 y + 256 m + 4096 l.
 float texelName(uint32_t x, uint32_t y, uint32_t mip, uint32_t layer) {
     return float(x + 16 * y + 256 * mip + 4096 * layer);
@@ -102,15 +115,7 @@ static void view_array_layers(CaseContext& ctx) {
     rhi::TextureView one{tex};
     one.baseLayer = 3;
     one.layerCount = 1;
-    struct { int32_t w, h, lod; } fp{4, 4, 0};
-    rhi::DispatchState f;
-    f.shader = ctx.shader("rhi_tests/fetch_float.comp");
-    f.label = "fetch one layer";
-    f.bindings.constants.push(rhi::constants(0, fp));
-    f.bindings.textures.push({0, one, nearestSampler(ctx)});
-    f.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
-    ctx.device.dispatch(f, 1, 1, 1);
-    got = ctx.read<float>(out, 16 * 4);
+    got = fetch4x4(ctx, one, out, "fetch one layer");
     ctx.check(got[(3 * 4 + 3) * 4] == 3.0f + 3000.0f + 3e6f + 0.5f, "2D view of layer 3 returned another layer");
 }
 
@@ -190,16 +195,7 @@ static void packedFloatView(CaseContext& ctx, Format format, std::vector<uint32_
     rhi::TextureHandle tex = ctx.texture(d, init.data());
     rhi::TextureView view{tex};
     view.format = format;
-    rhi::BufferHandle out = ctx.buffer(4 * 4 * 16, kStorageUsage, nullptr, "out");
-    struct { int32_t w, h, lod; } p{4, 4, 0};
-    rhi::DispatchState s;
-    s.shader = ctx.shader("rhi_tests/fetch_float.comp");
-    s.label = "fetch packed float view";
-    s.bindings.constants.push(rhi::constants(0, p));
-    s.bindings.textures.push({0, view, nearestSampler(ctx)});
-    s.bindings.storageBuffers.push({0, out, {}, rhi::Access::Write});
-    ctx.device.dispatch(s, 1, 1, 1);
-    auto got = ctx.read<float>(out, 16 * 4);
+    const std::vector<float> got = fetch4x4(ctx, view, ctx.buffer(4 * 4 * 16, kStorageUsage, nullptr, "out"), "fetch packed float view");
     for (uint32_t i = 0; i < 16; ++i) {
         float want[3];
         decode(init[i], want);
