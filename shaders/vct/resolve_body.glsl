@@ -1,9 +1,9 @@
 // Turns one box of one level's accumulation words into the volumes cones sample (included by
 // resolve_opacity.comp, resolve_isotropic.comp and resolve_anisotropic.comp, which define BL_VCT_DIRECTIONS 0,
-// 1 or 6): opacity as a
-// float, emittance as radiance (RGB9E5_FLOAT, written packed through R32_UINT), in the traced layout — levels stacked in z with one border slice on
-// each side holding the level's opposite (toroidally adjacent) slice, so that hardware filtering wraps in z
-// as the sampler's repeat mode does in x and y.
+// 1 or 6): opacity as a float, emittance as radiance (RGB9E5 bits through R32_UINT; cones sample RGB9E5_FLOAT
+// views), in the traced layout — levels stacked in z with one border slice on each side holding the level's
+// opposite (toroidally adjacent) slice, so that hardware filtering wraps in z as the sampler's repeat mode does
+// in x and y.
 #include "bricklight/rgb9e5.glsl"
 // Rows of 32 along x: neighbouring threads touch neighbouring texels and emittance words (coalesced).
 layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
