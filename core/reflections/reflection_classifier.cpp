@@ -178,7 +178,8 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
     s.bindings.storageImages.push(rhi::storageImage(1, written, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(2, tileInfo_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(3, tileStats_, rhi::Access::Write));
-    if (!device_.dispatch(s, tilesX(), tilesY(), 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);
+    // 4 × 4 tiles per group (classify_reflections.comp).
+    if (!device_.dispatch(s, (tilesX() + 3) / 4, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);
     if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)", ErrorCode::DeviceFailure);
     current_ ^= 1u;
     depth_ = d.gbuffer.depth;

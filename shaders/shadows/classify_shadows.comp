@@ -28,6 +28,29 @@ shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
 // (same-address atomics from every tile bounded the pass).
 shared uint listIndex[8], groupListed, groupBase, groupRays, groupCutTiles, groupCutPixels, groupActive;
 
+// The blocker search's sunflower spiral over the unit disc: tap k at angle k · 2.39996323 (the golden angle) and
+// radius sqrt((k + 0.5) / taps). Angles and sqrt(k + 0.5) are tabled: per tap, sines, cosines and square roots
+// cost more than the tap's read (the special-function units run at a quarter of the FMA rate).
+const vec2 kSpiral[32] = vec2[32](
+    vec2(1.000000000, 0.000000000), vec2(-0.737368878, 0.675490294),
+    vec2(0.087425725, -0.996171041), vec2(0.608438860, 0.793600752),
+    vec2(-0.984713485, -0.174181951), vec2(0.843755296, -0.536728051),
+    vec2(-0.259604306, 0.965715074), vec2(-0.460907023, -0.887448430),
+    vec2(0.939321296, 0.343038633), vec2(-0.924345557, 0.381556406),
+    vec2(0.423845998, -0.905734271), vec2(0.299283862, 0.954164121),
+    vec2(-0.865211208, -0.501407584), vec2(0.976675774, -0.214719426),
+    vec2(-0.575129432, 0.818062428), vec2(-0.128510686, -0.991708124),
+    vec2(0.764648993, 0.644446986), vec2(-0.999146054, 0.041317822),
+    vec2(0.708829418, -0.705379938), vec2(-0.046191451, 0.998932605),
+    vec2(-0.640709141, -0.767783691), vec2(0.991069412, 0.133346993),
+    vec2(-0.820858340, 0.571131846), vec2(0.219481375, -0.975616690),
+    vec2(0.497180869, 0.867646923), vec2(-0.952692775, -0.303934987),
+    vec2(0.907791137, -0.419422523), vec2(-0.386061089, 0.922473217),
+    vec2(-0.338452272, -0.940983560), vec2(0.885189434, 0.465230767),
+    vec2(-0.966970007, 0.254890182), vec2(0.540837745, -0.841126942));
+const float kSpiralRoot[32] = float[32](
+    0.707106781, 1.224744871, 1.581138830, 1.870828693, 2.121320344, 2.345207880, 2.549509757, 2.738612788, 2.915475947, 3.082207001, 3.240370349, 3.391164992, 3.535533906, 3.674234614, 3.807886553, 3.937003937, 4.062019202, 4.183300133, 4.301162634, 4.415880433, 4.527692569, 4.636809248, 4.743416490, 4.847679857, 4.949747468, 5.049752469, 5.147815070, 5.244044241, 5.338539126, 5.431390246, 5.522680509, 5.612486080);
+
 void main() {
     uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
     uvec2 tile = uvec2(gl_WorkGroupID.xy) * uvec2(2u, 4u) + uvec2(slot & 1u, slot >> 1u);
@@ -86,10 +109,10 @@ void main() {
             float receiver = s.z - params.normalScale.w;
             uint taps = params.options.y, valid = 0u, blocking = 0u;
             float nearestSun = 1.0e30, nearestReceiver = -1.0e30;
+            float tapScale = inversesqrt(float(taps));  // taps: 8, 16, 24 or 32
             for (uint k = 0u; k < taps; ++k) {
                 // A sunflower spiral over the disc: even coverage with a fixed pattern.
-                float a = float(k) * 2.39996323, rr = sqrt((float(k) + 0.5) / float(taps));
-                vec2 at = floor(s.xy * mapSize + rr * vec2(cos(a), sin(a)) * radius);
+                vec2 at = floor(s.xy * mapSize + (kSpiralRoot[k] * tapScale) * kSpiral[k] * radius);
                 if (any(lessThan(at, rect.xy)) || any(greaterThanEqual(at, rect.zw))) continue;
                 float d = texelFetch(shadowMap, ivec2(at), 0).r;
                 ++valid;

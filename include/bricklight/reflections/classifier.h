@@ -21,7 +21,7 @@
 
 namespace bricklight::reflections {
 
-constexpr uint32_t kReflectionTileSize = 8;            // 8×8 pixels a tile, one 64-thread group each
+constexpr uint32_t kReflectionTileSize = 8;            // 8×8 pixels a tile, sixteen to a 256-thread group
 constexpr uint32_t kReflectionScreenGroupRays = 32;    // screen-space trace: 32 list entries a group, one tile each
 // The SDF list's group size is the ray list contract's (bricklight/reflections/ray_list.h); the old name stays for a
 // version.
