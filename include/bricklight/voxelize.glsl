@@ -394,8 +394,10 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
 #ifndef BL_VOXEL_OPACITY_ONLY
     uint channels = blVctFrame.params.z;  // 0 (opacity only), 3 (isotropic) or 18 (six directions)
     if (writable == 0u || channels == 0u) return;
-    // Emittance: the samples inside the triangle, counted per voxel along the axis.
-    uint samples[BL_VOXEL_MAX_SPAN] = uint[BL_VOXEL_MAX_SPAN](0u, 0u, 0u, 0u, 0u, 0u);
+    // Emittance: the samples inside the triangle, counted per voxel along the axis — voxel k's count in bits
+    // 5k..5k+4 of one word (at most 16 each): a counter array indexed by a computed k is kept in memory, not in
+    // registers.
+    uint samples = 0u;
     uint inside = 0u;
     for (int sy = 0; sy < 4; ++sy)
         for (int sx = 0; sx < 4; ++sx) {
@@ -404,7 +406,7 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
             precise float w = clamp(t.plane.x + t.plane.y * s.x + t.plane.z * s.y, t.depth.x, t.depth.y);
             int k = int(floor(w)) + t.offset.z - k0;
             ++inside;  // every sample in the triangle counts, whatever this update may write (see below)
-            if (k >= 0 && k < BL_VOXEL_MAX_SPAN) ++samples[k];
+            if (k >= 0 && k < BL_VOXEL_MAX_SPAN) samples += 1u << (5u * uint(k));
         }
     if (inside == 0u) return;
 
@@ -451,7 +453,7 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
             int end = d < 3u ? k1 - k0 : 0;
             int behind = d < 3u ? end - 1 : end + 1;
             for (int k = 0; k < BL_VOXEL_MAX_SPAN; ++k) {
-                uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : samples[k];
+                uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : (samples >> (5u * uint(k))) & 31u;
                 if (count == 0u || (writable & (1u << uint(k))) == 0u) continue;
                 ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
                 uint texel = vctTexelIndex(level, voxel, resolution);
