@@ -23,7 +23,7 @@ BL_STORAGE_BUFFER(0) ScreenList { uint screenRays[]; } screenList;
 BL_STORAGE_BUFFER(1) SdfList { uint sdfRays[]; } sdfList;
 BL_STORAGE_BUFFER(2) DenoiseList { uint denoiseTiles[]; } denoiseList;
 // Words (ReflectionClassifier's header): 0..8 dispatch arguments (reflection_args.comp), 9 screen entries,
-// 11 SDF rays, 12 denoiser tiles: the only global atomics, three per tile. The statistics go per tile to tileInfo
+// 11 SDF rays, 12 denoiser tiles: the only global atomics, three per group. The statistics go per tile to tileInfo
 // and tileStats and are summed on the CPU (readCounts): same-address atomics from every group bound the pass.
 BL_STORAGE_BUFFER(3) Counts { uint counts[24]; } count;
 BL_IMAGE(0, r32ui) uniform readonly uimage2D history;
