@@ -29,8 +29,8 @@ shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
 shared uint listIndex[8], groupListed, groupBase, groupRays, groupCutTiles, groupCutPixels, groupActive;
 
 // The blocker search's sunflower spiral over the unit disc: tap k at angle k · 2.39996323 (the golden angle) and
-// radius sqrt((k + 0.5) / taps). Angles and sqrt(k + 0.5) are tabled: per tap, sines, cosines and square roots
-// cost more than the tap's read (the special-function units run at a quarter of the FMA rate).
+// radius sqrt((k + 0.5) / taps). The directions and sqrt(k + 0.5) are tabled rather than computed per tap and pixel:
+// sines, cosines and square roots run on the special-function units, at a quarter of the FMA rate.
 const vec2 kSpiral[32] = vec2[32](
     vec2(1.000000000, 0.000000000), vec2(-0.737368878, 0.675490294),
     vec2(0.087425725, -0.996171041), vec2(0.608438860, 0.793600752),
@@ -49,7 +49,10 @@ const vec2 kSpiral[32] = vec2[32](
     vec2(-0.338452272, -0.940983560), vec2(0.885189434, 0.465230767),
     vec2(-0.966970007, 0.254890182), vec2(0.540837745, -0.841126942));
 const float kSpiralRoot[32] = float[32](
-    0.707106781, 1.224744871, 1.581138830, 1.870828693, 2.121320344, 2.345207880, 2.549509757, 2.738612788, 2.915475947, 3.082207001, 3.240370349, 3.391164992, 3.535533906, 3.674234614, 3.807886553, 3.937003937, 4.062019202, 4.183300133, 4.301162634, 4.415880433, 4.527692569, 4.636809248, 4.743416490, 4.847679857, 4.949747468, 5.049752469, 5.147815070, 5.244044241, 5.338539126, 5.431390246, 5.522680509, 5.612486080);
+    0.707106781, 1.224744871, 1.581138830, 1.870828693, 2.121320344, 2.345207880, 2.549509757, 2.738612788,
+    2.915475947, 3.082207001, 3.240370349, 3.391164992, 3.535533906, 3.674234614, 3.807886553, 3.937003937,
+    4.062019202, 4.183300133, 4.301162634, 4.415880433, 4.527692569, 4.636809248, 4.743416490, 4.847679857,
+    4.949747468, 5.049752469, 5.147815070, 5.244044241, 5.338539126, 5.431390246, 5.522680509, 5.612486080);
 
 void main() {
     uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
