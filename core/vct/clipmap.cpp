@@ -34,25 +34,23 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     std::optional<ClipmapPlacement> placement = ClipmapPlacement::create(desc, error);
     if (!placement) return nullptr;
     const rhi::Limits& limits = device.capabilities().limits;
-    const uint64_t depth = uint64_t(desc.resolution) * desc.levels;
-    if (desc.resolution > limits.maxTextureSize3D || depth > limits.maxTextureSize3D)
-        return fail("the opacity volume (" + std::to_string(desc.resolution) + "² × " + std::to_string(depth) +
+    const uint32_t regions = detail::atlasRegions(desc.emittance);
+    const uint64_t width = uint64_t(regions) * detail::regionWidth(desc.resolution);
+    const uint64_t depth = detail::tracedSlices(desc.levels, desc.resolution);
+    if (width > limits.maxTextureSize3D || depth > limits.maxTextureSize3D)
+        return fail("the atlas (" + std::to_string(width) + " × " + std::to_string(desc.resolution) + " × " + std::to_string(depth) +
                     ") exceeds the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution", ErrorCode::OverBudget);
-    const uint64_t voxels = uint64_t(desc.resolution) * desc.resolution * depth;
-    const uint64_t emittanceBytes = std::max<uint64_t>(voxels * emittanceWordsPerVoxel(desc.emittance) * 4, 16);
-    if (emittanceBytes > limits.maxStorageBufferRange)
-        return fail("the emittance buffer (" + std::to_string(emittanceBytes >> 20) + " MiB) exceeds the device's storage buffer range of " +
-                    std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: use isotropic emittance, fewer levels or a lower resolution", ErrorCode::OverBudget);
+    const uint64_t lightBytes = std::max<uint64_t>(detail::lightEntriesPerPool(desc) * detail::kLightPools * 12, 16);
+    if (lightBytes > limits.maxStorageBufferRange)
+        return fail("the light pool (" + std::to_string(lightBytes >> 20) + " MiB) exceeds the device's storage buffer range of " +
+                    std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: lower lightEntries", ErrorCode::OverBudget);
     shaders::link_bricklight_vct();
     std::unique_ptr<Clipmap> c(new Clipmap(device, *placement));
     c->clearBoxes_ = shaders::createCoreShader(device, "vct/clear_boxes.comp");
-    c->clearEmittance_ = shaders::createCoreShader(device, "vct/clear_emittance_boxes.comp");
+    c->resolve_ = shaders::createCoreShader(device, "vct/resolve_light.comp");
     c->downsample_ = shaders::createCoreShader(device, "vct/downsample.comp");
+    c->borders_ = shaders::createCoreShader(device, "vct/borders.comp");
     c->debugView_ = shaders::createCoreShader(device, "vct/debug_view.comp");
-    const char* resolve = desc.emittance == EmittanceMode::Anisotropic ? "vct/resolve_anisotropic.comp"
-                          : desc.emittance == EmittanceMode::Isotropic ? "vct/resolve_isotropic.comp"
-                                                                       : "vct/resolve_opacity.comp";
-    c->resolve_ = shaders::createCoreShader(device, resolve);
     const char* mips = desc.emittance == EmittanceMode::Anisotropic ? "vct/mip_build_anisotropic.comp"
                        : desc.emittance == EmittanceMode::Isotropic ? "vct/mip_build_isotropic.comp"
                                                                     : "vct/mip_build_opacity.comp";
@@ -61,38 +59,31 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
         c->voxelizeGeometry_ = shaders::createCoreShader(device, "vct/voxelize.geom");
         c->voxelizeOpacity_ = shaders::createCoreShader(device, "vct/voxelize_opacity.frag");
     }
+    // One R32_UINT texture for everything the voxelization writes (a draw has one storage image slot of ours):
+    // RGB9E5_FLOAT is never storage-capable, so radiance is written as packed bits (bricklight/rgb9e5.glsl) and
+    // sampled through an RGB9E5 view (a shared exponent keeps grey grey, where R11G11B10's 5-bit blue mantissa
+    // tints it); opacity through an RGBA8_UNORM view.
     rhi::TextureDesc td;
     td.dimension = rhi::TextureDimension::Texture3D;
     td.format = rhi::Format::R32_UINT;
-    td.width = td.height = desc.resolution;
+    td.width = uint32_t(width);
+    td.height = desc.resolution;
     td.depthOrLayers = uint32_t(depth);
     td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
-    td.debugName = "vct opacity";
-    c->opacity_ = device.createTexture(td);
-    // The traced volumes: each level's slab has a border slice on each side (resolve_body.glsl), then the mips'.
-    const uint64_t tracedDepth = detail::tracedSlices(desc.levels, desc.resolution);
-    if (tracedDepth > limits.maxTextureSize3D)
-        return fail("the traced volumes (" + std::to_string(desc.resolution) + "² × " + std::to_string(tracedDepth) +
-                    ") exceed the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution", ErrorCode::OverBudget);
-    td.depthOrLayers = uint32_t(tracedDepth);
-    td.format = rhi::Format::RGBA8_UNORM;  // opacity along x, y, z
-    td.debugName = "vct traced opacity";
-    c->tracedOpacity_ = device.createTexture(td);
-    const uint32_t directions = desc.emittance == EmittanceMode::Anisotropic ? 6 : 1;
-    // Radiance as RGB9E5_FLOAT (4 bytes a voxel and direction; a shared exponent keeps grey grey, where R11G11B10's
-    // 5-bit blue mantissa tints it): that format is never storage-capable, so the volumes are R32_UINT, written
-    // packed (bricklight/rgb9e5.glsl) and sampled through RGB9E5 views.
-    td.format = rhi::Format::R32_UINT;
-    if (desc.emittance == EmittanceMode::None) td.width = td.height = td.depthOrLayers = 1;
-    static const char* kDirectionNames[6] = {"+x", "+y", "+z", "-x", "-y", "-z"};
-    for (uint32_t d = 0; d < directions; ++d) {
-        td.debugName = directions == 1 ? std::string("vct traced emittance") : std::string("vct traced emittance ") + kDirectionNames[d];
-        c->tracedEmittance_.push_back(device.createTexture(td));
+    td.debugName = "vct atlas";
+    c->atlas_[0] = device.createTexture(td);
+    if (desc.multiBounce) {
+        td.debugName = "vct atlas (bounce)";
+        c->atlas_[1] = device.createTexture(td);
+    } else {
+        td.width = td.height = td.depthOrLayers = 1;
+        td.debugName = "vct no bounce";
+        c->noBounce_ = device.createTexture(td);
     }
     rhi::SamplerDesc sampler;
-    sampler.addressU = sampler.addressV = rhi::AddressMode::Repeat;  // toroidal in x and y; z has borders
+    sampler.addressV = rhi::AddressMode::Repeat;  // toroidal in y; x and z have border columns and slices
     sampler.mipFilter = rhi::Filter::Nearest;
-    sampler.debugName = "vct traced";
+    sampler.debugName = "vct atlas";
     c->tracedSampler_ = device.createSampler(sampler);
     rhi::TextureDesc rd;
     rd.format = rhi::Format::D32_FLOAT;
@@ -101,10 +92,10 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     rd.debugName = "vct raster size";
     c->rasterSize_ = device.createTexture(rd);
     rhi::BufferDesc bd;
-    bd.size = emittanceBytes;
+    bd.size = lightBytes;
     bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
-    bd.debugName = "vct emittance";
-    c->emittance_ = device.createBuffer(bd);
+    bd.debugName = "vct light";
+    c->light_ = device.createBuffer(bd);
     bd.size = detail::kFrameBufferBytes;
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "vct frame";
@@ -113,23 +104,25 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     bd.usage = rhi::BufferUsage::ShaderWrite;
     bd.debugName = "vct counters";
     c->counters_ = device.createBuffer(bd);
-    bool traced = c->tracedOpacity_ && c->tracedSampler_;
-    for (rhi::TextureHandle t : c->tracedEmittance_) traced = traced && t;
-    if (!c->clearBoxes_ || !c->clearEmittance_ || !c->downsample_ || !c->resolve_ || !c->mipBuild_ || !c->debugView_ || !c->opacity_ || !c->rasterSize_ ||
-        !c->emittance_ || !c->frame_ || !c->counters_ || !traced)
-        return fail("the device could not create the clip-map's volumes, buffers or passes", ErrorCode::DeviceFailure);
+    const bool bounce = desc.multiBounce ? bool(c->atlas_[1]) : bool(c->noBounce_);
+    if (!c->clearBoxes_ || !c->resolve_ || !c->light_ || !c->downsample_ || !c->borders_ || !c->mipBuild_ || !c->debugView_ || !c->atlas_[0] || !bounce ||
+        !c->tracedSampler_ || !c->rasterSize_ || !c->frame_ || !c->counters_)
+        return fail("the device could not create the clip-map's atlas, buffers or passes", ErrorCode::DeviceFailure);
+    // The bounce source is read before any frame wrote it: zero. The light pool starts zero; each update's resolve
+    // zeroes the entries it reads.
+    if (!device.clearTexture(desc.multiBounce ? c->atlas_[1] : c->noBounce_, 0, 1, rhi::ClearValue{}) ||
+        !device.clearBuffer(c->light_, {}, 0u) || !device.clearBuffer(c->counters_, {}, 0u))
+        return fail("the device could not clear the clip-map's bounce atlas, light pool or counters", ErrorCode::DeviceFailure);
     return c;
 }
 
 Clipmap::~Clipmap() {
-    for (rhi::TextureHandle t : {opacity_, rasterSize_, tracedOpacity_})
-        if (t) device_.destroy(t);
-    for (rhi::TextureHandle t : tracedEmittance_)
+    for (rhi::TextureHandle t : {atlas_[0], atlas_[1], noBounce_, rasterSize_})
         if (t) device_.destroy(t);
     if (tracedSampler_) device_.destroy(tracedSampler_);
-    for (rhi::BufferHandle b : {emittance_, frame_, counters_})
+    for (rhi::BufferHandle b : {light_, frame_, counters_})
         if (b) device_.destroy(b);
-    for (rhi::ShaderHandle s : {clearBoxes_, clearEmittance_, downsample_, resolve_, mipBuild_, voxelizeGeometry_, voxelizeOpacity_, debugView_})
+    for (rhi::ShaderHandle s : {clearBoxes_, resolve_, downsample_, borders_, mipBuild_, voxelizeGeometry_, voxelizeOpacity_, debugView_})
         if (s) device_.destroy(s);
 }
 
@@ -153,54 +146,26 @@ std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor,
     detail::FrameRegions regions = detail::frameRegions(d, before, placedBefore, *updates, invalidated);
     rewrite_ = std::move(regions.rewrite);
     downsampleBoxes_ = std::move(regions.downsample);
-    // Whole levels clear with the device's fills (a level's emittance words are one contiguous range); other boxes
-    // with the clear passes.
-    const uint32_t r = d.resolution;
-    auto whole = [&](const LevelBox& b) { return b.box.min == placement_.origin(b.level) && b.box.max == placement_.origin(b.level) + glm::ivec3(int(r)); };
-    size_t wholeLevels = 0;
-    for (const LevelBox& b : rewrite_) wholeLevels += whole(b);
-    const bool everything = wholeLevels == d.levels && rewrite_.size() == d.levels;
-    // Word-major layout (vct_layout.glsl): word w of level L is one range.
-    const uint64_t levelTexels = uint64_t(r) * r * r, texelCount = levelTexels * d.levels;
-    const uint32_t words = emittanceWordsPerVoxel(d.emittance);
-    if (everything && words) device_.clearBuffer(emittance_, rhi::BufferRange{0, texelCount * words * 4}, 0u);
-    for (const LevelBox& b : rewrite_) {
-        if (!whole(b)) {
-            clearBox(b, true);
-            continue;
-        }
-        clearBox(b, false);  // the opacity (a pass: faster than a 3D image clear on some devices)
-        if (!everything)
-            for (uint32_t w = 0; w < words; ++w)
-                device_.clearBuffer(emittance_, rhi::BufferRange{(w * texelCount + b.level * levelTexels) * 4, levelTexels * 4}, 0u);
-    }
+    // A pass per box, whole levels too: a fill of the whole 3D atlas is far slower than the pass on NVIDIA's driver
+    // (docs/notes/vct-memory.md). The mips' slab and the borders need no clear: every texel of them that is read is
+    // rewritten by finishVoxelization().
+    for (const LevelBox& b : rewrite_) clearBox(b);
+    // The light pool's claim counters and the dropped-light count start over.
+    device_.clearBuffer(counters_, rhi::BufferRange{detail::kLightDroppedWord * 4, (detail::kCounterWords - detail::kLightDroppedWord) * 4}, 0u);
     writeFrame();
     return updates;
 }
 
-void Clipmap::clearBox(const LevelBox& b, bool emittance) {
-    const uint32_t resolution = desc().resolution, words = emittanceWordsPerVoxel(desc().emittance);
+void Clipmap::clearBox(const LevelBox& b) {
     const glm::ivec3 size = b.box.max - b.box.min;
-    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(resolution, 0u, 0u, 0u)};
+    const uint32_t regions = 1;  // the opacity: the directions' words are overwritten by the resolve (vctTagLightEntry)
+    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, 0u, regions, 0u)};
     rhi::DispatchState s;
     s.shader = clearBoxes_;
     s.label = "vct clear voxels";
     s.bindings.constants.push(rhi::constants(0, c));
-    s.bindings.storageImages.push(rhi::storageImage(0, opacity_, rhi::Access::Write));
-    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
-    if (!words || !emittance) return;
-    c.params.y = words;
-    c.params.z = desc().levels;
-    rhi::DispatchState e;
-    e.shader = clearEmittance_;
-    e.label = "vct clear emittance";
-    e.bindings.constants.push(rhi::constants(0, c));
-    rhi::StorageBufferBinding buffer;
-    buffer.slot = 0;
-    buffer.buffer = emittance_;
-    buffer.access = rhi::Access::Write;
-    e.bindings.storageBuffers.push(buffer);
-    device_.dispatch(e, (uint32_t(size.x) * words + 63) / 64, uint32_t(size.y), uint32_t(size.z));
+    s.bindings.storageImages.push(rhi::storageImage(0, atlas(), rhi::Access::Write));
+    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z) * regions);  // 32 × 2 × 1 groups
 }
 
 void Clipmap::writeFrame() {
@@ -208,9 +173,9 @@ void Clipmap::writeFrame() {
     std::vector<uint8_t> bytes(sizeof(detail::FrameHeader) + rewrite_.size() * sizeof(detail::FrameBox));
     detail::FrameHeader h{};
     for (uint32_t level = 0; level < d.levels; ++level) h.origin[level] = glm::ivec4(placement_.origin(level), 0);
-    h.params = glm::uvec4(d.resolution, d.levels, emittanceWordsPerVoxel(d.emittance), uint32_t(rewrite_.size()));
+    h.params = glm::uvec4(d.resolution, d.levels, emittanceDirections(d.emittance), uint32_t(rewrite_.size()));
     h.scales = glm::vec4(d.finestVoxelSize, detail::kEmittanceUnits * d.emittanceStorageScale, 0.0f, 0.0f);
-    h.flags = glm::uvec4(countersEnabled_ ? 1u : 0u, clipmapMipLevels(d), 0u, 0u);
+    h.flags = glm::uvec4(countersEnabled_ ? 1u : 0u, clipmapMipLevels(d), uint32_t(detail::lightEntriesPerPool(d)), 0u);
     std::memcpy(bytes.data(), &h, sizeof(h));
     for (size_t i = 0; i < rewrite_.size(); ++i) {
         const detail::FrameBox b{glm::ivec4(rewrite_[i].box.min, int(rewrite_[i].level)), glm::ivec4(rewrite_[i].box.max, 0)};
@@ -253,34 +218,39 @@ std::optional<rhi::DrawCallState> Clipmap::voxelizationState(const VoxelMaterial
     frame.slot = VoxelizationSlots::kFrameReadBuffer;
     frame.buffer = frame_;
     s.bindings.readBuffers.push(frame);
-    rhi::StorageBufferBinding emittance;
-    emittance.slot = VoxelizationSlots::kEmittanceBuffer;
-    emittance.buffer = emittance_;
-    emittance.access = rhi::Access::Atomic;
-    s.bindings.storageBuffers.push(emittance);
-    rhi::StorageBufferBinding counters = emittance;
+    rhi::StorageBufferBinding light;
+    light.slot = VoxelizationSlots::kLightBuffer;
+    light.buffer = light_;
+    light.access = rhi::Access::Atomic;
+    s.bindings.storageBuffers.push(light);
+    rhi::StorageBufferBinding counters = light;
     counters.slot = VoxelizationSlots::kCountersBuffer;
     counters.buffer = counters_;
     s.bindings.storageBuffers.push(counters);
-    s.bindings.storageImages.push(rhi::storageImage(VoxelizationSlots::kOpacityImage, opacity_, rhi::Access::Atomic));
+    s.bindings.storageImages.push(rhi::storageImage(VoxelizationSlots::kAtlasImage, atlas(), rhi::Access::Atomic));
     return s;
 }
 
 void Clipmap::downsampleBox(const LevelBox& b) {
     const glm::ivec3 size = b.box.max - b.box.min;
-    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0),
-                   glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), desc().levels, 0u)};
+    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, emittanceDirections(desc().emittance), 0u, 0u)};
     rhi::DispatchState s;
     s.shader = downsample_;
     s.label = "vct downsample";
     s.bindings.constants.push(rhi::constants(0, c));
-    s.bindings.storageImages.push(rhi::storageImage(0, opacity_, rhi::Access::ReadWrite));
-    rhi::StorageBufferBinding buffer;
-    buffer.slot = 0;
-    buffer.buffer = emittance_;
-    buffer.access = rhi::Access::ReadWrite;
-    s.bindings.storageBuffers.push(buffer);
+    s.bindings.storageImages.push(rhi::storageImage(0, atlas(), rhi::Access::ReadWrite));
     device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
+}
+
+void Clipmap::copyBorders(uint32_t level) {
+    const uint32_t r = desc().resolution, regions = detail::atlasRegions(desc().emittance);
+    const glm::uvec4 c(r, level, regions, 0u);
+    rhi::DispatchState s;
+    s.shader = borders_;
+    s.label = "vct borders";
+    s.bindings.constants.push(rhi::constants(0, c));
+    s.bindings.storageImages.push(rhi::storageImage(0, atlas(), rhi::Access::ReadWrite));
+    device_.dispatch(s, (r + 2 + 31) / 32, (r + 1) / 2, 4 * regions);  // faces × regions in z
 }
 
 void Clipmap::resolveBox(const LevelBox& b) {
@@ -289,34 +259,56 @@ void Clipmap::resolveBox(const LevelBox& b) {
         glm::ivec4 minLevel, size;
         glm::uvec4 params;
         glm::vec4 scales;
-    } c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, emittanceWordsPerVoxel(desc().emittance), desc().levels, 0u),
+    } c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, emittanceDirections(desc().emittance), 0u, 0u),
         glm::vec4(1.0f / (detail::kEmittanceUnits * desc().emittanceStorageScale), 0.0f, 0.0f, 0.0f)};
     rhi::DispatchState s;
     s.shader = resolve_;
     s.label = "vct resolve";
     s.bindings.constants.push(rhi::constants(0, c));
-    s.bindings.storageImages.push(rhi::storageImage(0, opacity_, rhi::Access::Read));
-    s.bindings.storageImages.push(rhi::storageImage(1, tracedOpacity_, rhi::Access::Write));
-    if (desc().emittance != EmittanceMode::None)
-        for (size_t d = 0; d < tracedEmittance_.size(); ++d)
-            s.bindings.storageImages.push(rhi::storageImage(uint8_t(2 + d), tracedEmittance_[d], rhi::Access::Write));
-    s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, emittance_, {}});
+    s.bindings.storageImages.push(rhi::storageImage(0, atlas(), rhi::Access::ReadWrite));
+    rhi::StorageBufferBinding light;
+    light.slot = 0;
+    light.buffer = light_;
+    light.access = rhi::Access::ReadWrite;
+    s.bindings.storageBuffers.push(light);
     device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
 }
 
 void Clipmap::finishVoxelization() {
+    // The light the draws gathered becomes radiance first: the downsampling reads the finer levels' radiance. Each
+    // voxel once (a resolved word is radiance, no longer an entry): the rewrite boxes may overlap (what entered a
+    // level and an invalidated box), so they are cut into disjoint pieces.
+    device_.beginMarker("vct resolve");
+    if (desc().emittance != EmittanceMode::None) {
+        std::vector<LevelBox> disjoint;
+        for (const LevelBox& b : rewrite_) {
+            std::vector<VoxelBox> pieces{b.box};
+            for (const LevelBox& earlier : disjoint) {
+                if (earlier.level != b.level) continue;
+                std::vector<VoxelBox> outside;
+                for (const VoxelBox& p : pieces)
+                    for (const VoxelBox& s : detail::uncovered(earlier.box, p)) outside.push_back(s);
+                pieces = std::move(outside);
+            }
+            for (const VoxelBox& p : pieces) disjoint.push_back({b.level, p});
+        }
+        for (const LevelBox& b : disjoint) resolveBox(b);
+    }
+    device_.endMarker();
     device_.beginMarker("vct downsample");
     for (const LevelBox& b : downsampleBoxes_) downsampleBox(b);
     device_.endMarker();
-    device_.beginMarker("vct resolve");
-    for (const LevelBox& b : rewrite_) resolveBox(b);
-    for (const LevelBox& b : downsampleBoxes_) resolveBox(b);
-    device_.endMarker();
-    const uint32_t coarsest = desc().levels - 1;
-    bool coarsestChanged = false;
+    // The border columns and slices of every level that changed.
+    std::vector<bool> changed(desc().levels, false);
     for (const std::vector<LevelBox>* boxes : {&rewrite_, &downsampleBoxes_})
-        for (const LevelBox& b : *boxes) coarsestChanged = coarsestChanged || b.level == coarsest;
-    if (coarsestChanged) buildMips();
+        for (const LevelBox& b : *boxes) changed[b.level] = true;
+    device_.beginMarker("vct borders");
+    for (uint32_t level = 0; level < desc().levels; ++level)
+        if (changed[level]) copyBorders(level);
+    device_.endMarker();
+    if (changed[desc().levels - 1]) buildMips();
+    // Multiple bounces: the next frame's draws read this frame's light from a copy while they write the atlas.
+    if (desc().multiBounce) device_.copyTexture(atlas_[1], {}, atlas_[0], {});
 }
 
 // The mips are small (the first has an eighth of a level's voxels) and rebuilt whole whenever the coarsest level
@@ -337,20 +329,17 @@ void Clipmap::buildMips() {
         if (m == 1) {  // the coarsest level, toroidal: its first voxel is stored at the origin modulo the resolution
             c.source = glm::ivec4(0, 0, int(coarsest) * (r + 2) + 1, r);
             c.sourceMin = glm::ivec4(origin, 0);
-            c.shift = glm::ivec4(placement_.toroidalTexel(origin), 0);
+            c.shift = glm::ivec4(placement_.toroidalTexel(origin), r);
         } else {
             c.source = glm::ivec4(detail::mipBoxOffset(m - 1, d.levels, d.resolution), detail::mipBoxSize(m - 1, d.resolution));
             c.sourceMin = glm::ivec4((origin >> int(m - 1)) - 1, 0);
-            c.shift = glm::ivec4(0);
+            c.shift = glm::ivec4(0, 0, 0, r);
         }
         rhi::DispatchState s;
         s.shader = mipBuild_;
         s.label = "vct mip";
         s.bindings.constants.push(rhi::constants(0, c));
-        s.bindings.storageImages.push(rhi::storageImage(0, tracedOpacity_, rhi::Access::ReadWrite));
-        if (d.emittance != EmittanceMode::None)
-            for (size_t e = 0; e < tracedEmittance_.size(); ++e)
-                s.bindings.storageImages.push(rhi::storageImage(uint8_t(1 + e), tracedEmittance_[e], rhi::Access::ReadWrite));
+        s.bindings.storageImages.push(rhi::storageImage(0, atlas(), rhi::Access::ReadWrite));
         const uint32_t groups = uint32_t(size + 3) / 4;
         device_.dispatch(s, groups, groups, groups);
     }
@@ -385,13 +374,23 @@ bool Clipmap::debugView(const DebugViewDesc& d, Error* error) {
     return device_.dispatch(s, (out->width + 7) / 8, (out->height + 7) / 8, 1);
 }
 
-void Clipmap::traceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_t frameSlot) const {
-    bindings.textures.push(rhi::TextureBinding{textureBase, rhi::wholeTexture(tracedOpacity_), tracedSampler_});
-    for (uint8_t d = 0; d < 6; ++d)
-        bindings.textures.push(rhi::TextureBinding{uint8_t(textureBase + 1 + d), tracedEmittanceView(d), tracedSampler_});
+void Clipmap::bindAtlas(rhi::Bindings& bindings, rhi::TextureHandle texture, uint8_t textureBase, uint8_t frameSlot) const {
+    rhi::TextureView opacity = rhi::wholeTexture(texture), radiance = opacity;
+    opacity.format = rhi::Format::RGBA8_UNORM;
+    radiance.format = rhi::Format::RGB9E5_FLOAT;
+    bindings.textures.push(rhi::TextureBinding{textureBase, opacity, tracedSampler_});
+    bindings.textures.push(rhi::TextureBinding{uint8_t(textureBase + 1), radiance, tracedSampler_});
     for (const rhi::ReadBufferBinding& b : bindings.readBuffers)
         if (b.slot == frameSlot && b.buffer == frame_) return;  // a voxelization record has it already
     bindings.readBuffers.push(rhi::ReadBufferBinding{frameSlot, frame_, {}});
+}
+
+void Clipmap::traceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_t frameSlot) const {
+    bindAtlas(bindings, atlas(), textureBase, frameSlot);
+}
+
+void Clipmap::bounceBindings(rhi::Bindings& bindings, uint8_t textureBase, uint8_t frameSlot) const {
+    bindAtlas(bindings, desc().multiBounce ? atlas_[1] : noBounce_, textureBase, frameSlot);
 }
 
 std::vector<WorldBox> Clipmap::dirtyRegions() const {
@@ -408,7 +407,9 @@ void Clipmap::setCountersEnabled(bool enabled) {
     if (placement_.placed()) writeFrame();
 }
 
-void Clipmap::resetCounters() { device_.clearBuffer(counters_, {}, 0u); }
+// The statistics only: the light pool's claim counters belong to the update (clearing them between the draws and
+// finishVoxelization() would hand out entries twice).
+void Clipmap::resetCounters() { device_.clearBuffer(counters_, rhi::BufferRange{0, detail::kLightDroppedWord * 4}, 0u); }
 
 VoxelizationCounters Clipmap::readCounters() {
     uint32_t words[detail::kCounterWords] = {};
@@ -420,6 +421,10 @@ VoxelizationCounters Clipmap::readCounters() {
     c.killedByFiner = words[3];
     c.killedNotDirty = words[4];
     c.emittanceWrites = words[5];
+    c.lightDropped = words[6];
+    const uint64_t perPool = detail::lightEntriesPerPool(desc());
+    for (uint32_t p = 0; p < detail::kLightPools; ++p) c.lightEntriesClaimed += std::min<uint64_t>(words[detail::kStatisticWords + p], perPool);
+    c.lightEntriesAvailable = perPool * detail::kLightPools;
     return c;
 }
 
@@ -429,11 +434,9 @@ MemoryUse Clipmap::memoryUse() const {
         use.resources.push_back({name, bytes});
         use.totalBytes += bytes;
     };
-    std::vector<rhi::TextureHandle> textures{opacity_, rasterSize_, tracedOpacity_};
-    textures.insert(textures.end(), tracedEmittance_.begin(), tracedEmittance_.end());
-    for (rhi::TextureHandle t : textures)
+    for (rhi::TextureHandle t : {atlas_[0], atlas_[1], noBounce_, rasterSize_})
         if (const rhi::TextureDesc* d = device_.describe(t)) add(d->debugName, rhi::subresourceBytes(*d, {}));
-    for (rhi::BufferHandle b : {emittance_, frame_, counters_})
+    for (rhi::BufferHandle b : {light_, frame_, counters_})
         if (const rhi::BufferDesc* d = device_.describe(b)) add(d->debugName, d->size);
     return use;
 }

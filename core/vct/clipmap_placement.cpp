@@ -43,23 +43,25 @@ bool checkClipmapDesc(const ClipmapDesc& d, Error* error) {
         return fail("emittance mode " + std::to_string(int(d.emittance)) + " is not None, Isotropic or Anisotropic");
     if (!(d.emittanceStorageScale > 0.0f) || !std::isfinite(d.emittanceStorageScale))
         return fail("emittanceStorageScale must be a positive finite number (got " + std::to_string(d.emittanceStorageScale) + ")");
+    if (d.lightEntries > (uint64_t(1) << 24))
+        return fail("lightEntries " + std::to_string(d.lightEntries) + " is more than 2^24", ErrorCode::OverBudget);
+    if (d.multiBounce && d.emittance == EmittanceMode::None)
+        return fail("multiBounce needs emittance (the mode is None): there is no light to bounce");
     return true;
 }
 
-uint32_t emittanceWordsPerVoxel(EmittanceMode mode) {
-    return mode == EmittanceMode::Anisotropic ? 18u : mode == EmittanceMode::Isotropic ? 3u : 0u;
+uint32_t emittanceDirections(EmittanceMode mode) {
+    return mode == EmittanceMode::Anisotropic ? 6u : mode == EmittanceMode::Isotropic ? 1u : 0u;
 }
 
 uint64_t clipmapBytes(const ClipmapDesc& d) {
-    const uint64_t voxels = uint64_t(d.resolution) * d.resolution * d.resolution * d.levels;
-    const uint64_t opacity = voxels * 4, emittance = std::max<uint64_t>(voxels * emittanceWordsPerVoxel(d.emittance) * 4, 16);
+    const uint64_t atlas = uint64_t(detail::atlasRegions(d.emittance)) * detail::regionWidth(d.resolution) * d.resolution *
+                           detail::tracedSlices(d.levels, d.resolution) * 4;
     const uint64_t rasterSize = uint64_t(d.resolution) * d.resolution * 4;
-    const uint64_t tracedVoxels = uint64_t(d.resolution) * d.resolution * detail::tracedSlices(d.levels, d.resolution);
-    const uint64_t directions = d.emittance == EmittanceMode::Anisotropic ? 6 : 1;
-    // Opacity RGBA8, then RGB9E5 radiance per direction (a 1-texel stand-in without emittance).
-    const uint64_t traced = tracedVoxels * 4 + (d.emittance == EmittanceMode::None ? 4 : tracedVoxels * 4 * directions);
+    const uint64_t bounce = d.multiBounce ? atlas : 4;  // the copy of the previous frame's atlas, or the 1³ zero stand-in
+    const uint64_t light = std::max<uint64_t>(detail::lightEntriesPerPool(d) * detail::kLightPools * 12, 16);
     const uint64_t frame = detail::kFrameBufferBytes, counters = detail::kCounterWords * 4;
-    return opacity + emittance + rasterSize + traced + frame + counters;
+    return atlas + bounce + light + rasterSize + frame + counters;
 }
 
 uint32_t clipmapMipLevels(const ClipmapDesc& d) {

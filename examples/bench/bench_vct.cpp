@@ -21,7 +21,7 @@ namespace bricklight::bench {
 
 namespace {
 
-const char* const kVctPasses[] = {"vct update", "vct voxelize", "vct downsample", "vct resolve", "vct mips", "vct diffuse", "vct specular"};
+const char* const kVctPasses[] = {"vct update", "vct voxelize", "vct resolve", "vct downsample", "vct borders", "vct mips", "vct diffuse", "vct specular"};
 
 // The scene's triangles in world space, 3 vertices each: position, normal (the triangle's own where the mesh
 // has none).
@@ -233,7 +233,12 @@ int runVct(const Options& o) {
                         mode == vct::EmittanceMode::None ? "AO" : "GI", double(computesPerFrame) / o.frames, double(compute.options.splitVoxels),
                         mode != vct::EmittanceMode::None && !emittanceCompute ? ": no bench/vct_emittance.comp in this build" : "");
         *times = collect(*device, o.frames);
-        *voxelsWritten = clipmap->readCounters().voxelsWritten / o.frames;
+        const vct::VoxelizationCounters counters = clipmap->readCounters();
+        *voxelsWritten = counters.voxelsWritten / o.frames;
+        if (mode != vct::EmittanceMode::None)  // the latest update's (the pool starts over each update)
+            std::printf("  (GI) light entries claimed by the latest update: %llu of %llu, light writes dropped: %llu\n",
+                        (unsigned long long)counters.lightEntriesClaimed, (unsigned long long)counters.lightEntriesAvailable,
+                        (unsigned long long)counters.lightDropped);
         clipmap->setCountersEnabled(false);
         vct::MemoryUse m = clipmap->memoryUse(), tm = tracer->memoryUse();
         m.resources.insert(m.resources.end(), tm.resources.begin(), tm.resources.end());
@@ -252,13 +257,13 @@ int runVct(const Options& o) {
     vct::MemoryUse giMemory, aoMemory;
     uint64_t giVoxels = 0, aoVoxels = 0;
     if (!run(modeOf(o.vctEmittance), &gi, &giMemory, &giVoxels) || !run(vct::EmittanceMode::None, &ao, &aoMemory, &aoVoxels)) return 1;
-    const double revoxelize = gi.perFrame("vct update") + gi.perFrame("vct voxelize") + gi.perFrame("vct downsample") + gi.perFrame("vct resolve") +
+    const double revoxelize = gi.perFrame("vct update") + gi.perFrame("vct voxelize") + gi.perFrame("vct resolve") + gi.perFrame("vct downsample") + gi.perFrame("vct borders") +
                               gi.perFrame("vct mips");
     const double tracing = gi.perFrame("vct diffuse") + gi.perFrame("vct specular");
     std::printf("GI: full revoxelization %.3f ms, diffuse + specular %.3f ms (G-buffer %.3f ms, not included); %llu voxel writes a frame\n",
                 revoxelize, tracing, gi.perFrame("bench gbuffer"), (unsigned long long)giVoxels);
     for (const char* p : kVctPasses) std::printf("  %-22s %9.3f ms\n", p, gi.perFrame(p));
-    const double aoVoxelize = ao.perFrame("vct update") + ao.perFrame("vct voxelize") + ao.perFrame("vct downsample") + ao.perFrame("vct resolve") +
+    const double aoVoxelize = ao.perFrame("vct update") + ao.perFrame("vct voxelize") + ao.perFrame("vct resolve") + ao.perFrame("vct downsample") + ao.perFrame("vct borders") +
                               ao.perFrame("vct mips");
     std::printf("voxel AO: revoxelization (opacity only) %.3f ms, AO tracing %.3f ms\n", aoVoxelize, ao.perFrame("vct diffuse"));
     for (const char* p : kVctPasses) std::printf("  %-22s %9.3f ms\n", p, ao.perFrame(p));

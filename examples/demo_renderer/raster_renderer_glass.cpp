@@ -85,7 +85,7 @@ void RasterRenderer::renderGlass() {
     d.bindings.constants.push(rhi::constants(1, light));
     d.bindings.constants.push(rhi::constants(2, glassParams));
     scene_->bind(d.bindings);                // read buffers 0..6, base-colour textures (slot 4)
-    clipmap_->traceBindings(d.bindings);     // textures 8..14, read buffer 7
+    clipmap_->traceBindings(d.bindings);     // textures 8 and 9, read buffer 7
     d.bindings.textures.push({0, rhi::wholeTexture(position_), point_});
     rhi::DrawArgs args;
     args.firstVertex = 3 * scene_->opaqueTriangleCount();

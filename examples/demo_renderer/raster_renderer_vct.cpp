@@ -27,6 +27,8 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
     options_.vctEmittance = desc.emittance;
     // With bounces the emittance holds last frame's indirect light, which changes every frame: revoxelize whole.
     desc.persistent = !options_.giFeedback;
+    // ... reading the previous frame's atlas while writing the other.
+    desc.multiBounce = options_.giFeedback && desc.emittance != vct::EmittanceMode::None;
     // The finest level holds the scene with a margin (the anchor snaps to even voxels: two voxels each side).
     desc.finestVoxelSize = std::max(side * 1.1f, 1e-6f) / float(std::max(desc.resolution, 8u) - 4);
     if (options_.vctFinestVoxel > 0.0f) desc.finestVoxelSize = options_.vctFinestVoxel;
@@ -98,7 +100,7 @@ void RasterRenderer::voxelizeVct() {
             }
             if (lit) {  // the emittance function's own (voxel AO has none)
                 state->bindings.constants.push(rhi::constants(0, lighting));
-                clipmap_->traceBindings(state->bindings);  // blVoxelIndirect (bounces)
+                clipmap_->bounceBindings(state->bindings);  // blVoxelIndirect (bounces): the previous frame's light
             }
             rhi::DrawArgs args;
             args.vertexCount = 3 * rasterTriangleCount();  // glass is left out when the glass pass draws it

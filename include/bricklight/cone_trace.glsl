@@ -1,6 +1,6 @@
 // Cone tracing through the voxel clip-map (include/bricklight/vct.h), for our GI passes and for an
 // application's own shaders (refraction, reflections, probes): bind Clipmap::traceBindings() and call
-// blTraceCone. Slots: the textures BL_CONE_TRACE_TEXTURE_BASE .. + 6 (default 8..14) and the read buffer
+// blTraceCone. Slots: the textures BL_CONE_TRACE_TEXTURE_BASE and + 1 (default 8 and 9) and the read buffer
 // BL_CONE_TRACE_FRAME_SLOT (default 7); define either before the include to move them.
 //
 // Units: a cone's distances are in finest voxels from its origin unless said otherwise. A cone is a string of
@@ -29,15 +29,11 @@
 #define BL_VCT_FRAME_DECLARED
 BL_VCT_FRAME_BLOCK(BL_CONE_TRACE_FRAME_SLOT);
 #endif
-// Opacity along x, y, z (rgb) and emittance radiance per direction (+X, +Y, +Z, −X, −Y, −Z; all six the same volume when
-// isotropic), levels stacked in z with a one-slice border each side (Clipmap's traced volumes).
+// The clip-map's atlas (vct_layout.glsl) through two views: opacity along x, y, z (rgb, RGBA8_UNORM) and emittance
+// radiance (RGB9E5_FLOAT) of the direction regions (+X, +Y, +Z, −X, −Y, −Z; one region when isotropic). The sampler
+// repeats in y; x and z have border columns and slices (Clipmap::traceBindings).
 BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE) uniform sampler3D blVctOpacityVolume;
-BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 1) uniform sampler3D blVctEmittancePX;
-BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 2) uniform sampler3D blVctEmittancePY;
-BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 3) uniform sampler3D blVctEmittancePZ;
-BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 4) uniform sampler3D blVctEmittanceNX;
-BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 5) uniform sampler3D blVctEmittanceNY;
-BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 6) uniform sampler3D blVctEmittanceNZ;
+BL_TEXTURE(BL_CONE_TRACE_TEXTURE_BASE + 1) uniform sampler3D blVctEmittanceVolume;
 
 struct BlCone {
     vec3 origin;              // world space
@@ -87,20 +83,23 @@ BlCone blDefaultCone(vec3 origin, vec3 direction, float coneFactor) {
 // The cone factor of a cone of full angle `angle` (radians).
 float blConeFactor(float angle) { return 2.0 * tan(0.5 * angle); }
 
-// Where a level's volumes hold a point (finest-voxel coordinates), as the traced volumes' texture coordinates. Levels
-// ≥ the level count are the coarsest level's mips (vct_layout.glsl), which cover what it covers.
+// Where a level's voxels hold a point (finest-voxel coordinates), as texture coordinates of the atlas's opacity
+// region, except x: texels from the region's first column. Levels ≥ the level count are the coarsest level's mips
+// (vct_layout.glsl), which cover what it covers.
 vec3 blVctLevelUvw(uint level, vec3 pFinest, float resolution, uint levels) {
     vec3 p = pFinest / float(1u << level);  // the level's voxel coordinates
     float slices = float(vctTracedSlices(levels, uint(resolution)));
     if (level < levels) {
-        float z = p.z - resolution * floor(p.z / resolution);  // toroidal in z (x and y wrap in the sampler)
-        return vec3(p.xy / resolution, (float(level) * (resolution + 2.0) + 1.0 + z) / slices);
+        // Toroidal in x and z onto the border column and slice; y wraps in the sampler.
+        vec2 xz = p.xz - resolution * floor(p.xz / resolution);
+        return vec3(1.0 + xz.x, p.y / resolution, (float(level) * (resolution + 2.0) + 1.0 + xz.y) / slices);
     }
     uint mip = level - (levels - 1u);
     vec3 box = vec3(vctMipBoxOffset(mip, levels, uint(resolution)));
     vec3 t = box + 1.0 + p - vec3(blVctFrame.origin[levels - 1u].xyz >> int(mip));  // the box's first texel is the border
-    return t / vec3(resolution, resolution, slices);
+    return vec3(1.0 + t.x, t.y / resolution, t.z / slices);
 }
+
 
 // A level's (or mip's) volumes at a point (finest-voxel coordinates): opacity in w, emittance towards −dir in xyz.
 vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint levels) {
@@ -109,12 +108,17 @@ vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint
     // direction's component on it: the share of the voxel's silhouette that face makes (VXGI's weighting). A
     // wall seen at an angle blocks and sends less per voxel, and the cone crosses more of its voxels.
     vec3 w = abs(dir);
-    uint words = blVctFrame.params.z;  // 0: no emittance (opacity only), 3: isotropic, 18: six directions
-    if (words == 0u) return vec4(0.0, 0.0, 0.0, min(dot(w, textureLod(blVctOpacityVolume, uvw, 0.0).rgb), 1.0));
-    vec3 ex = dir.x > 0.0 ? textureLod(blVctEmittanceNX, uvw, 0.0).rgb : textureLod(blVctEmittancePX, uvw, 0.0).rgb;
-    vec3 ey = dir.y > 0.0 ? textureLod(blVctEmittanceNY, uvw, 0.0).rgb : textureLod(blVctEmittancePY, uvw, 0.0).rgb;
-    vec3 ez = dir.z > 0.0 ? textureLod(blVctEmittanceNZ, uvw, 0.0).rgb : textureLod(blVctEmittancePZ, uvw, 0.0).rgb;
+    uint directions = blVctFrame.params.z;  // 0: no emittance (opacity only), 1: isotropic, 6: six directions
+    // x in the atlas: the opacity region's coordinate, and each region a 1 / regions step further.
+    float step = 1.0 / float(vctRegions(directions));
+    uvw.x *= step / (resolution + 2.0);
     vec3 axes = textureLod(blVctOpacityVolume, uvw, 0.0).rgb;
+    if (directions == 0u) return vec4(0.0, 0.0, 0.0, min(dot(w, axes), 1.0));
+    // The faces that look back along the cone: −X (region 4) for a cone going +x, +X (region 1) otherwise.
+    vec3 faces = directions == 1u ? vec3(1.0) : mix(vec3(1.0, 2.0, 3.0), vec3(4.0, 5.0, 6.0), greaterThan(dir, vec3(0.0)));
+    vec3 ex = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.x * step, uvw.yz), 0.0).rgb;
+    vec3 ey = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.y * step, uvw.yz), 0.0).rgb;
+    vec3 ez = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.z * step, uvw.yz), 0.0).rgb;
     // Where the weighted opacities sum past 1 (a corner, a solid voxel seen diagonally) the opacity saturates; the
     // light is scaled with it, so that a sample's light per unit of opacity — the surfaces' radiance — stays as it
     // is (unscaled, a diagonal cone into a corner read up to √3 times the walls' radiance).

@@ -5,12 +5,18 @@
 #define BRICKLIGHT_RGB9E5_GLSL
 
 // Negative channels are 0, values past the largest (65408) that; a value whose mantissas all round to 0 keeps its
-// exponent bits.
+// exponent bits. Canonical: the exponent is the smallest that holds the largest channel, so a word with a non-zero
+// exponent has a largest mantissa of 256 or more, on every device (log2 may round either way near a power of two;
+// both corrections below undo that) — vct_layout.glsl's light entries rely on it.
 uint blRgb9e5Bits(vec3 c) {
     c = clamp(c, vec3(0.0), vec3(65408.0));
     float m = max(c.r, max(c.g, c.b));
     int e = max(-16, int(floor(log2(max(m, 1e-30))))) + 16;  // biased exponent (bias 15) + 1
     float scale = exp2(float(e - 24));
+    if (e > 0 && floor(m / scale + 0.5) < 256.0) {
+        e -= 1;
+        scale *= 0.5;
+    }
     if (floor(m / scale + 0.5) >= 512.0) {
         e += 1;
         scale *= 2.0;

@@ -31,8 +31,8 @@ constexpr uint32_t kMinLevels = 2, kMaxLevels = 8;
 // direction (+X, +Y, +Z, −X, −Y, −Z; VXGI's anisotropic emittance, which keeps a wall lit on one side from
 // lighting the other).
 enum class EmittanceMode : uint8_t { None, Isotropic, Anisotropic };
-// 32-bit accumulation words per voxel: 0, 3 or 18.
-uint32_t emittanceWordsPerVoxel(EmittanceMode mode);
+// Directions whose radiance a voxel stores: 0, 1 or 6.
+uint32_t emittanceDirections(EmittanceMode mode);
 
 struct ClipmapDesc {
     uint32_t levels = 5;             // stack levels, kMinLevels..kMaxLevels (VXGI 2.0 in UE4: 128³ × 5)
@@ -46,9 +46,18 @@ struct ClipmapDesc {
     // Keep voxels from frame to frame and rewrite only what entered a level or was invalidated (VXGI's
     // persistentVoxelData); false: every update() clears and rewrites every level.
     bool persistent = true;
-    // Emittance is accumulated in fixed point, 65536 × emittanceStorageScale units per unit of radiance in
-    // 32-bit words: raise it for dim scenes, lower it where a voxel gathers more than ~60000 / scale.
+    // Light is summed in fixed point, 65536 × emittanceStorageScale units per unit of radiance in 32-bit words: raise
+    // it for dim scenes, lower it where a voxel gathers more than ~60000 / scale.
     float emittanceStorageScale = 1.0f;
+    // Voxel directions (a voxel's light towards one of the six directions, or its one isotropic value) whose light
+    // one update can gather: 12 bytes each, claimed as the voxelization first writes them; at most 2^24. 0: an eighth
+    // of the clip-map's voxels, at least 65536, at most 2^24 (a full revoxelization of our scenes at 128³ × 5 claims
+    // 1–2 % of the voxels). Past it light is dropped and counted (VoxelizationCounters::lightDropped).
+    uint64_t lightEntries = 0;
+    // Multiple bounces (bricklight/voxelize.glsl's BL_VOXEL_MULTI_BOUNCE): a copy of the atlas made at the end of
+    // each finishVoxelization(), which the next frame's voxelization reads (bounceBindings) while it writes the
+    // atlas. Needs emittance; doubles the atlas's memory. With persistent = false every voxel's light follows.
+    bool multiBounce = false;
 };
 
 // False with *error naming the field and the problem for a description no clip-map can have.
@@ -144,9 +153,9 @@ bool checkVoxelMaterial(const VoxelMaterial& material, Error* error = nullptr);
 namespace VoxelizationSlots {
 constexpr uint8_t kMaterialConstants = 3;  // BL_CONSTANTS
 constexpr uint8_t kFrameReadBuffer = 7;    // BL_READ_BUFFER
-constexpr uint8_t kEmittanceBuffer = 6;    // BL_STORAGE_BUFFER
+constexpr uint8_t kLightBuffer = 6;        // BL_STORAGE_BUFFER
 constexpr uint8_t kCountersBuffer = 7;     // BL_STORAGE_BUFFER
-constexpr uint8_t kOpacityImage = 7;       // BL_IMAGE
+constexpr uint8_t kAtlasImage = 7;         // BL_IMAGE
 }  // namespace VoxelizationSlots
 
 // Validation counters of the voxelization fragment shader (VXGI's scissor statistics), summed over the draws
@@ -158,6 +167,10 @@ struct VoxelizationCounters {
     uint64_t killedByFiner = 0;    // voxels inside the finer level (downsampled instead)
     uint64_t killedNotDirty = 0;   // voxels outside this update's rewrite boxes
     uint64_t emittanceWrites = 0;  // voxels that received emittance
+    // Always counted, since the latest update(): light entries claimed (of the pool's, ClipmapDesc::lightEntries)
+    // and light writes dropped because the pool was full.
+    uint64_t lightEntriesClaimed = 0, lightEntriesAvailable = 0;
+    uint64_t lightDropped = 0;
 };
 
 // Debug views of the clip-map (Clipmap::debugView): the first voxel at least a quarter opaque along each pixel's
@@ -181,11 +194,20 @@ uint64_t clipmapBytes(const ClipmapDesc& desc);
 // The clip-map's volumes on a device, kept in step with the placement, and the voxelization that fills them.
 //
 //   resource             format / layout                          holds
-//   vct opacity          R32_UINT 3D, resolution² ×               per voxel, opacity along x, y, z (10 bits each);
-//                        (resolution × levels)                    level L in z slices [L·res, (L+1)·res), a world
-//                                                                 voxel at its coordinates modulo res (toroidal)
-//   vct emittance        buffer, words per voxel × voxels,        fixed-point radiance per voxel (RGB, or RGB ×
-//                        word-major, each word in texel order     six directions), accumulated with atomics
+//   vct atlas            R32_UINT 3D, regions × (res + 2) wide,   regions side by side in x: opacity along x, y, z
+//                        res high, levels × (res + 2) +           (8 bits each; sampled as RGBA8_UNORM), then the
+//                        res / 2 + 3 deep                         radiance of each direction (RGB9E5 bits; sampled as
+//                                                                 RGB9E5_FLOAT); level L in z slices [L·(res+2), …),
+//                                                                 a world voxel at its coordinates modulo res
+//                                                                 (toroidal) with border columns and slices, then the
+//                                                                 coarsest level's mips (bricklight/vct_layout.glsl).
+//                                                                 The voxelization writes opacity in place (atomic
+//                                                                 maximum); a direction's word holds its light
+//                                                                 entry's tagged index until finishVoxelization().
+//   vct light            buffer, 3 words × lightEntries           fixed-point light sums of one update's voxel
+//                                                                 directions (zeroed as they are read)
+//   vct atlas (bounce)   the same, multiBounce only               a copy of the previous frame's, read by bounce cones
+//   vct no bounce        R32_UINT 1³, without multiBounce         a zero stand-in for bounceBindings
 //   vct frame            read buffer (origins, boxes)             what update() decided, read by the draws
 //   vct counters         storage buffer, 8 words                  VoxelizationCounters
 //   vct raster size      D32 resolution², never written           sets the draws' raster size (no colour targets)
@@ -218,15 +240,18 @@ public:
     // geometry shaders.
     std::optional<rhi::DrawCallState> voxelizationState(const VoxelMaterial& material, Error* error = nullptr);
     // After this frame's draws: fills the coarser levels' inner voxels that this frame changed from the finer
-    // levels (shaders/vct/downsample.comp), then turns what changed into the volumes cones sample
-    // (shaders/vct/resolve_*.comp).
+    // levels (shaders/vct/downsample.comp), the border columns and slices of the levels that changed
+    // (borders.comp) and the coarsest level's mips when it changed (mip_build_*.comp).
     void finishVoxelization();
 
-    // For an application's shader that includes bricklight/cone_trace.glsl: the traced volumes at texture slots
-    // textureBase .. textureBase + 6 (with a linear sampler that wraps in x and y) and the frame buffer at read
-    // buffer slot frameSlot (the include's defaults: 8 and 7). Added to `bindings` (the frame buffer only if
-    // absent: a voxelization record whose fragment shader uses BL_VOXEL_MULTI_BOUNCE has it already).
+    // For an application's shader that includes bricklight/cone_trace.glsl: the atlas's two views at texture slots
+    // textureBase and textureBase + 1 (with a linear sampler that wraps in y) and the frame buffer at read buffer
+    // slot frameSlot (the include's defaults: 8 and 7). Added to `bindings` (the frame buffer only if absent).
     void traceBindings(rhi::Bindings& bindings, uint8_t textureBase = 8, uint8_t frameSlot = 7) const;
+    // The same for a voxelization record whose fragment shader uses BL_VOXEL_MULTI_BOUNCE: the copy of the previous
+    // frame's atlas with ClipmapDesc::multiBounce, a zero stand-in without (the bounce cones then gather nothing).
+    // The atlas being written cannot be read by the same draw.
+    void bounceBindings(rhi::Bindings& bindings, uint8_t textureBase = 8, uint8_t frameSlot = 7) const;
 
     // The boxes this frame's draws may write (fragments elsewhere are dropped), and the same as world boxes
     // for culling the draws.
@@ -243,38 +268,28 @@ public:
 
     const ClipmapPlacement& placement() const { return placement_; }
     const ClipmapDesc& desc() const { return placement_.desc(); }
-    rhi::TextureHandle opacityVolume() const { return opacity_; }
-    // The traced volumes: opacity along x, y, z (RGBA8_UNORM) and emittance radiance (R32_UINT volumes holding
-    // RGB9E5_FLOAT bits, sampled through tracedEmittanceView; six for anisotropic, one for isotropic, a 1³ zero
-    // texture without emittance), levels stacked in z with a border slice each side, then a slab with the coarsest
-    // level's mips (vct_layout.glsl).
-    rhi::TextureHandle tracedOpacity() const { return tracedOpacity_; }
-    rhi::TextureHandle tracedEmittance(uint32_t direction) const { return tracedEmittance_[std::min<size_t>(direction, tracedEmittance_.size() - 1)]; }
-    rhi::TextureView tracedEmittanceView(uint32_t direction) const {
-        rhi::TextureView v = rhi::wholeTexture(tracedEmittance(direction));
-        v.format = rhi::Format::RGB9E5_FLOAT;
-        return v;
-    }
-    rhi::BufferHandle emittanceBuffer() const { return emittance_; }
+    // The atlas (the resource table and bricklight/vct_layout.glsl).
+    rhi::TextureHandle atlas() const { return atlas_[0]; }
     MemoryUse memoryUse() const;
 
 private:
     Clipmap(rhi::IDevice& device, const ClipmapPlacement& placement) : device_(device), placement_(placement) {}
-    void clearBox(const LevelBox& box, bool emittance);
-    void downsampleBox(const LevelBox& box);
+    void clearBox(const LevelBox& box);
     void resolveBox(const LevelBox& box);
+    void downsampleBox(const LevelBox& box);
+    void copyBorders(uint32_t level);
     void buildMips();
+    void bindAtlas(rhi::Bindings& bindings, rhi::TextureHandle atlas, uint8_t textureBase, uint8_t frameSlot) const;
     void writeFrame();
     struct MaterialBlock {
         float values[4];
     };
     rhi::IDevice& device_;
     ClipmapPlacement placement_;
-    rhi::ShaderHandle clearBoxes_, clearEmittance_, downsample_, resolve_, mipBuild_, voxelizeGeometry_, voxelizeOpacity_, debugView_;
-    rhi::TextureHandle opacity_, rasterSize_, tracedOpacity_;
-    std::vector<rhi::TextureHandle> tracedEmittance_;
+    rhi::ShaderHandle clearBoxes_, resolve_, downsample_, borders_, mipBuild_, voxelizeGeometry_, voxelizeOpacity_, debugView_;
+    rhi::TextureHandle atlas_[2], noBounce_, rasterSize_;  // atlas_[1]: the bounce copy (multiBounce)
     rhi::SamplerHandle tracedSampler_;
-    rhi::BufferHandle emittance_, frame_, counters_;
+    rhi::BufferHandle light_, frame_, counters_;
     std::vector<LevelBox> rewrite_, downsampleBoxes_;
     std::vector<std::unique_ptr<MaterialBlock>> materials_;  // stable addresses for the records' constants
     bool countersEnabled_ = false;

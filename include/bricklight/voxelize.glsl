@@ -8,7 +8,7 @@
 //
 // blVoxelEmittance returns the radiance leaving the surface's front side (the side its normal points to) at
 // f.position; it may read the application's own resources (constants slots 0–2, textures, read buffers 0–6,
-// storage buffers 0–5, images 0–6). It runs once per covered pixel of the projection (twice for two-sided
+// storage buffers 0–6, images 0–6). It runs once per covered pixel of the projection (twice for two-sided
 // materials, the second time with the normal flipped). Define BL_VOXEL_OPACITY_ONLY before the include for a
 // shader without emittance (our vct/voxelize_opacity.frag is that).
 //
@@ -161,9 +161,13 @@ struct BlVoxelUserGradient {
     vec4 user0Du, user0Dv, user1Du, user1Dv;
 };
 
-BL_STORAGE_BUFFER(6) BlVctEmittance { uint words[]; } blVctEmittance;
+// Light is summed in fixed point in entries of this pool (three words, one per colour) that the update's
+// voxelization claims per voxel and direction; the direction's atlas word holds the entry's tagged index until
+// finishVoxelization() turns the sums into radiance (vct_layout.glsl's vctTagLightEntry).
+BL_STORAGE_BUFFER(6) BlVctLight { uint words[]; } blVctLight;
 BL_STORAGE_BUFFER(7) BlVctCounters { uint counts[]; } blVctCounters;
-BL_IMAGE(7, r32ui) uniform coherent uimage3D blVctOpacity;
+// The clip-map's atlas (vct_layout.glsl): opacity words, and the directions' entry indices while the update writes.
+BL_IMAGE(7, r32ui) uniform coherent uimage3D blVctAtlas;
 
 #ifndef BL_VOXEL_COMPUTE
 layout(location = 0) in vec3 blVoxelNormalGs;
@@ -183,10 +187,11 @@ layout(location = 11) flat in ivec3 blVoxelOffset;
 const int BL_VOXEL_MAX_SPAN = 6;  // voxels one pixel can cover along the axis: 3 for the plane, +2 for thickness
 
 #ifdef BL_VOXEL_MULTI_BOUNCE
-// Multiple bounces: define BL_VOXEL_MULTI_BOUNCE before the include, add Clipmap::traceBindings() to the draw
-// (textures 8..14), and the emittance function may add albedo × blVoxelIndirect(f): the diffuse light (irradiance
-// / π) at the fragment from the previous frame's traced volumes, six cones over its normal's hemisphere. Each
-// frame then carries light one bounce further (revoxelize every frame: ClipmapDesc::persistent = false).
+// Multiple bounces: define BL_VOXEL_MULTI_BOUNCE before the include, create the clip-map with
+// ClipmapDesc::multiBounce, add Clipmap::bounceBindings() to the draw (textures 8 and 9), and the emittance function
+// may add albedo × blVoxelIndirect(f): the diffuse light (irradiance / π) at the fragment from a copy of the
+// previous frame's atlas, six cones over its normal's hemisphere. Each frame then carries light one bounce further
+// (revoxelize every frame: ClipmapDesc::persistent = false).
 // Define BL_VOXEL_CONE_SURFACE(origin, direction) to a function of yours giving the world distance to the first
 // surface along a cone's axis (0: unknown; e.g. a ray through your BVH or bricklight/trace.glsl) and the cones
 // stop there (BlCone::surfaceDistance), so light does not leak through thin walls from bounce to bounce.
@@ -262,15 +267,47 @@ bool blVoxelWritable(uint level, ivec3 voxel, uint resolution, uint boxCount, ou
 // retry follows another writer's increase, so the loop ends). Most fragments find the voxel already at least as
 // opaque and leave with a plain load: many small triangles share a voxel, and atomics on one word serialize.
 void blVoxelMaxOpacity(ivec3 texel, uint opacity) {
-    uint seen = imageLoad(blVctOpacity, texel).x;
+    uint seen = imageLoad(blVctAtlas, texel).x;
     for (int i = 0; i < 64; ++i) {
         uint merged = vctMaxOpacity(seen, opacity);
         if (merged == seen) return;
-        uint before = imageAtomicCompSwap(blVctOpacity, texel, seen, merged);
+        uint before = imageAtomicCompSwap(blVctAtlas, texel, seen, merged);
         if (before == seen) return;
         seen = before;
     }
 }
+
+#ifndef BL_VOXEL_OPACITY_ONLY
+// The pool entry of a voxel's direction (its atlas word `texel`), claimed on first touch: the entry comes from one
+// of BL_VCT_LIGHT_POOLS sub-pools chosen by a hash of the texel (so that claims do not all meet on one counter),
+// and a compare-and-swap installs it over the word's old radiance; a fragment that loses the race takes the winner's
+// entry (its own stays unused). Most writes find the entry installed and cost one load. ~0u: the sub-pool is full
+// (the light is dropped and counted).
+uint blVoxelLightEntry(ivec3 texel) {
+    uint word = imageLoad(blVctAtlas, texel).x;
+    if (vctIsLightEntry(word)) return vctLightEntryOf(word);
+    uint hash = (uint(texel.x) * 73856093u) ^ (uint(texel.y) * 19349663u) ^ (uint(texel.z) * 83492791u);
+    uint pool = (hash ^ (hash >> 16u)) & (BL_VCT_LIGHT_POOLS - 1u);
+    uint perPool = blVctFrame.flags.z;
+    uint index = atomicAdd(blVctCounters.counts[BL_VCT_COUNTER_POOLS + pool], 1u);
+    if (index >= perPool) {
+        atomicAdd(blVctCounters.counts[BL_VCT_COUNT_LIGHT_DROPPED], 1u);
+        return ~0u;
+    }
+    uint entry = pool * perPool + index;
+    uint before = imageAtomicCompSwap(blVctAtlas, texel, word, vctTagLightEntry(entry));
+    // Lost: only an entry replaces radiance, so the word now holds the winner's.
+    return before == word ? entry : vctLightEntryOf(before);
+}
+
+// Adds fixed-point light to a voxel's direction: three atomic adds whose results nobody waits for.
+void blVoxelAddLight(ivec3 texel, uvec3 units) {
+    uint entry = blVoxelLightEntry(texel);
+    if (entry == ~0u) return;
+    for (uint c = 0u; c < 3u; ++c)
+        if (units[c] != 0u) atomicAdd(blVctLight.words[3u * entry + c], units[c]);
+}
+#endif
 
 #ifdef BL_VOXEL_COVERAGE
 // A 32-bit integer hash (a PCG step's output permutation): decorrelates the sample jitter of neighbouring pixels.
@@ -384,7 +421,7 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
             continue;
         }
         writable |= 1u << uint(k - k0);
-        blVoxelMaxOpacity(vctTexel(level, voxel, resolution), opacity);
+        blVoxelMaxOpacity(vctTexel(0u, level, voxel, resolution), opacity);
         ++written;
     }
     blVoxelCount(BL_VCT_COUNT_VOXELS_WRITTEN, written);
@@ -392,8 +429,8 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
     blVoxelCount(BL_VCT_COUNT_KILLED_NOT_DIRTY, killedNotDirty);
 
 #ifndef BL_VOXEL_OPACITY_ONLY
-    uint channels = blVctFrame.params.z;  // 0 (opacity only), 3 (isotropic) or 18 (six directions)
-    if (writable == 0u || channels == 0u) return;
+    uint directions = blVctFrame.params.z;  // 0 (opacity only), 1 (isotropic) or 6
+    if (writable == 0u || directions == 0u) return;
     // Emittance: the samples inside the triangle, counted per voxel along the axis — voxel k's count in bits
     // 5k..5k+4 of one word (at most 16 each): a counter array indexed by a computed k is kept in memory, not in
     // registers.
@@ -422,7 +459,6 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
     f.voxelSize = voxelSize;
     // The front side is where the application's normal points; the face normal, so oriented, splits the light.
     vec3 front = dot(t.faceNormal, f.normal) >= 0.0 ? t.faceNormal : -t.faceNormal;
-    uint directions = channels / 3u;
     int sides = 1 + t.levelAxis.z;
     // Fixed-point units per unit radiance, × the area each sample stands for (1/16 of a voxel face, divided by
     // the projection's cosine).
@@ -456,12 +492,10 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
                 uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : (samples >> (5u * uint(k))) & 31u;
                 if (count == 0u || (writable & (1u << uint(k))) == 0u) continue;
                 ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
-                uint texel = vctTexelIndex(level, voxel, resolution);
-                uint texelCount = resolution * resolution * resolution * blVctFrame.params.y;
                 precise vec3 amount = radiance * (weight * float(count) * unitsPerSample);
                 uvec3 units = uvec3(min(amount + 0.5, vec3(4.0e9)));
-                for (uint c = 0u; c < 3u; ++c)
-                    if (units[c] != 0u) atomicAdd(blVctEmittance.words[vctWordIndex(texel, d * 3u + c, texelCount)], units[c]);
+                if (units == uvec3(0u)) continue;
+                blVoxelAddLight(vctTexel(1u + d, level, voxel, resolution), units);
                 ++emittanceWrites;
             }
         }

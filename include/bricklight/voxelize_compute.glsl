@@ -14,9 +14,9 @@
 //
 // The contract is voxelize.glsl's (BL_VOXEL_OPACITY_ONLY, BL_VOXEL_MULTI_BOUNCE and BL_VOXEL_COVERAGE too: the
 // coverage hook is evaluated at the same points as in the draws), with fewer slots left
-// to the function: constants 0–1, textures, read buffers 0–3, storage buffers 0–4, images 0–6. Ours take
+// to the function: constants 0–1, textures, read buffers 0–3, storage buffers 0–4 and 6, images 0–6. Ours take
 // constants 2 (the instance and its mesh) and 3 (the material), read buffers 4–6 (the mesh's positions,
-// normals and indices) and 7 (the frame), storage buffers 5 (the list of drawn triangles), 6 and 7, image 7.
+// normals and indices) and 7 (the frame), storage buffers 5 (the list of drawn triangles) and 7, image 7.
 // BlVoxelFragment is the same, except that normal, user0 and user1 are interpolated by the triangle's
 // barycentric weights at the pixel's centre instead of by the rasterizer (equal up to rounding).
 #ifndef BRICKLIGHT_VOXELIZE_COMPUTE_GLSL

@@ -29,7 +29,7 @@ BL_STORAGE_BUFFER(0) PreviousProbeSH { vec4 previousProbeSH[]; };
 #include "gi_lights.glsl"
 #include "gi_sh.glsl"
 #ifdef GI_UNSEEN_FROM_VCT  // hits no view has lit read a voxel clip-map's light (DispatchDesc::unseenLight)
-#define BL_CONE_TRACE_TEXTURE_BASE 0  // 0..6 (13..15 are the environment and the field's atlas)
+#define BL_CONE_TRACE_TEXTURE_BASE 0  // 0 and 1 (13..15 are the environment and the field's atlas)
 #define BL_CONE_TRACE_FRAME_SLOT 1
 #include "bricklight/cone_trace.glsl"
 #endif

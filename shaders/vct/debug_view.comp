@@ -22,10 +22,12 @@ vec3 levelColour(uint level) {
     return colours[min(level, 7u)];
 }
 
+// Direction d's radiance at an opacity-region texel (the regions lie side by side in x; one when isotropic).
 vec4 faceTexel(uint d, ivec3 t) {
-    return d == 0u ? texelFetch(blVctEmittancePX, t, 0) : d == 1u ? texelFetch(blVctEmittancePY, t, 0)
-         : d == 2u ? texelFetch(blVctEmittancePZ, t, 0) : d == 3u ? texelFetch(blVctEmittanceNX, t, 0)
-         : d == 4u ? texelFetch(blVctEmittanceNY, t, 0) : texelFetch(blVctEmittanceNZ, t, 0);
+    if (blVctFrame.params.z == 0u) return vec4(0.0);  // no emittance
+    int r = int(blVctFrame.params.x);
+    uint region = blVctFrame.params.z == 6u ? 1u + d : 1u;
+    return texelFetch(blVctEmittanceVolume, t + ivec3(vctRegionX(region, uint(r)), 0, 0), 0);
 }
 
 void main() {
@@ -63,9 +65,8 @@ void main() {
             p += dir * scale * 0.5;
             continue;
         }
-        ivec3 t = vctTexel(0u, voxel, uint(resolution));
-        ivec3 texel = mip == 0u ? ivec3(t.xy, int(level) * (int(resolution) + 2) + 1 + t.z)
-                                : vctMipBoxOffset(mip, levels, uint(resolution)) + voxel - lo;
+        ivec3 texel = mip == 0u ? vctTexel(0u, level, voxel, uint(resolution))
+                                : vctMipBoxOffset(mip, levels, uint(resolution)) + voxel - lo + ivec3(1, 0, 0);
         vec3 alpha = texelFetch(blVctOpacityVolume, texel, 0).rgb;
         if (max(alpha.x, max(alpha.y, alpha.z)) >= 0.25) {
             if (mode == 0u) {

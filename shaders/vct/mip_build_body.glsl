@@ -1,4 +1,4 @@
-// Builds one mip of the coarsest level in the traced volumes from the level or the mip below it (included by
+// Builds one mip of the coarsest level in the atlas (vct_layout.glsl) from the level or the mip below it (included by
 // mip_build_opacity.comp, mip_build_isotropic.comp and mip_build_anisotropic.comp, which define
 // BL_VCT_DIRECTIONS 0, 1 or 6). The combination is downsample.comp's, on the traced (float) values:
 //  * opacity along each axis: each column of two children along it combines as complements, the four columns
@@ -10,53 +10,22 @@
 #include "bricklight/rgb9e5.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 BL_CONSTANTS(0) uniform Mip {
-    ivec4 target;     // xyz: the mip's box in the traced volumes, w: its size per axis
+    ivec4 target;     // xyz: the mip's box within a region (x from the region's first column past the border), w: its size per axis
     ivec4 targetMin;  // xyz: the world voxel (of this mip) of the box's first texel
-    ivec4 source;     // xyz: the source's box in the traced volumes, w: its width per axis
+    ivec4 source;     // xyz: the source's box within a region, w: its width per axis
     ivec4 sourceMin;  // xyz: the source's first valid world voxel
-    ivec4 shift;      // xyz: where that voxel is stored, toroidally (the level: its coordinates modulo the width; a mip: 0)
+    ivec4 shift;      // xyz: where that voxel is stored, toroidally (the level: its coordinates modulo the width; a mip: 0); w: the resolution
 } mip;
-BL_IMAGE(0, rgba8) uniform image3D tracedOpacity;  // rgb: along x, y, z
-#if BL_VCT_DIRECTIONS >= 1
-BL_IMAGE(1, r32ui) uniform uimage3D tracedEmittance0;  // RGB9E5_FLOAT, packed (bricklight/rgb9e5.glsl)
-#endif
-#if BL_VCT_DIRECTIONS == 6
-BL_IMAGE(2, r32ui) uniform uimage3D tracedEmittance1;
-BL_IMAGE(3, r32ui) uniform uimage3D tracedEmittance2;
-BL_IMAGE(4, r32ui) uniform uimage3D tracedEmittance3;
-BL_IMAGE(5, r32ui) uniform uimage3D tracedEmittance4;
-BL_IMAGE(6, r32ui) uniform uimage3D tracedEmittance5;
-#endif
+BL_IMAGE(0, r32ui) uniform uimage3D atlas;
+
+ivec3 atlasTexel(uint region, ivec3 inRegion) { return inRegion + ivec3(vctRegionX(region, uint(mip.shift.w)) + 1, 0, 0); }
 
 vec3 loadEmittance(ivec3 t, uint d, bool valid) {
     if (!valid) return vec3(0.0);
-    uint bits = 0u;
-#if BL_VCT_DIRECTIONS == 1
-    bits = imageLoad(tracedEmittance0, t).x;
-#elif BL_VCT_DIRECTIONS == 6
-    if (d == 0u) bits = imageLoad(tracedEmittance0, t).x;
-    else if (d == 1u) bits = imageLoad(tracedEmittance1, t).x;
-    else if (d == 2u) bits = imageLoad(tracedEmittance2, t).x;
-    else if (d == 3u) bits = imageLoad(tracedEmittance3, t).x;
-    else if (d == 4u) bits = imageLoad(tracedEmittance4, t).x;
-    else bits = imageLoad(tracedEmittance5, t).x;
-#endif
-    return blDecodeRgb9e5(bits);
+    return blDecodeRgb9e5(imageLoad(atlas, atlasTexel(1u + d, t)).x);
 }
 
-void storeEmittance(ivec3 t, uint d, vec3 e) {
-    uvec4 v = uvec4(blPackRgb9e5(e), 0u, 0u, 0u);
-#if BL_VCT_DIRECTIONS == 1
-    imageStore(tracedEmittance0, t, v);
-#elif BL_VCT_DIRECTIONS == 6
-    if (d == 0u) imageStore(tracedEmittance0, t, v);
-    if (d == 1u) imageStore(tracedEmittance1, t, v);
-    if (d == 2u) imageStore(tracedEmittance2, t, v);
-    if (d == 3u) imageStore(tracedEmittance3, t, v);
-    if (d == 4u) imageStore(tracedEmittance4, t, v);
-    if (d == 5u) imageStore(tracedEmittance5, t, v);
-#endif
-}
+void storeEmittance(ivec3 t, uint d, vec3 e) { imageStore(atlas, atlasTexel(1u + d, t), uvec4(blPackRgb9e5(e), 0u, 0u, 0u)); }
 
 void main() {
     ivec3 local = ivec3(gl_GlobalInvocationID);
@@ -67,6 +36,7 @@ void main() {
     ivec3 texel[8];
     bool valid[8];
     vec3 alpha[8];
+    uint words[8];
     bool empty = true;
     for (int i = 0; i < 8; ++i) {
         ivec3 rel = voxel * 2 + ivec3(i & 1, (i >> 1) & 1, i >> 2) - mip.sourceMin.xyz;
@@ -75,19 +45,12 @@ void main() {
         ivec3 wrapped = clamp(rel, ivec3(0), ivec3(width - 1)) + mip.shift.xyz;
         wrapped -= mix(ivec3(0), ivec3(width), greaterThanEqual(wrapped, ivec3(width)));
         texel[i] = mip.source.xyz + wrapped;
-        alpha[i] = valid[i] ? imageLoad(tracedOpacity, texel[i]).rgb : vec3(0.0);
-        empty = empty && alpha[i] == vec3(0.0);
+        words[i] = valid[i] ? imageLoad(atlas, atlasTexel(0u, texel[i])).x : 0u;
+        alpha[i] = vctUnpackOpacity(words[i]);
+        empty = empty && words[i] == 0u;
     }
-    vec3 opacity = vec3(0.0);
-    for (int axis = 0; axis < 3; ++axis)
-        for (int j = 0; j < 4; ++j) {
-            // The j-th column along `axis`: its lower child has the axis bit clear.
-            int lower = axis == 0 ? 2 * j : (axis == 1 ? (j & 1) + 4 * (j >> 1) : j);
-            int upper = lower + (1 << axis);
-            opacity[axis] += (1.0 - (1.0 - alpha[lower][axis]) * (1.0 - alpha[upper][axis])) * 0.25;
-        }
     ivec3 t = mip.target.xyz + local;
-    imageStore(tracedOpacity, t, vec4(opacity, 0.0));
+    imageStore(atlas, atlasTexel(0u, t), uvec4(vctDownsampleOpacity(words)));
 #if BL_VCT_DIRECTIONS >= 1
     vec3 mean = vec3(0.0);
     for (int axis = 0; axis < 3; ++axis)

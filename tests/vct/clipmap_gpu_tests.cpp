@@ -1,5 +1,5 @@
 // vct::Clipmap on both backends: the clears of the voxels an update rewrites (what entered a level, what left the
-// finer level inside it) land where the CPU placement says (the GLSL addressing in
+// finer level inside it) land in the atlas's opacity region where the CPU placement says (the GLSL addressing in
 // include/bricklight/vct_layout.glsl equals ClipmapPlacement::toroidalTexel), and nothing else is touched.
 #include <catch2/catch.hpp>
 
@@ -17,15 +17,21 @@ namespace {
 
 constexpr uint32_t kResolution = 32, kLevels = 2, kMarker = 7;
 
-std::vector<uint32_t> readVolume(TestDevice& td, rhi::TextureHandle volume) {
-    std::vector<uint32_t> texels(size_t(kResolution) * kResolution * kResolution * kLevels);
-    REQUIRE(td.device->readTexture(volume, {}, texels.data()));
+// The clip-map's atlas, every word (bricklight/vct_layout.glsl): 7 regions (opacity, six directions).
+constexpr uint32_t kRegions = 7, kWidth = kRegions * (kResolution + 2);
+
+std::vector<uint32_t> readVolume(TestDevice& td, rhi::TextureHandle atlas) {
+    const rhi::TextureDesc* d = td.device->describe(atlas);
+    REQUIRE(d);
+    REQUIRE(d->width == kWidth);
+    std::vector<uint32_t> texels(size_t(d->width) * d->height * d->depthOrLayers);
+    REQUIRE(td.device->readTexture(atlas, {}, texels.data()));
     return texels;
 }
 
-uint32_t texelOf(const std::vector<uint32_t>& texels, const vct::ClipmapPlacement& p, uint32_t level, glm::ivec3 voxel) {
-    const glm::ivec3 t = p.toroidalTexel(voxel) + glm::ivec3(0, 0, int(level * kResolution));
-    return texels[(size_t(t.z) * kResolution + size_t(t.y)) * kResolution + size_t(t.x)];
+uint32_t texelOf(const std::vector<uint32_t>& texels, const vct::ClipmapPlacement& p, uint32_t region, uint32_t level, glm::ivec3 voxel) {
+    const glm::ivec3 t = p.toroidalTexel(voxel) + glm::ivec3(int(region * (kResolution + 2)) + 1, 0, int(level * (kResolution + 2)) + 1);
+    return texels[(size_t(t.z) * kResolution + size_t(t.y)) * kWidth + size_t(t.x)];
 }
 
 void clearsWhatEntered(const std::string& backend) {
@@ -43,14 +49,24 @@ void clearsWhatEntered(const std::string& backend) {
     // The first update clears every level whole.
     rhi::ClearValue marker{};
     marker.u[0] = kMarker;
-    REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
+    REQUIRE(td.device->clearTexture(clipmap->atlas(), 0, 1, marker));
     REQUIRE(clipmap->update(glm::vec3(1.1f, -0.4f, 2.0f), &error));
-    for (uint32_t v : readVolume(td, clipmap->opacityVolume())) REQUIRE(v == 0u);
+    {
+        // Every level's opacity voxels (the borders and the mips' slab are rewritten by finishVoxelization, not
+        // cleared; the direction regions are overwritten by its resolve).
+        const std::vector<uint32_t> texels = readVolume(td, clipmap->atlas());
+        const vct::ClipmapPlacement& p = clipmap->placement();
+        for (uint32_t region = 0; region < 1; ++region)
+            for (uint32_t level = 0; level < kLevels; ++level)
+                for (int z = 0; z < int(kResolution); ++z)
+                    for (int y = 0; y < int(kResolution); ++y)
+                        for (int x = 0; x < int(kResolution); ++x) REQUIRE(texelOf(texels, p, region, level, p.origin(level) + glm::ivec3(x, y, z)) == 0u);
+    }
     // Then only what entered: mark everything, move (a slab on x and y, across negative coordinates), read.
-    REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
+    REQUIRE(td.device->clearTexture(clipmap->atlas(), 0, 1, marker));
     auto updates = clipmap->update(glm::vec3(-1.3f, 0.9f, 2.0f), &error);
     REQUIRE(updates);
-    const std::vector<uint32_t> texels = readVolume(td, clipmap->opacityVolume());
+    const std::vector<uint32_t> texels = readVolume(td, clipmap->atlas());
     const vct::ClipmapPlacement& p = clipmap->placement();
     uint64_t cleared = 0, entered = 0, rewritten = 0;
     for (const vct::LevelUpdate& u : *updates) {
@@ -66,11 +82,15 @@ void clearsWhatEntered(const std::string& backend) {
                                                   x < b.max.x && y < b.max.y && z < b.max.z);
                     }
                     rewritten += inEntered;
-                    const uint32_t value = texelOf(texels, p, u.level, {x, y, z});
-                    if (value == 0u) ++cleared;
-                    if (value != (inEntered ? 0u : kMarker)) {
-                        INFO("level " << u.level << " voxel (" << x << ", " << y << ", " << z << ")");
-                        REQUIRE(value == (inEntered ? 0u : kMarker));
+                    // The opacity region cleared where the update rewrites; the direction regions untouched.
+                    for (uint32_t region = 0; region < kRegions; ++region) {
+                        const uint32_t value = texelOf(texels, p, region, u.level, {x, y, z});
+                        const uint32_t expected = region == 0 && inEntered ? 0u : kMarker;
+                        if (value == 0u && region == 0) ++cleared;
+                        if (value != expected) {
+                            INFO("region " << region << " level " << u.level << " voxel (" << x << ", " << y << ", " << z << ")");
+                            REQUIRE(value == expected);
+                        }
                     }
                 }
     }
@@ -79,10 +99,10 @@ void clearsWhatEntered(const std::string& backend) {
     CHECK(rewritten >= entered);
     CHECK(cleared == rewritten);
     // A refused anchor records nothing.
-    REQUIRE(td.device->clearTexture(clipmap->opacityVolume(), 0, 1, marker));
+    REQUIRE(td.device->clearTexture(clipmap->atlas(), 0, 1, marker));
     CHECK_FALSE(clipmap->update(glm::vec3(INFINITY, 0.0f, 0.0f), &error));
     CHECK(error.message.find("anchor") != std::string::npos);
-    for (uint32_t v : readVolume(td, clipmap->opacityVolume())) REQUIRE(v == kMarker);
+    for (uint32_t v : readVolume(td, clipmap->atlas())) REQUIRE(v == kMarker);
     REQUIRE_NO_MESSAGES(td);
 }
 

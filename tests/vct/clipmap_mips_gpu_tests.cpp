@@ -16,7 +16,8 @@ using namespace bricklight::testing;
 
 namespace {
 
-// The traced volumes read back as floats: opacity (rgb) and the emittance volumes (RGB9E5 words, rgb each).
+// The atlas read back as floats (bricklight/vct_layout.glsl), region by region without the border columns: opacity
+// (rgb) and the emittance regions (RGB9E5 words, rgb each).
 struct Traced {
     uint32_t width = 0, height = 0, depth = 0;
     std::vector<glm::vec4> opacity;
@@ -26,22 +27,25 @@ struct Traced {
 
 Traced readTraced(TestDevice& td, vct::Clipmap& clipmap, uint32_t volumes) {
     Traced t;
-    const rhi::TextureDesc* d = td.device->describe(clipmap.tracedOpacity());
+    const rhi::TextureDesc* d = td.device->describe(clipmap.atlas());
     REQUIRE(d);
-    t.width = d->width;
+    const uint32_t r = clipmap.desc().resolution;
+    t.width = r;
     t.height = d->height;
     t.depth = d->depthOrLayers;
-    const size_t texels = size_t(t.width) * t.height * t.depth;
-    std::vector<glm::u8vec4> bytes(texels);
-    REQUIRE(td.device->readTexture(clipmap.tracedOpacity(), {}, bytes.data()));
-    for (const glm::u8vec4& b : bytes) t.opacity.push_back(glm::vec4(b) / 255.0f);
+    std::vector<uint32_t> atlas(size_t(d->width) * d->height * d->depthOrLayers);
+    REQUIRE(td.device->readTexture(clipmap.atlas(), {}, atlas.data()));
+    auto region = [&](uint32_t index) {
+        std::vector<uint32_t> words;
+        for (uint32_t z = 0; z < t.depth; ++z)
+            for (uint32_t y = 0; y < t.height; ++y)
+                for (uint32_t x = 0; x < t.width; ++x) words.push_back(atlas[(size_t(z) * d->height + y) * d->width + index * (r + 2) + 1 + x]);
+        return words;
+    };
+    for (uint32_t w : region(0)) t.opacity.push_back(glm::vec4(float(w & 255u), float((w >> 8) & 255u), float((w >> 16) & 255u), 0.0f) / 255.0f);
     for (uint32_t v = 0; v < volumes; ++v) {
-        std::vector<uint32_t> words(texels);
-        REQUIRE(td.device->readTexture(clipmap.tracedEmittance(v), {}, words.data()));
-        std::vector<glm::vec4> values(texels);
-        for (size_t i = 0; i < texels; ++i)
-            values[i] = glm::vec4(glm::vec3(words[i] & 511u, (words[i] >> 9) & 511u, (words[i] >> 18) & 511u) *
-                                      std::ldexp(1.0f, int(words[i] >> 27) - 24), 0.0f);
+        std::vector<glm::vec4> values;
+        for (uint32_t w : region(1 + v)) values.push_back(glm::vec4(decodeRgb9e5(w), 0.0f));
         t.emittance.push_back(std::move(values));
     }
     return t;

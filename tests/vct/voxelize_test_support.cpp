@@ -1,5 +1,8 @@
 #include "voxelize_test_support.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <catch2/catch.hpp>
 
 namespace bricklight::testing {
@@ -77,19 +80,87 @@ void VoxelizeHarness::draw(const std::vector<Triangle>& triangles, const vct::Vo
     REQUIRE(td_.device->draw(*state, args));
 }
 
+namespace {
+
+std::vector<uint32_t> readAtlas(TestDevice& td, const vct::Clipmap& clipmap) {
+    const rhi::TextureDesc* d = td.device->describe(clipmap.atlas());
+    REQUIRE(d);
+    std::vector<uint32_t> words(size_t(d->width) * d->height * d->depthOrLayers);
+    REQUIRE(td.device->readTexture(clipmap.atlas(), {}, words.data()));
+    return words;
+}
+
+// The atlas word of a level's toroidal texel t in a region (vct_layout.glsl's vctTexel).
+size_t atlasIndex(const vct::ClipmapDesc& d, uint32_t region, uint32_t level, glm::ivec3 t) {
+    const uint32_t r = d.resolution, width = (1 + vct::emittanceDirections(d.emittance)) * (r + 2);
+    const size_t x = region * (r + 2) + 1 + uint32_t(t.x), z = level * (r + 2) + 1 + uint32_t(t.z);
+    return (z * r + uint32_t(t.y)) * width + x;
+}
+
+}  // namespace
+
+glm::vec3 decodeRgb9e5(uint32_t v) {
+    const float scale = std::ldexp(1.0f, int(v >> 27) - 24);
+    return glm::vec3(float(v & 511u), float((v >> 9) & 511u), float((v >> 18) & 511u)) * scale;
+}
+
+size_t radianceDifferences(const std::vector<float>& a, const std::vector<float>& b, size_t texelCount, float relative, size_t* where) {
+    REQUIRE(a.size() == b.size());
+    REQUIRE(texelCount > 0);
+    REQUIRE(a.size() % (3 * texelCount) == 0);
+    size_t count = 0;
+    for (size_t direction = 0; direction < a.size() / (3 * texelCount); ++direction)
+        for (size_t t = 0; t < texelCount; ++t) {
+            float largest = 0.0f;
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = (direction * 3 + c) * texelCount + t;
+                largest = std::max(largest, std::max(std::abs(a[i]), std::abs(b[i])));
+            }
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = (direction * 3 + c) * texelCount + t;
+                if (std::abs(a[i] - b[i]) > relative * largest + 1e-6f) {
+                    if (count == 0 && where) *where = i;
+                    ++count;
+                }
+            }
+        }
+    return count;
+}
+
 std::vector<uint32_t> VoxelizeHarness::opacity() {
     const vct::ClipmapDesc& d = clipmap_->desc();
-    std::vector<uint32_t> texels(size_t(d.resolution) * d.resolution * d.resolution * d.levels);
-    REQUIRE(td_.device->readTexture(clipmap_->opacityVolume(), {}, texels.data()));
+    const std::vector<uint32_t> atlas = readAtlas(td_, *clipmap_);
+    const int r = int(d.resolution);
+    std::vector<uint32_t> texels(size_t(r) * r * r * d.levels);
+    for (uint32_t level = 0; level < d.levels; ++level)
+        for (int z = 0; z < r; ++z)
+            for (int y = 0; y < r; ++y)
+                for (int x = 0; x < r; ++x)
+                    texels[((size_t(level) * r + z) * r + y) * r + x] = atlas[atlasIndex(d, 0, level, {x, y, z})];
     return texels;
 }
 
-std::vector<uint32_t> VoxelizeHarness::emittance() {
-    const rhi::BufferDesc* d = td_.device->describe(clipmap_->emittanceBuffer());
-    REQUIRE(d);
-    std::vector<uint32_t> words(d->size / 4);
-    REQUIRE(td_.device->readBuffer(clipmap_->emittanceBuffer(), 0, d->size, words.data()));
-    return words;
+std::vector<float> VoxelizeHarness::emittance() {
+    const vct::ClipmapDesc& d = clipmap_->desc();
+    // No light lost to a full light pool (counted since the latest update, whatever setCountersEnabled says).
+    const vct::VoxelizationCounters counters = clipmap_->readCounters();
+    INFO(counters.lightEntriesClaimed << " of " << counters.lightEntriesAvailable << " light entries claimed");
+    CHECK(counters.lightDropped == 0);
+    const uint32_t directions = vct::emittanceDirections(d.emittance);
+    const std::vector<uint32_t> atlas = readAtlas(td_, *clipmap_);
+    const int r = int(d.resolution);
+    const size_t texelCount = size_t(r) * r * r * d.levels;
+    std::vector<float> channels(texelCount * directions * 3);
+    for (uint32_t direction = 0; direction < directions; ++direction)
+        for (uint32_t level = 0; level < d.levels; ++level)
+            for (int z = 0; z < r; ++z)
+                for (int y = 0; y < r; ++y)
+                    for (int x = 0; x < r; ++x) {
+                        const glm::vec3 radiance = decodeRgb9e5(atlas[atlasIndex(d, 1 + direction, level, {x, y, z})]);
+                        const size_t texel = ((size_t(level) * r + z) * r + y) * r + x;
+                        for (uint32_t c = 0; c < 3; ++c) channels[(direction * 3 + c) * texelCount + texel] = radiance[c];
+                    }
+    return channels;
 }
 
 size_t VoxelizeHarness::texelIndex(uint32_t level, glm::ivec3 voxel) const {

@@ -33,11 +33,15 @@ public:
     // emissive test shader; `constants` are added to the draw (they must outlive the call).
     void draw(const std::vector<Triangle>& triangles, const vct::VoxelMaterial& material, const glm::vec3* radiance,
               const std::vector<rhi::ConstantsBinding>& constants = {});
-    std::vector<uint32_t> opacity();    // the whole volume, texel order
-    std::vector<uint32_t> emittance();  // the whole buffer
+    // The atlas read back (bricklight/vct_layout.glsl) and unpacked level by level: opacity words (8 bits per axis)
+    // in texel order (level-major, then z, y, x of the toroidal texel), and radiance in channel-major order:
+    // channel (direction × 3 + colour) of every texel, then the next. Radiance only after finishVoxelization()
+    // (until then a direction's word is its light entry).
+    std::vector<uint32_t> opacity();
+    std::vector<float> emittance();
     uint32_t opacityAt(const std::vector<uint32_t>& volume, uint32_t level, glm::ivec3 voxel) const;
     size_t texelIndex(uint32_t level, glm::ivec3 voxel) const;
-    // Where word `word` of a voxel lies in emittance() (word-major, include/bricklight/vct_layout.glsl).
+    // Where channel `word` of a voxel lies in emittance().
     size_t wordIndex(uint32_t level, glm::ivec3 voxel, uint32_t word) const;
     rhi::ShaderHandle emissiveShader() const { return emissive_; }
 
@@ -56,6 +60,17 @@ struct ConeOut {
     glm::vec3 radiance;
     float ambient, finalOpacity, samples;
 };
+// RGB9E5 bits as radiance (bricklight/rgb9e5.glsl's layout).
+glm::vec3 decodeRgb9e5(uint32_t bits);
+// Channels of emittance() (texelCount texels per channel) that differ by more than `relative` of the larger of the
+// two voxels' largest channel of that direction (plus 1e-6). `where` gets the first such channel's index.
+size_t radianceDifferences(const std::vector<float>& a, const std::vector<float>& b, size_t texelCount, float relative,
+                           size_t* where = nullptr);
+// The bound the tests state between runs, backends and voxelizers: the light sums are exact integers whatever the
+// order of the adds, and their conversion to RGB9E5 may pick a different exponent for a value within float
+// rounding of a power of two (log2 differs in its last bit between devices): one unit of 9 bits.
+constexpr float kRadianceRoundingBound = 1.0f / 256.0f;
+
 std::vector<ConeOut> traceCones(TestDevice& td, VoxelizeHarness& h, const std::vector<ConeIn>& cones);
 
 }  // namespace bricklight::testing

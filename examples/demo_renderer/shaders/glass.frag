@@ -3,7 +3,7 @@
 #include "bricklight/bindings.glsl"
 // Glossy glass through the voxel clip-map: the example custom material of the public cone-trace API
 // (bricklight/cone_trace.glsl; docs/vct.md). The renderer draws the glass meshes with render/gbuffer.vert after the
-// clip-map is built without them (raster_renderer_glass.cpp) and binds Clipmap::traceBindings() (textures 8..14,
+// clip-map is built without them (raster_renderer_glass.cpp) and binds Clipmap::traceBindings() (textures 8 and 9,
 // read buffer 7) with its scene (read buffers 0..6, scene_trace.glsl).
 //
 // Per pixel, the nearest glass surface: Fresnel (exact, dielectric) × the light along the mirror direction +

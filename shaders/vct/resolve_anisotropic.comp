@@ -1,6 +1,0 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
-#include "bricklight/bindings.glsl"
-#include "bricklight/vct_layout.glsl"
-#define BL_VCT_DIRECTIONS 6
-#include "resolve_body.glsl"
