@@ -108,9 +108,12 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     if (!c->clearBoxes_ || !c->resolve_ || !c->light_ || !c->downsample_ || !c->borders_ || !c->mipBuild_ || !c->debugView_ || !c->atlas_[0] || !bounce ||
         !c->tracedSampler_ || !c->rasterSize_ || !c->frame_ || !c->counters_)
         return fail("the device could not create the clip-map's atlas, buffers or passes", ErrorCode::DeviceFailure);
-    // The bounce source is read before any frame wrote it: zero. The light pool starts zero; each update's resolve
-    // zeroes the entries it reads.
-    if (!device.clearTexture(desc.multiBounce ? c->atlas_[1] : c->noBounce_, 0, 1, rhi::ClearValue{}) ||
+    // A new texture's contents are undefined, and a direction word that happened to look like a tagged light entry
+    // would send the voxelization's adds to an arbitrary index: zero once (later updates leave only radiance and
+    // entries of their own). The bounce source is read before any frame wrote it: zero too. The light pool starts
+    // zero; each update's resolve zeroes the entries it reads.
+    if (!device.clearTexture(c->atlas_[0], 0, 1, rhi::ClearValue{}) ||
+        !device.clearTexture(desc.multiBounce ? c->atlas_[1] : c->noBounce_, 0, 1, rhi::ClearValue{}) ||
         !device.clearBuffer(c->light_, {}, 0u) || !device.clearBuffer(c->counters_, {}, 0u))
         return fail("the device could not clear the clip-map's bounce atlas, light pool or counters", ErrorCode::DeviceFailure);
     return c;

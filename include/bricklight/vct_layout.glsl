@@ -48,8 +48,11 @@ uint vctDownsampleOpacity(uint children[8]) {
     }
     return word;
 }
+// A product with the folded constant, not a division: compilers turn `/ 255.0` into a division on one device and a
+// reciprocal's product on another, and the light the downsampling weights by it must round alike.
 vec3 vctUnpackOpacity(uint w) {
-    return vec3(uvec3(w, w >> 8u, w >> 16u) & uvec3(BL_VCT_OPACITY_AXIS_ONE)) / float(BL_VCT_OPACITY_AXIS_ONE);
+    precise vec3 a = vec3(uvec3(w, w >> 8u, w >> 16u) & uvec3(BL_VCT_OPACITY_AXIS_ONE)) * (1.0 / 255.0);
+    return a;
 }
 // Counters (Clipmap::readCounters): which word counts what.
 const uint BL_VCT_COUNT_FRAGMENTS = 0u;          // voxelization fragments shaded

@@ -70,7 +70,7 @@ void main() {
                 sum += nearE + (1.0 - alpha[nearChild][axis]) * farE;
             }
             sum *= 0.25;
-            mean += sum / 6.0;
+            mean += sum * (1.0 / 6.0);
             if (anisotropic) imageStore(atlas, vctTexel(region, level, voxel, resolution), uvec4(blPackRgb9e5(sum)));
         }
     if (isotropic) imageStore(atlas, vctTexel(1u, level, voxel, resolution), uvec4(blPackRgb9e5(mean)));
