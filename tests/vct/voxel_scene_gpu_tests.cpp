@@ -1,6 +1,5 @@
 // vct::VoxelScene on both backends: registered meshes (CPU arrays, and the application's interleaved buffers)
-// voxelize to exactly the opacity words the application's own draws of the same triangles write (and the same light
-// to RGB9E5's rounding); a moved instance
+// voxelize to exactly the words the application's own draws of the same triangles write; a moved instance
 // marks its old and new places dirty, the update rewrites them (equal to a voxelization from scratch) and the
 // instances outside are culled; bad meshes, instances and buffers are refused with the object named. The
 // compute voxelizer writes the draw path's voxels (big triangles drawn, small and thin ones in compute,
@@ -22,11 +21,11 @@ using namespace bricklight::testing;
 
 namespace {
 
-// Light equal to the rounding of RGB9E5 adds, whose order is the GPU's (opacity is compared word for word).
+// The same light (kLightDifferenceBound: none; opacity is compared word for word by the callers).
 bool sameLight(VoxelizeHarness& a, VoxelizeHarness& b) {
     const std::vector<float> ea = a.emittance(), eb = b.emittance();
     size_t where = 0;
-    const size_t differ = radianceDifferences(ea, eb, a.opacity().size(), kRadianceRoundingBound, &where);
+    const size_t differ = radianceDifferences(ea, eb, a.opacity().size(), kLightDifferenceBound, &where);
     INFO(differ << " light channels differ; the first, " << where << ": " << (differ ? ea[where] : 0.0f) << " vs " << (differ ? eb[where] : 0.0f));
     CHECK(differ == 0);
     return differ == 0;

@@ -69,7 +69,7 @@ size_t radianceDifferences(const std::vector<float>& a, const std::vector<float>
 // The bound the tests state between runs, backends and voxelizers: none. The light sums are exact integers whatever
 // the order of the adds, and their RGB9E5 encoding is canonical (bricklight/rgb9e5.glsl), so the words agree bit
 // for bit.
-constexpr float kRadianceRoundingBound = 0.0f;
+constexpr float kLightDifferenceBound = 0.0f;
 
 std::vector<ConeOut> traceCones(TestDevice& td, VoxelizeHarness& h, const std::vector<ConeIn>& cones);
 
