@@ -161,14 +161,14 @@ std::optional<std::vector<LevelUpdate>> Clipmap::update(const glm::vec3& anchor,
 
 void Clipmap::clearBox(const LevelBox& b) {
     const glm::ivec3 size = b.box.max - b.box.min;
-    const uint32_t regions = 1;  // the opacity: the directions' words are overwritten by the resolve (vctTagLightEntry)
-    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, 0u, regions, 0u)};
+    // The opacity only: the directions' words are overwritten by the resolve (vctTagLightEntry).
+    BoxConstants c{glm::ivec4(b.box.min, int(b.level)), glm::ivec4(size, 0), glm::uvec4(desc().resolution, 0u, 0u, 0u)};
     rhi::DispatchState s;
     s.shader = clearBoxes_;
     s.label = "vct clear voxels";
     s.bindings.constants.push(rhi::constants(0, c));
     s.bindings.storageImages.push(rhi::storageImage(0, atlas(), rhi::Access::Write));
-    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z) * regions);  // 32 × 2 × 1 groups
+    device_.dispatch(s, uint32_t(size.x + 31) / 32, uint32_t(size.y + 1) / 2, uint32_t(size.z));  // 32 × 2 × 1 groups
 }
 
 void Clipmap::writeFrame() {

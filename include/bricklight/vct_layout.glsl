@@ -91,10 +91,13 @@ struct BlVctBox {
         BlVctBox boxes[]; /* the voxels this frame's voxelization may write */                           \
     } blVctFrame
 
+// Where a region starts in x.
+int vctRegionX(uint region, uint resolution) { return int(region * (resolution + 2u)); }
+
 // A world voxel's texel in a region's level: toroidal, past the border column and slice.
 ivec3 vctTexel(uint region, uint level, ivec3 worldVoxel, uint resolution) {
     ivec3 t = worldVoxel & ivec3(int(resolution) - 1);  // a power of two: the positive modulo, also below zero
-    return t + ivec3(int(region * (resolution + 2u)) + 1, 0, int(level * (resolution + 2u)) + 1);
+    return t + ivec3(vctRegionX(region, resolution) + 1, 0, int(level * (resolution + 2u)) + 1);
 }
 
 // The atlas's slices in all, and where mip m ≥ 1 of the coarsest level lies in a region (add the region's x
@@ -103,7 +106,6 @@ ivec3 vctTexel(uint region, uint level, ivec3 worldVoxel, uint resolution) {
 // with the mip's voxels) with an empty border on every side for filtering. Mip 1 lies at the slab's corner, the
 // others beside it, stacked in y.
 int vctTracedSlices(uint levels, uint resolution) { return int(levels * (resolution + 2u) + resolution / 2u + 3u); }
-int vctRegionX(uint region, uint resolution) { return int(region * (resolution + 2u)); }
 ivec3 vctMipBoxOffset(uint mip, uint levels, uint resolution) {
     int r = int(resolution), m = int(mip);
     // Mips 2 .. mip − 1 below this one: Σ (r >> k) + 3 = r / 2 − (r >> (mip − 1)) + 3 (mip − 2).
