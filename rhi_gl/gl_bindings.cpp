@@ -118,7 +118,7 @@ bool Device::resolveBindings(const Call& call, const Bindings& b, const Declared
         TextureRecord* t = texture(tb.view.texture, call, field + ".view.texture");
         SamplerRecord* s = sampler(tb.sampler, call, field + ".sampler");
         if (!t || !s) return false;
-        field += " " + detail::describe(*t);
+        field.append(" ").append(detail::describe(*t));
         ResolvedView v;
         if (!resolveView(call, field, *t, tb.view, &v)) return false;
         if (!(t->desc.usage & TextureUsage::Sampled)) return fail(call, field + ": was not created with TextureUsage::Sampled");
@@ -150,7 +150,7 @@ bool Device::resolveBindings(const Call& call, const Bindings& b, const Declared
         std::string field = slotField(c, i, slot);
         BufferRecord* buf = buffer(h, call, field + ".buffer");
         if (!buf) return false;
-        field += " " + detail::describe(*buf);
+        field.append(" ").append(detail::describe(*buf));
         const bool storage = c == BindingClass::StorageBuffer;
         if (!(buf->desc.usage & (storage ? BufferUsage::ShaderWrite : BufferUsage::ShaderRead)))
             return fail(call, field + ": was not created with " +
@@ -194,7 +194,7 @@ bool Device::resolveBindings(const Call& call, const Bindings& b, const Declared
         std::string field = slotField(BindingClass::StorageImage, i, ib.slot);
         TextureRecord* t = texture(ib.view.texture, call, field + ".view.texture");
         if (!t) return false;
-        field += " " + detail::describe(*t);
+        field.append(" ").append(detail::describe(*t));
         ResolvedView v;
         if (!resolveView(call, field, *t, ib.view, &v)) return false;
         if (ib.view.mipCount > 1)

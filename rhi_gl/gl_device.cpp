@@ -2,14 +2,13 @@
 // rhi_gl.h (createDevice, createHeadlessDevice, barrierCount).
 #include "gl_device.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 
 #include "gl_formats.h"
+#include "gl_platform.h"
 
 namespace bricklight::gl {
 namespace detail {
@@ -86,9 +85,7 @@ uint64_t queryMaxResourceBytes(const Functions& gl, GLint extensions) {
             gpu = uint64_t(kib > 0 ? kib : 0) * 1024;
         }
     }
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
-    const uint64_t host = pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : 0;
-    const uint64_t known = gpu ? gpu : host;
+    const uint64_t known = gpu ? gpu : hostMemoryBytes();
     const uint64_t sizeLimit = uint64_t(std::numeric_limits<GLsizeiptr>::max());
     return known ? std::min(known, sizeLimit) : sizeLimit;
 }

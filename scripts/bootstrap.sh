@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package Bricklight needs to build, test and run. Idempotent: when all are
 # present it only checks and returns.
+#   scripts/bootstrap.sh             # the Linux build and its tests
+#   scripts/bootstrap.sh --windows   # and the Windows cross build and its runs under Wine (scripts/build_windows.sh)
 set -euo pipefail
 
 packages=(
@@ -12,9 +14,18 @@ packages=(
   xvfb xauth xdotool  # bricklight-viewer's tests: a virtual X display, input events (tests/viewer)
   libopenimageio-dev
   catch2 nlohmann-json3-dev libassimp-dev assimp-testmodels
+  libstb-dev  # hello_rhi's PNG; image files of builds without OpenImageIO (Windows)
   clang  # the ASan + UBSan build and libFuzzer (scripts/test_sanitizers.sh)
   time  # GNU time: peak memory in tests/loading/cli_rejects_hostile_files.sh
 )
+
+if [ "${1:-}" = "--windows" ]; then
+  packages+=(
+    g++-mingw-w64-x86-64-posix  # the cross compilers (POSIX threads: std::thread)
+    wine wine64                 # running the Windows programs (vulkan-1.dll -> lavapipe, opengl32.dll -> llvmpipe)
+    libwine-dev                 # vulkan-1.dll's import library for MinGW
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

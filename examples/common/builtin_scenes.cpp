@@ -1,6 +1,7 @@
 // The renderer's built-in test scenes beyond the Cornell box: the Cornell box with a glass sphere, the light-leak
 // test, an outdoor-indoor courtyard, and an animated room. Units: metres (the Cornell box's: millimetres).
 #include <cmath>
+#include <numbers>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene_geometry.h"
@@ -116,7 +117,7 @@ SceneGeometry atrium() {
         const glm::vec3 mid = (a + b) * 0.5f, half = (b - a) * 0.5f;
         const float r = glm::length(half);
         for (int k = 0; k < 12; ++k) {
-            const float t0 = float(M_PI) * float(k) / 12.0f, t1 = float(M_PI) * float(k + 1) / 12.0f;
+            const float t0 = std::numbers::pi_v<float> * float(k) / 12.0f, t1 = std::numbers::pi_v<float> * float(k + 1) / 12.0f;
             const glm::vec3 p0 = mid - half * std::cos(t0) + glm::vec3(0, 3.6f + r * std::sin(t0), 0);
             const glm::vec3 p1 = mid - half * std::cos(t1) + glm::vec3(0, 3.6f + r * std::sin(t1), 0);
             addBox(colonnade, glm::min(p0, p1) - glm::vec3(0.15f), glm::max(p0, p1) + glm::vec3(0.15f));

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <numbers>
 
 namespace bricklight::scenes {
 
@@ -129,7 +130,7 @@ TriangleMesh torus(float majorRadius, float minorRadius, uint32_t triangles) {
     m.name = "torus";
     for (uint32_t i = 0; i < major; ++i)
         for (uint32_t j = 0; j < minor; ++j) {
-            const float u = 2.0f * float(M_PI) * float(i) / float(major), v = 2.0f * float(M_PI) * float(j) / float(minor);
+            const float u = 2.0f * std::numbers::pi_v<float> * float(i) / float(major), v = 2.0f * std::numbers::pi_v<float> * float(j) / float(minor);
             const float r = majorRadius + minorRadius * std::cos(v);
             m.positions.insert(m.positions.end(), {r * std::cos(u), minorRadius * std::sin(v), r * std::sin(u)});
         }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <numbers>
 
 #include "bvh.h"
 #include "generated_texture.h"
@@ -116,7 +117,7 @@ std::unique_ptr<GpuScene> GpuScene::create(rhi::IDevice& device, const scenes::S
     for (const scenes::PointLight& l : scene.pointLights) {
         if (!finite(l.position) || !finite(l.intensity) || !finite(l.direction) || glm::any(glm::lessThan(l.intensity, glm::vec3(0.0f))))
             return fail("a point light has a non-finite position, intensity or direction, or a negative intensity");
-        const bool spot = l.outerConeRadians < float(M_PI);
+        const bool spot = l.outerConeRadians < std::numbers::pi_v<float>;
         const glm::vec3 axis = glm::length(l.direction) > 0.0f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
         points.push_back(glm::vec4(l.position, spot ? std::cos(l.outerConeRadians) : -2.0f));
         points.push_back(glm::vec4(l.intensity, 0.0f));

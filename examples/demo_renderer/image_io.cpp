@@ -1,4 +1,5 @@
 #include "image_io.h"
+#include "image_encoding.h"
 #include "output_file.h"
 #include "safe_file.h"
 
@@ -9,22 +10,9 @@
 
 namespace bricklight::render {
 
+const char* floatImageExtension() { return "exr"; }
+
 namespace {
-
-std::string extensionOf(const std::string& path) {
-    const size_t dot = path.find_last_of('.');
-    std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-float filmic(float x) {  // ACES approximation (K. Narkowicz 2015), input already exposed
-    x = std::max(0.0f, x);
-    return std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-}
-
-float toSrgb(float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; }
-float fromSrgb(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // Encodes `image` into `path` (whose extension picks the format).
 bool encodeImage(const std::string& path, const Image& image, float exposure, std::string* error) {
@@ -34,13 +22,13 @@ bool encodeImage(const std::string& path, const Image& image, float exposure, st
         return false;
     }
     bool ok;
-    if (extensionOf(path) == "exr") {
+    if (imageExtension(path) == "exr") {
         OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::FLOAT);
         ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data());
     } else {
         std::vector<uint8_t> bytes(image.rgb.size());
         for (size_t i = 0; i < bytes.size(); ++i)
-            bytes[i] = uint8_t(std::lround(toSrgb(filmic(image.rgb[i] * exposure)) * 255.0f));
+            bytes[i] = displayByte(image.rgb[i], exposure);
         OIIO::ImageSpec spec(int(image.width), int(image.height), 3, OIIO::TypeDesc::UINT8);
         ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
     }
@@ -52,25 +40,7 @@ bool encodeImage(const std::string& path, const Image& image, float exposure, st
 }  // namespace
 
 bool writeImage(const std::string& path, const Image& image, float exposure, std::string* error) {
-    const std::string ext = extensionOf(path);
-    if (ext != "png" && ext != "exr") {
-        if (error) *error = "'" + path + "': unsupported output format (use .png or .exr)";
-        return false;
-    }
-    if (image.width == 0 || image.height == 0 || image.rgb.size() != size_t(image.width) * image.height * 3) {
-        if (error) *error = "'" + path + "': no image to write";
-        return false;
-    }
-    // A pixel that is infinite or NaN would make every comparison against the file silently wrong.
-    size_t nonFinite = 0;
-    for (size_t i = 0; i < image.rgb.size(); i += 3)
-        nonFinite += !(std::isfinite(image.rgb[i]) && std::isfinite(image.rgb[i + 1]) && std::isfinite(image.rgb[i + 2]));
-    if (nonFinite) {
-        if (error)
-            *error = "'" + path + "': " + std::to_string(nonFinite) + " of " + std::to_string(size_t(image.width) * image.height) +
-                     " pixels are infinite or NaN; nothing was written";
-        return false;
-    }
+    if (!checkImageToWrite(path, image, error)) return false;
     // The file is read back whole before it replaces the target: a write that failed silently (a full
     // disk some encoders do not report) is caught here.
     auto readsBack = [&](const std::string& temp, std::string* why) {
@@ -88,7 +58,7 @@ bool writeImage(const std::string& path, const Image& image, float exposure, std
 
 bool writeDisplayImage(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba,
                        std::string* error) {
-    if (extensionOf(path) != "png") {
+    if (imageExtension(path) != "png") {
         if (error) *error = "'" + path + "': a display image is written as .png";
         return false;
     }
@@ -163,7 +133,7 @@ bool readImage(const std::string& path, Image* image, std::string* error, const 
     for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p)
         for (int c = 0; c < 3; ++c) {
             const float v = pixels[p * spec.nchannels + size_t(std::min(c, spec.nchannels - 1))];
-            image->rgb[3 * p + size_t(c)] = linear ? v : fromSrgb(v);
+            image->rgb[3 * p + size_t(c)] = linear ? v : linearFromSrgb(v);
         }
     return true;
 }

@@ -11,6 +11,10 @@ namespace bricklight::render {
 // The target's folder exists and can be written, and the target is not a folder or a special file.
 bool checkOutputPath(const std::string& path, std::string* error);
 
+// Replaces `to` with `from` in one step (rename(), or MoveFileEx on Windows, where rename() refuses to replace an
+// existing file); false with `why` on failure.
+bool replaceFile(const std::string& from, const std::string& to, std::string* why);
+
 // Calls write(tempPath) for a temporary file in the target's folder that ends in the target's extension (so
 // writers that choose a format by extension still do), then check(tempPath) if given, then renames it over
 // `path`. Any failure removes the temporary file and returns false with `error` naming the target.

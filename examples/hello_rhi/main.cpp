@@ -2,7 +2,9 @@
 // draw as complete records, reads the image back and writes it as a PNG.
 //
 //   hello_rhi [--backend vulkan|gl] [--out FILE.png] [--size N]
-#include <OpenImageIO/imageio.h>
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb/stb_image_write.h>
 
 #include <cerrno>
 #include <chrono>
@@ -126,14 +128,10 @@ int main(int argc, char** argv) {
     // 5. Read back (blocking; for tools and tests) and write a PNG.
     std::vector<uint8_t> pixels(size_t(size) * size * 4);
     if (!device->readTexture(image, {}, pixels.data())) return 1;
-    auto out = OIIO::ImageOutput::create(outPath);
     errno = 0;
-    if (!out || !out->open(outPath, OIIO::ImageSpec(int(size), int(size), 4, OIIO::TypeDesc::UINT8)) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close()) {
-        // The writer's own message, else the global one, else the system's (a missing folder).
-        std::string why = out ? out->geterror() : OIIO::geterror();
-        if (why.empty()) why = errno ? strerror(errno) : "the image writer gave no reason";
-        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(), why.c_str());
+    if (!stbi_write_png(outPath.c_str(), int(size), int(size), 4, pixels.data(), int(size) * 4)) {
+        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(),
+                errno ? strerror(errno) : "the image writer gave no reason");
         return 1;
     }
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

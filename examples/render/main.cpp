@@ -32,6 +32,7 @@
 #include "bricklight/rhi_validation.h"
 #include "bricklight/rhi_vulkan.h"
 #include "bricklight/version.h"
+#include "image_encoding.h"
 #include "image_io.h"
 #include "output_file.h"
 #include "path_tracer.h"
@@ -179,8 +180,13 @@ std::string stemOf(const std::string& out) {
     const size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
     return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? out : out.substr(0, dot);
 }
-std::string aovPath(const std::string& out, render::Aov aov) { return stemOf(out) + "." + render::aovName(aov) + ".exr"; }
-std::string giDebugPath(const std::string& out, const std::string& view) { return stemOf(out) + ".gi-" + view + ".exr"; }
+// AOVs and debug views are linear: .exr (.hdr in a build whose image files are stb's, e.g. on Windows).
+std::string aovPath(const std::string& out, render::Aov aov) {
+    return stemOf(out) + "." + render::aovName(aov) + "." + render::floatImageExtension();
+}
+std::string giDebugPath(const std::string& out, const std::string& view) {
+    return stemOf(out) + ".gi-" + view + "." + render::floatImageExtension();
+}
 
 // Every file the run will write, checked before any work: a bad path costs no render.
 void checkOutputs(const Options& o) {
@@ -190,10 +196,8 @@ void checkOutputs(const Options& o) {
     if (!o.record.empty()) paths.push_back({o.record, "--record"});
     std::string error;
     for (const auto& [path, what] : paths) {
-        const size_t dot = path.find_last_of('.');
-        const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-        if (what != "--record" && ext != ".png" && ext != ".exr")
-            usage("'" + path + "': unsupported output format (use .png or .exr)");
+        if (what != "--record" && !render::isWritableImageExtension(render::imageExtension(path)))
+            usage("'" + path + "': unsupported output format " + render::writableImageFormats());
         if (!render::checkOutputPath(path, &error)) usage(error);
     }
     // Two outputs on one file: the second would overwrite the first (a recording where the image should be).
@@ -223,8 +227,10 @@ struct Reports {
 }  // namespace
 
 int main(int argc, char** argv) {
+#if defined(SIGXFSZ)
     // A file-size limit (ulimit -f) or a full disk must make a write fail with an error, not kill us.
     signal(SIGXFSZ, SIG_IGN);
+#endif
     const Options o = parse(argc, argv);
     checkOutputs(o);
     std::string error;
@@ -380,8 +386,9 @@ int main(int argc, char** argv) {
         tracer.reset();
         device.reset();  // the recorder's last lines
         recordStream.close();
-        if (!recordStream || reports.errors || std::rename(recordTemp.c_str(), o.record.c_str()) != 0)
-            return failRun("cannot write the recording '" + o.record + "'" + (reports.errors ? ": errors were reported" : ""));
+        std::string why = !recordStream ? "the write failed" : reports.errors ? "errors were reported" : "";
+        if (why.empty()) render::replaceFile(recordTemp, o.record, &why);
+        if (!why.empty()) return failRun("cannot write the recording '" + o.record + "': " + why);
         std::printf("wrote %s\n", o.record.c_str());
     }
     return 0;

@@ -1,6 +1,6 @@
 // Bricklight OpenGL 4.5 reference backend (bricklight::gl). It runs on the GL context that is current on
-// the calling thread (the app's, through createDevice) or on a headless one it creates itself (OSMesa or
-// EGL, through createHeadlessDevice). No GL library is linked: everything is loaded at run time, so a
+// the calling thread (the app's, through createDevice) or on a headless one it creates itself (OSMesa,
+// EGL or WGL, through createHeadlessDevice). No GL library is linked: everything is loaded at run time, so a
 // program that links bricklight_gl runs where only libEGL (or only libOSMesa) exists.
 // docs/backend_gl.md says how the records map to GL and which GL state a call leaves changed.
 #pragma once
@@ -26,12 +26,13 @@ struct DeviceOptions {
 // returns nullptr, with the reason through the callback, if it is not GL 4.5 core or lacks a function.
 std::unique_ptr<rhi::IDevice> createDevice(const DeviceOptions& options);
 
-// Auto: env BRICKLIGHT_GL_CONTEXT=osmesa|egl, else OSMesa, then EGL.
-enum class HeadlessApi { Auto, OSMesa, EGL };
+// Auto: env BRICKLIGHT_GL_CONTEXT=osmesa|egl|wgl, else on Windows WGL, elsewhere OSMesa, then EGL.
+enum class HeadlessApi { Auto, OSMesa, EGL, WGL };
 
 // A GL 4.5 core context with no window. OSMesa renders into a tiny client buffer that nothing uses (all
 // rendering goes to framebuffer objects); EGL uses EGL_EXT_platform_device when present (a GPU machine
-// with no display), else Mesa's surfaceless platform or the default display, with no surface at all.
+// with no display), else Mesa's surfaceless platform or the default display, with no surface at all; WGL
+// (Windows) makes its context on a hidden 1x1 window of its own.
 class HeadlessContext {
 public:
     static std::unique_ptr<HeadlessContext> create(HeadlessApi api, std::string* error);
@@ -39,7 +40,7 @@ public:
     virtual void makeCurrent() = 0;
     virtual bool isCurrent() const = 0;
     virtual GetProcAddress getProcAddress() const = 0;
-    virtual const char* apiName() const = 0;  // "osmesa" or "egl"
+    virtual const char* apiName() const = 0;  // "osmesa", "egl" or "wgl"
 
 protected:
     HeadlessContext() = default;
