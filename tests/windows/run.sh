@@ -75,6 +75,18 @@ for backend in vulkan gl; do
     fail "render on $backend: means $means differ by more than 1 %"
 done
 
+# What the Windows build lacks is refused with a message that says so, and nothing is written.
+refused() {
+  local name="$1" expect="$2"; shift 2
+  if timeout 600 wine "$@" > "$work/$name.log" 2>&1; then fail "$name: exited 0"; fi
+  grep -qF "$expect" "$work/$name.log" || { cat "$work/$name.log" >&2; fail "$name: no message '$expect'"; }
+  echo "windows: $name refused: $(grep -F "$expect" "$work/$name.log" | head -n 1)"
+}
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$work/triangle.obj"
+refused model "this build reads no model files" "$bin/bricklight-render.exe" --scene triangle.obj --out model.png
+refused exr "unsupported output format (use .png or .hdr)" "$bin/bricklight-render.exe" --scene cornell --out cornell.exr
+[ ! -e "$work/model.png" ] && [ ! -e "$work/cornell.exr" ] || fail "a refused run wrote a file"
+
 cmake -S "$root/examples/integration" -B "$work/integration" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_TOOLCHAIN_FILE="$root/cmake/toolchains/windows-mingw64.cmake" -DCMAKE_FIND_ROOT_PATH="$win/prefix" \
   -DBRICKLIGHT_SHADERC="$host/bin/bricklight-shaderc" > "$work/integration-configure.log" 2>&1 ||
