@@ -40,7 +40,7 @@ std::unique_ptr<Clipmap> Clipmap::create(rhi::IDevice& device, const ClipmapDesc
     if (width > limits.maxTextureSize3D || depth > limits.maxTextureSize3D)
         return fail("the atlas (" + std::to_string(width) + " × " + std::to_string(desc.resolution) + " × " + std::to_string(depth) +
                     ") exceeds the device's 3D texture size of " + std::to_string(limits.maxTextureSize3D) + ": use fewer levels or a lower resolution", ErrorCode::OverBudget);
-    const uint64_t lightBytes = std::max<uint64_t>(detail::lightEntriesPerPool(desc) * detail::kLightPools * 12, 16);
+    const uint64_t lightBytes = std::max<uint64_t>(detail::lightEntriesPerPool(desc) * detail::kLightPools * 16, 16);
     if (lightBytes > limits.maxStorageBufferRange)
         return fail("the light pool (" + std::to_string(lightBytes >> 20) + " MiB) exceeds the device's storage buffer range of " +
                     std::to_string(limits.maxStorageBufferRange >> 20) + " MiB: lower lightEntries", ErrorCode::OverBudget);

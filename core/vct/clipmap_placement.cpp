@@ -59,7 +59,7 @@ uint64_t clipmapBytes(const ClipmapDesc& d) {
                            detail::tracedSlices(d.levels, d.resolution) * 4;
     const uint64_t rasterSize = uint64_t(d.resolution) * d.resolution * 4;
     const uint64_t bounce = d.multiBounce ? atlas : 4;  // the copy of the previous frame's atlas, or the 1³ zero stand-in
-    const uint64_t light = std::max<uint64_t>(detail::lightEntriesPerPool(d) * detail::kLightPools * 12, 16);
+    const uint64_t light = std::max<uint64_t>(detail::lightEntriesPerPool(d) * detail::kLightPools * 16, 16);
     const uint64_t frame = detail::kFrameBufferBytes, counters = detail::kCounterWords * 4;
     return atlas + bounce + light + rasterSize + frame + counters;
 }

@@ -50,9 +50,9 @@ struct ClipmapDesc {
     // it for dim scenes, lower it where a voxel gathers more than ~60000 / scale.
     float emittanceStorageScale = 1.0f;
     // Voxel directions (a voxel's light towards one of the six directions, or its one isotropic value) whose light
-    // one update can gather: 12 bytes each, claimed as the voxelization first writes them; at most 2^24. 0: an eighth
+    // one update can gather: 16 bytes each, claimed as the voxelization first writes them; at most 2^24. 0: an eighth
     // of the clip-map's voxels, at least 65536, at most 2^24 (a full revoxelization of our scenes at 128³ × 5 claims
-    // 1–2 % of the voxels). Past it light is dropped and counted (VoxelizationCounters::lightDropped).
+    // 2–4 % of the voxels). Past it light is dropped and counted (VoxelizationCounters::lightDropped).
     uint64_t lightEntries = 0;
     // Multiple bounces (bricklight/voxelize.glsl's BL_VOXEL_MULTI_BOUNCE): a copy of the atlas made at the end of
     // each finishVoxelization(), which the next frame's voxelization reads (bounceBindings) while it writes the
@@ -204,8 +204,8 @@ uint64_t clipmapBytes(const ClipmapDesc& desc);
 //                                                                 The voxelization writes opacity in place (atomic
 //                                                                 maximum); a direction's word holds its light
 //                                                                 entry's tagged index until finishVoxelization().
-//   vct light            buffer, 3 words × lightEntries           fixed-point light sums of one update's voxel
-//                                                                 directions (zeroed as they are read)
+//   vct light            buffer, 4 words × lightEntries           fixed-point light and coverage sums of one update's
+//                                                                 voxel directions (zeroed as they are read)
 //   vct atlas (bounce)   the same, multiBounce only               a copy of the previous frame's, read by bounce cones
 //   vct no bounce        R32_UINT 1³, without multiBounce         a zero stand-in for bounceBindings
 //   vct frame            read buffer (origins, boxes)             what update() decided, read by the draws

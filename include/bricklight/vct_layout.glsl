@@ -63,6 +63,9 @@ const uint BL_VCT_COUNT_KILLED_NOT_DIRTY = 4u;   // voxels outside this frame's 
 const uint BL_VCT_COUNT_EMITTANCE_WRITES = 5u;   // voxels that received emittance
 const uint BL_VCT_COUNT_LIGHT_DROPPED = 6u;      // light writes dropped: their sub-pool of light entries was full (always counted)
 const uint BL_VCT_COUNTER_COUNT = 8u;
+// A light pool entry sums, besides the light, the projected coverage of the surfaces that sent it, in these units per
+// voxel face (voxelize.glsl's blVoxelAddLight; resolve_light.comp reads it).
+const float VCT_COVERAGE_UNITS = 65536.0;
 // The light pool's sub-pools (voxelize.glsl's blVoxelLightEntry): their claim counters follow the counters above.
 const uint BL_VCT_LIGHT_POOLS = 64u;
 const uint BL_VCT_COUNTER_POOLS = 8u;

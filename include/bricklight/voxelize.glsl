@@ -161,8 +161,9 @@ struct BlVoxelUserGradient {
     vec4 user0Du, user0Dv, user1Du, user1Dv;
 };
 
-// Light is summed in fixed point in entries of this pool (three words, one per colour) that the update's
-// voxelization claims per voxel and direction; the direction's atlas word holds the entry's tagged index until
+// Light is summed in fixed point in entries of this pool (four words: one per colour, then the surfaces' projected
+// coverage, vct_layout.glsl's VCT_COVERAGE_UNITS per voxel face) that the update's voxelization claims per voxel and
+// direction; the direction's atlas word holds the entry's tagged index until
 // finishVoxelization() turns the sums into radiance (vct_layout.glsl's vctTagLightEntry).
 BL_STORAGE_BUFFER(6) BlVctLight { uint words[]; } blVctLight;
 BL_STORAGE_BUFFER(7) BlVctCounters { uint counts[]; } blVctCounters;
@@ -300,12 +301,13 @@ uint blVoxelLightEntry(ivec3 texel) {
     return before == word ? entry : vctLightEntryOf(before);
 }
 
-// Adds fixed-point light to a voxel's direction: three atomic adds whose results nobody waits for.
-void blVoxelAddLight(ivec3 texel, uvec3 units) {
+// Adds fixed-point light (xyz) and projected coverage (w) to a voxel's direction: atomic adds whose results nobody
+// waits for.
+void blVoxelAddLight(ivec3 texel, uvec4 units) {
     uint entry = blVoxelLightEntry(texel);
     if (entry == ~0u) return;
-    for (uint c = 0u; c < 3u; ++c)
-        if (units[c] != 0u) atomicAdd(blVctLight.words[3u * entry + c], units[c]);
+    for (uint c = 0u; c < 4u; ++c)
+        if (units[c] != 0u) atomicAdd(blVctLight.words[4u * entry + c], units[c]);
 }
 #endif
 
@@ -460,13 +462,12 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
     // The front side is where the application's normal points; the face normal, so oriented, splits the light.
     vec3 front = dot(t.faceNormal, f.normal) >= 0.0 ? t.faceNormal : -t.faceNormal;
     int sides = 1 + t.levelAxis.z;
-    // Fixed-point units per unit radiance, × the area each sample stands for (1/16 of a voxel face, divided by
-    // the projection's cosine).
+    // The surface area each sample stands for, in voxel faces (1/16 of one, divided by the projection's cosine).
     // precise (no fused multiply-adds) here and in the geometry stage: Vulkan and GL then round alike and write
     // the same words.
-    precise float unitsPerSample = blVctFrame.scales.y * t.plane.w / 16.0;
+    precise float sampleArea = t.plane.w / 16.0;
 #ifdef BL_VOXEL_COVERAGE
-    unitsPerSample *= coverage;  // the light of the covered share of the pixel's surface only
+    sampleArea *= coverage;  // the light of the covered share of the pixel's surface only
 #endif
     uint emittanceWrites = 0u;
     for (int side = 0; side < sides; ++side) {
@@ -492,9 +493,10 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
                 uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : (samples >> (5u * uint(k))) & 31u;
                 if (count == 0u || (writable & (1u << uint(k))) == 0u) continue;
                 ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
-                precise vec3 amount = radiance * (weight * float(count) * unitsPerSample);
-                uvec3 units = uvec3(min(amount + 0.5, vec3(4.0e9)));
-                if (units == uvec3(0u)) continue;
+                precise float share = weight * float(count) * sampleArea;  // of the voxel's face, projected along d
+                precise vec3 amount = radiance * (share * blVctFrame.scales.y);
+                uvec4 units = uvec4(min(vec4(amount, share * VCT_COVERAGE_UNITS) + 0.5, vec4(4.0e9)));
+                if (units == uvec4(0u)) continue;
                 blVoxelAddLight(vctTexel(1u + d, level, voxel, resolution), units);
                 ++emittanceWrites;
             }

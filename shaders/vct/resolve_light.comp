@@ -5,8 +5,8 @@
 #include "bricklight/rgb9e5.glsl"
 // Turns the light one box of one level gathered into radiance: each direction's atlas word holds the tagged index of
 // the pool entry the voxelization summed the voxel's fixed-point light in (bricklight/voxelize.glsl), or still the
-// previous update's radiance (no light this time: 0); the word becomes the radiance as RGB9E5 bits, and the entry
-// is zeroed for the next update.
+// previous update's radiance (no light this time: 0); the word becomes the radiance as RGB9E5 bits (a
+// coverage-weighted mean where surfaces overlap in projection), and the entry is zeroed for the next update.
 // Rows of 32 along x: neighbouring threads touch neighbouring texels.
 layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
@@ -30,11 +30,17 @@ void main() {
             if (word != 0u) imageStore(atlas, texel, uvec4(0u));  // no light this update
             continue;
         }
-        uint entry = 3u * vctLightEntryOf(word);
+        uint entry = 4u * vctLightEntryOf(word);
         vec3 radiance = vec3(float(light.words[entry]), float(light.words[entry + 1u]), float(light.words[entry + 2u])) * box.scales.x;
+        // Surfaces that cover more than the voxel's face along this direction cover one another: their sum would
+        // count the hidden ones too (two parallel walls, both sides of a box thinner than the voxel), and light fed
+        // back through bounces would grow. The face then sends their coverage-weighted mean radiance.
+        float coverage = float(light.words[entry + 3u]) / VCT_COVERAGE_UNITS;
+        radiance /= max(coverage, 1.0);
         light.words[entry] = 0u;
         light.words[entry + 1u] = 0u;
         light.words[entry + 2u] = 0u;
+        light.words[entry + 3u] = 0u;
         imageStore(atlas, texel, uvec4(blPackRgb9e5(radiance)));
     }
 }

@@ -25,7 +25,7 @@ void vctFoliageVariants(const std::string& backend) {
     // converged after the first frame (16 frames differ from 2 by < 1 %); 6 frames give every pixel of the
     // sparse tracing's 2 × 2 blocks its cones. 32 spp: relMSE 0.005 against 256 spp, far below the differences
     // measured here. With bounces each frame revoxelizes the whole scene (~10 s a frame on lavapipe) and the
-    // light climbs one bounce a frame (alpha-aware, frames 4 / 8 / 12: mean 4.9 / 6.5 / 7.5 × the reference's).
+    // light climbs one bounce a frame.
     constexpr uint32_t kSize = 64, kFrames = 6, kSpp = 32;
     for (bool backLit : {false, true}) {
         const scenes::SceneGeometry s = foliageScene(backLit);
@@ -41,24 +41,21 @@ void vctFoliageVariants(const std::string& backend) {
         FoliageFigures f[3];
         foliageVariants(td, s, o, kFrames, reference.read(render::Aov::IndirectDiffuse), grass, 1u, 4,
                         backend + (backLit ? ", sun behind the cards" : ", sun behind the camera"), f);
-        // Solid cards: every voxel a card touches opaque and lit as if whole.
-        CHECK(f[0].whole.relMse < 0.8 * f[1].whole.relMse);
-        CHECK(f[0].grass.relMse < 0.8 * f[1].grass.relMse);
-        // The mean: alpha-aware's error is 0.85 (whole) and 0.81 (grass) of the solid cards' with the sun behind the
-        // cards; 0.95 and 0.90 with the sun behind the camera, where every variant is 3.7–5.1 × too bright (docs/vct.md,
-        // *Foliage*: voxels as large as the grass is tall) and the two are near a tie (0.9 of theirs before the cone
-        // departures of *Cone tracing*).
-        CHECK(meanError(f[0].whole) < (backLit ? 0.9 : 1.0) * meanError(f[1].whole));
-        CHECK(meanError(f[0].grass) < (backLit ? 0.9 : 1.05) * meanError(f[1].grass));
-        // Against the cards left out the target is not met (docs/vct.md, "Foliage"): every variant is 3.7-5.1 x too
-        // bright on this scene, with the cards left out too — the 0.4 m grass lies in one layer of 0.44 m voxels, and
-        // cones that start two voxels off a surface read the tufts' sunlit tops. Alpha-aware is closer with the sun
-        // behind the camera (whole relMSE 0.70 against 1.20, grass 1.56 against 2.05), the cards left out with the
-        // sun behind the cards (whole 0.92 against 1.17, grass 1.66 against 2.71).
-        if (!backLit) {
-            CHECK(f[0].whole.relMse < 0.95 * f[2].whole.relMse);
-            CHECK(meanError(f[0].whole) < 0.9 * meanError(f[2].whole));
-        }
+        // Since a voxel sends the coverage-weighted mean of surfaces that cover one another in projection instead
+        // of their sum (resolve_light.comp), no variant is far off: whole-image means 1.2–2.6 × the reference's
+        // (before, 3.7–5.1 ×, the ground's and the tufts' light summed over every surface in a voxel).
+        for (const FoliageFigures& v : f) CHECK(v.whole.meanA < 3.0 * v.whole.meanB);
+        // Alpha-aware (measured: whole relMSE 0.096 / 0.155, mean 1.85 / 2.05 × with the sun behind the camera /
+        // the cards; grass 0.19 / 0.32, 2.1 / 2.3 ×). It is closer than the cards left out on the mean in both
+        // lightings (error 0.85 against 1.62; 1.05 against 1.15) and on relMSE with the sun behind the camera.
+        CHECK(f[0].whole.relMse < (backLit ? 0.2 : 0.13));
+        CHECK(f[0].whole.meanA < (backLit ? 2.3 : 2.1) * f[0].whole.meanB);
+        CHECK(meanError(f[0].whole) < 0.95 * meanError(f[2].whole));
+        if (!backLit) CHECK(f[0].whole.relMse < 0.6 * f[2].whole.relMse);
+        // The solid cards are now the closest (whole relMSE 0.032 / 0.044, mean 1.23 / 1.34 ×): their over-occlusion
+        // offsets what the alpha-aware voxels still under-occlude — a voxel's opacity is the largest any card in it
+        // writes, not their union, so dense grass finer than a voxel lets cones through (docs/vct.md, *Foliage*).
+        // Not asserted either way: it is the next cause to remove, not a property to keep.
         // The voxels' words are deterministic (no frame in the coverage points or the emittance's seed); what moves
         // is the sparse tracing's pixel of each 2 × 2 block and the history.
         CHECK(f[0].flicker < 0.03);
