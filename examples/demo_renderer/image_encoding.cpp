@@ -55,4 +55,17 @@ bool checkImageToWrite(const std::string& path, const Image& image, std::string*
     return true;
 }
 
+bool checkDisplayImageToWrite(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba,
+                              std::string* error) {
+    if (imageExtension(path) != "png") {
+        if (error) *error = "'" + path + "': a display image is written as .png";
+        return false;
+    }
+    if (width == 0 || height == 0 || rgba.size() != size_t(width) * height * 4) {
+        if (error) *error = "'" + path + "': no image to write";
+        return false;
+    }
+    return true;
+}
+
 }  // namespace bricklight::render

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "path_tracer.h"
 
@@ -28,5 +29,8 @@ float linearFromSrgb(float c);
 // writeImage's checks before it writes: a known extension, an image of the size it says, and every pixel
 // finite (a NaN would make every comparison against the file silently wrong).
 bool checkImageToWrite(const std::string& path, const Image& image, std::string* error);
+// writeDisplayImage's: a .png, and RGBA bytes of the size it says.
+bool checkDisplayImageToWrite(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba,
+                              std::string* error);
 
 }  // namespace bricklight::render

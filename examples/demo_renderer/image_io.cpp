@@ -58,14 +58,7 @@ bool writeImage(const std::string& path, const Image& image, float exposure, std
 
 bool writeDisplayImage(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba,
                        std::string* error) {
-    if (imageExtension(path) != "png") {
-        if (error) *error = "'" + path + "': a display image is written as .png";
-        return false;
-    }
-    if (width == 0 || height == 0 || rgba.size() != size_t(width) * height * 4) {
-        if (error) *error = "'" + path + "': no image to write";
-        return false;
-    }
+    if (!checkDisplayImageToWrite(path, width, height, rgba, error)) return false;
     auto encode = [&](const std::string& temp, std::string* why) {
         auto out = OIIO::ImageOutput::create(temp);
         if (!out) {
