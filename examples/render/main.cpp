@@ -75,11 +75,11 @@ bool isVctDebug(const std::string& view) {
 void printUsage(FILE* to) {
     std::fprintf(to,
                  "usage: bricklight-render [options]\n%s"
-                 "  [--out FILE.png|.exr] [--aov combined|direct|indirect-diffuse|albedo|normal|depth|ao ...]\n"
+                 "  [--out FILE.png|.%s] [--aov combined|direct|indirect-diffuse|albedo|normal|depth|ao ...]\n"
                  "  [--reference --spp N] [--gi-debug VIEW ...] [--record FILE.jsonl] [--help] [--version]\n"
                  "scenes: %s\n"
                  "exit status: 0 written; 1 the render failed; 2 usage error (docs/render.md)\n",
-                 render::sharedOptionsUsage(), scenes::builtinSceneNames());
+                 render::sharedOptionsUsage(), render::floatImageExtension(), scenes::builtinSceneNames());
 }
 
 [[noreturn]] void usage(const std::string& problem) {
