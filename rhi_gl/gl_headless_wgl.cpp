@@ -2,6 +2,7 @@
 // as on Unix nothing links libGL); the context lives on a hidden 1x1 window of its own, whose default
 // framebuffer nothing uses (all rendering goes to framebuffer objects). A legacy context is made first
 // because wglCreateContextAttribsARB, which makes the core one, is only reachable through a current context.
+// The window and the context belong to the thread that creates them: Windows destroys them only from there.
 // The host's memory size is here too (the platform's part of gl_device.cpp's limits).
 #define WIN32_LEAN_AND_MEAN
 #ifndef NOMINMAX
@@ -33,7 +34,8 @@ struct WglApi {
 WglApi g_wgl;  // opengl32.dll stays loaded for the process, as OSMesa and EGL do on Unix
 const char* const kWindowClass = "BricklightHeadlessGL";
 
-std::string lastErrorText() { return "error " + std::to_string(GetLastError()); }
+std::string errorText(DWORD code) { return "error " + std::to_string(code); }
+std::string lastErrorText() { return errorText(GetLastError()); }
 
 template <typename T>
 bool symbol(HMODULE lib, const char* name, T* out) {
@@ -53,6 +55,7 @@ bool loadWgl(std::string* error) {
     if (!symbol(lib, "wglGetProcAddress", &api.getProcAddress) || !symbol(lib, "wglCreateContext", &api.createContext) ||
         !symbol(lib, "wglDeleteContext", &api.deleteContext) || !symbol(lib, "wglMakeCurrent", &api.makeCurrent) ||
         !symbol(lib, "wglGetCurrentContext", &api.getCurrentContext)) {
+        FreeLibrary(lib);
         *error = "WGL: opengl32.dll lacks the WGL 1.0 entry points";
         return false;
     }
@@ -61,9 +64,13 @@ bool loadWgl(std::string* error) {
     windowClass.lpfnWndProc = DefWindowProcA;
     windowClass.hInstance = GetModuleHandleA(nullptr);
     windowClass.lpszClassName = kWindowClass;
-    if (!RegisterClassA(&windowClass) && GetLastError() != ERROR_CLASS_ALREADY_EXISTS) {
-        *error = "WGL: RegisterClass failed (" + lastErrorText() + ")";
-        return false;
+    if (!RegisterClassA(&windowClass)) {
+        const DWORD code = GetLastError();
+        if (code != ERROR_CLASS_ALREADY_EXISTS) {
+            FreeLibrary(lib);
+            *error = "WGL: RegisterClass failed (" + errorText(code) + ")";
+            return false;
+        }
     }
     g_wgl = api;
     return true;
@@ -106,8 +113,10 @@ public:
         }
         HGLRC legacy = g_wgl.createContext(result->dc_);
         if (!legacy || !g_wgl.makeCurrent(result->dc_, legacy)) {
+            const DWORD code = GetLastError();  // before the clean-up overwrites it
             if (legacy) g_wgl.deleteContext(legacy);
-            *error = "WGL: wglCreateContext failed (" + lastErrorText() + ")";
+            *error = std::string(legacy ? "WGL: wglMakeCurrent failed for the legacy context (" : "WGL: wglCreateContext failed (") +
+                     errorText(code) + ")";
             return nullptr;
         }
         decltype(g_wgl.createContextAttribs) createAttribs = nullptr;
@@ -115,6 +124,7 @@ public:
         const int attribs[] = {kWglContextMajor, 4, kWglContextMinor, 5, kWglContextProfileMask,
                                kWglContextCoreProfileBit, 0};
         HGLRC core = createAttribs ? createAttribs(result->dc_, nullptr, attribs) : nullptr;
+        const DWORD coreError = GetLastError();  // ERROR_INVALID_VERSION_ARB and the like, before the clean-up
         g_wgl.makeCurrent(nullptr, nullptr);
         g_wgl.deleteContext(legacy);
         if (!createAttribs) {
@@ -122,7 +132,7 @@ public:
             return nullptr;
         }
         if (!core) {
-            *error = "WGL: wglCreateContextAttribsARB(GL 4.5 core) failed (" + lastErrorText() + ")";
+            *error = "WGL: wglCreateContextAttribsARB(GL 4.5 core) failed (" + errorText(coreError) + ")";
             return nullptr;
         }
         result->context_ = core;

@@ -7,8 +7,15 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/configure.sh"
 cd "$root/build"
 # The Windows cross build under Wine (label "windows") runs only when asked for: scripts/test.sh -L windows.
-exclude=(-LE windows)
-for a in "$@"; do
-  case "$a" in *windows*) exclude=() ;; esac
+# ctest excludes only what matches every -LE given, so a caller's -LE X becomes -LE 'windows|X'.
+args=()
+exclude="windows"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -LE|--label-exclude) exclude="windows|$2"; shift 2 ;;
+    *windows*) exclude=""; args+=("$1"); shift ;;
+    *) args+=("$1"); shift ;;
+  esac
 done
-ctest --output-on-failure --timeout 600 -j "$(nproc)" "${exclude[@]}" "$@"
+if [ -n "$exclude" ]; then args+=(-LE "$exclude"); fi
+ctest --output-on-failure --timeout 600 -j "$(nproc)" "${args[@]}"

@@ -30,7 +30,7 @@ constexpr uint32_t kStatisticWords = 8, kLightPools = 64, kCounterWords = kStati
 constexpr uint32_t kLightDroppedWord = 6;  // BL_VCT_COUNT_LIGHT_DROPPED: from here on, reset by update() only
 // Fixed-point units of light per unit of radiance at emittanceStorageScale 1.
 constexpr float kEmittanceUnits = 65536.0f;
-// Entries of the light pool (three words each) per sub-pool: ClipmapDesc::lightEntries, or an eighth of the voxels but
+// Entries of the light pool (four words each) per sub-pool: ClipmapDesc::lightEntries, or an eighth of the voxels but
 // at least 65536 (a small clip-map's surfaces are a larger share of its voxels, and a small sub-pool fills unevenly).
 inline uint64_t lightEntriesPerPool(const ClipmapDesc& d) {
     if (d.emittance == EmittanceMode::None) return 0;

@@ -30,7 +30,8 @@ const char* const kSeparators = "/";
 std::string folderOf(const std::string& path) {
     const size_t slash = path.find_last_of(kSeparators);
     if (slash == std::string::npos) return ".";
-    return slash == 0 ? path.substr(0, 1) : path.substr(0, slash);
+    // "/x" and, on Windows, "C:\\x": the root keeps its separator ("C:" alone is drive C's current folder).
+    return slash == 0 || path[slash - 1] == ':' ? path.substr(0, slash + 1) : path.substr(0, slash);
 }
 
 std::string fileOf(const std::string& path) {

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
         else return usage(("unknown option '" + a + "'").c_str());
     }
     if (size < 16 || size > 4096) return usage("--size must be in 16..4096");
+    if (outPath.size() < 4 || outPath.compare(outPath.size() - 4, 4, ".png") != 0) return usage("--out must name a .png file");
     auto start = std::chrono::steady_clock::now();
 
     // 1. A device. Any IDevice works from here on; the validation wrapper checks every call we make.
@@ -128,10 +129,25 @@ int main(int argc, char** argv) {
     // 5. Read back (blocking; for tools and tests) and write a PNG.
     std::vector<uint8_t> pixels(size_t(size) * size * 4);
     if (!device->readTexture(image, {}, pixels.data())) return 1;
+    // stb reports no write errors itself: the callback keeps the first (a full disk), and fclose's.
+    struct Sink {
+        FILE* file;
+        bool ok;
+    } sink{std::fopen(outPath.c_str(), "wb"), true};
+    if (!sink.file) {
+        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(), strerror(errno));
+        return 1;
+    }
+    auto write = [](void* context, void* data, int size) {
+        auto* s = static_cast<Sink*>(context);
+        s->ok = s->ok && std::fwrite(data, 1, size_t(size), s->file) == size_t(size);
+    };
     errno = 0;
-    if (!stbi_write_png(outPath.c_str(), int(size), int(size), 4, pixels.data(), int(size) * 4)) {
-        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(),
-                errno ? strerror(errno) : "the image writer gave no reason");
+    const bool encoded = stbi_write_png_to_func(write, &sink, int(size), int(size), 4, pixels.data(), int(size) * 4) != 0;
+    const bool closed = std::fclose(sink.file) == 0;
+    if (!encoded || !sink.ok || !closed) {
+        fprintf(stderr, "hello_rhi: cannot write '%s': %s\n", outPath.c_str(), errno ? strerror(errno) : "the image writer failed");
+        std::remove(outPath.c_str());
         return 1;
     }
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

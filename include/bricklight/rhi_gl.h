@@ -32,7 +32,8 @@ enum class HeadlessApi { Auto, OSMesa, EGL, WGL };
 // A GL 4.5 core context with no window. OSMesa renders into a tiny client buffer that nothing uses (all
 // rendering goes to framebuffer objects); EGL uses EGL_EXT_platform_device when present (a GPU machine
 // with no display), else Mesa's surfaceless platform or the default display, with no surface at all; WGL
-// (Windows) makes its context on a hidden 1x1 window of its own.
+// (Windows) makes its context on a hidden 1x1 window of its own, which only the creating thread can destroy:
+// destroy a WGL context (or the device that owns it) on the thread that created it.
 class HeadlessContext {
 public:
     static std::unique_ptr<HeadlessContext> create(HeadlessApi api, std::string* error);

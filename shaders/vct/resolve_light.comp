@@ -35,7 +35,9 @@ void main() {
         // Surfaces that cover more than the voxel's face along this direction cover one another: their sum would
         // count the hidden ones too (two parallel walls, both sides of a box thinner than the voxel), and light fed
         // back through bounces would grow. The face then sends their coverage-weighted mean radiance.
-        float coverage = float(light.words[entry + 3u]) / VCT_COVERAGE_UNITS;
+        // (Exact where coverage <= 1; elsewhere a division, which the GLSL and SPIR-V compilers of one driver may
+        // round differently: Mesa's agree, bit for bit, as the cross-backend tests check.)
+        precise float coverage = float(light.words[entry + 3u]) / VCT_COVERAGE_UNITS;
         radiance /= max(coverage, 1.0);
         light.words[entry] = 0u;
         light.words[entry + 1u] = 0u;

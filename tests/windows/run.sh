@@ -17,9 +17,9 @@ host="$(realpath "${1:-$root/build}")"
 win="$(realpath -m "${2:-$root/build-windows}")"
 
 if [ -z "${BRICKLIGHT_UNDER_XVFB:-}" ]; then
-  "$root/scripts/build_windows.sh" "$win"
-  # The Linux programs the images are compared with.
-  cmake --build "$host" --target bricklight-render bricklight-compare hello_rhi > /dev/null
+  # The Linux programs the images are compared with, and the shader compiler the cross build uses.
+  cmake --build "$host" --target bricklight-render bricklight-compare hello_rhi bricklight-shaderc > /dev/null
+  "$root/scripts/build_windows.sh" "$win" "$host/bin/bricklight-shaderc"
   # Wine's Vulkan and GL need its X11 driver: one virtual display of our own for every run below.
   exec env BRICKLIGHT_UNDER_XVFB=1 xvfb-run -a -s "-screen 0 64x64x24" "$0" "$host" "$win"
 fi
@@ -51,9 +51,8 @@ grep -q 'Insert instance layer "VK_LAYER_KHRONOS_validation"' "$work/probe.log" 
   fail "the host's validation layer was not inserted under Wine"
 echo "windows: VK_LAYER_KHRONOS_validation inserted by the host loader under Wine"
 
-run conformance "$bin/bricklight-conformance-run.exe" --backend both
-tail -n 3 "$work/conformance.log"
-grep -qE "^conformance: .* 0 failed" "$work/conformance.log" || fail "conformance summary"
+run conformance "$bin/bricklight-conformance-run.exe" --backend both  # its exit code says every case passed
+tail -n 1 "$work/conformance.log"
 
 "$host/bin/hello_rhi" --backend vulkan --out "$work/hello_linux.png" > /dev/null
 for backend in vulkan gl; do
@@ -66,7 +65,8 @@ render=(--scene cornell --width 64 --height 64 --frames 16)
 for backend in vulkan gl; do
   run "render_$backend" "$bin/bricklight-render.exe" "${render[@]}" --backend "$backend" --out "cornell_$backend.hdr"
   "$host/bin/bricklight-render" "${render[@]}" --backend "$backend" --out "$work/linux_$backend.exr" > /dev/null
-  line="$("$host/bin/bricklight-compare" "$work/linux_$backend.exr" "$work/cornell_$backend.hdr")"
+  line="$("$host/bin/bricklight-compare" "$work/linux_$backend.exr" "$work/cornell_$backend.hdr")" ||
+    fail "bricklight-compare on $backend"
   echo "windows: bricklight-render on $backend vs Linux: $line"
   relmse="$(echo "$line" | sed -n 's/^relMSE \([^ ]*\) .*/\1/p')"
   means="$(echo "$line" | sed -n 's/.* mean \([^ ]*\) vs \([^ ]*\) .*/\1 \2/p')"
