@@ -129,7 +129,7 @@ const Program* VulkanDevice::getProgram(const std::vector<Shader*>& shaders, con
 }
 
 VkPipeline VulkanDevice::getComputePipeline(const Program& program, Shader& shader, const std::string& call) {
-    const std::string key = "c" + std::to_string(shader.id);
+    const std::string key = std::string("c").append(std::to_string(shader.id));
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second.pipeline;
     VkComputePipelineCreateInfo cpci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -60,12 +60,20 @@ Shader* VulkanDevice::findShader(rhi::ShaderHandle h, const std::string& call, c
     return it->second.get();
 }
 
-std::string VulkanDevice::textureName(const Texture& t) const {
-    return "texture '" + (t.desc.debugName.empty() ? "#" + std::to_string(t.id) : t.desc.debugName) + "'";
+namespace {
+// "<kind> '<name>'", or "<kind> '#<id>'" when unnamed. (Appended piece by piece: GCC 12 at -O3 warns falsely on
+// "literal" + std::string&&, its bug 105651.)
+std::string resourceName(const char* kind, const std::string& debugName, uint64_t id) {
+    std::string name(kind);
+    name.append(" '");
+    if (debugName.empty()) name.append("#").append(std::to_string(id));
+    else name.append(debugName);
+    return name.append("'");
 }
-std::string VulkanDevice::bufferName(const Buffer& b) const {
-    return "buffer '" + (b.desc.debugName.empty() ? "#" + std::to_string(b.id) : b.desc.debugName) + "'";
-}
+}  // namespace
+
+std::string VulkanDevice::textureName(const Texture& t) const { return resourceName("texture", t.desc.debugName, t.id); }
+std::string VulkanDevice::bufferName(const Buffer& b) const { return resourceName("buffer", b.desc.debugName, b.id); }
 
 const rhi::TextureDesc* VulkanDevice::describe(rhi::TextureHandle h) const {
     auto it = textures_.find(h.id);
