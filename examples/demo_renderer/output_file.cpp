@@ -19,23 +19,25 @@
 
 namespace bricklight::render {
 
+const char* pathSeparators() {
+#if defined(_WIN32)
+    return "/\\";
+#else
+    return "/";
+#endif
+}
+
 namespace {
 
-#if defined(_WIN32)
-const char* const kSeparators = "/\\";
-#else
-const char* const kSeparators = "/";
-#endif
-
 std::string folderOf(const std::string& path) {
-    const size_t slash = path.find_last_of(kSeparators);
+    const size_t slash = path.find_last_of(pathSeparators());
     if (slash == std::string::npos) return ".";
     // "/x" and, on Windows, "C:\\x": the root keeps its separator ("C:" alone is drive C's current folder).
     return slash == 0 || path[slash - 1] == ':' ? path.substr(0, slash + 1) : path.substr(0, slash);
 }
 
 std::string fileOf(const std::string& path) {
-    const size_t slash = path.find_last_of(kSeparators);
+    const size_t slash = path.find_last_of(pathSeparators());
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
@@ -75,7 +77,6 @@ bool replaceFile(const std::string& from, const std::string& to, std::string* wh
     return false;
 #endif
 }
-
 
 bool writeFileAtomically(const std::string& path, const std::function<bool(const std::string&, std::string*)>& write,
                          const std::function<bool(const std::string&, std::string*)>& check, std::string* error) {

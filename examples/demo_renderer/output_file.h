@@ -8,6 +8,9 @@
 
 namespace bricklight::render {
 
+// The characters that end a path's folders: "/", and on Windows "/\\" as well.
+const char* pathSeparators();
+
 // The target's folder exists and can be written, and the target is not a folder or a special file.
 bool checkOutputPath(const std::string& path, std::string* error);
 

@@ -177,7 +177,7 @@ void progress(uint32_t done, uint32_t total) {
 }
 
 std::string stemOf(const std::string& out) {
-    const size_t dot = out.find_last_of('.'), slash = out.find_last_of('/');
+    const size_t dot = out.find_last_of('.'), slash = out.find_last_of(render::pathSeparators());
     return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? out : out.substr(0, dot);
 }
 // AOVs and debug views are linear: .exr (.hdr in a build whose image files are stb's, e.g. on Windows).
