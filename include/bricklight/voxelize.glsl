@@ -412,6 +412,7 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
 #else
     uint opacity = vctPackOpacity(t.depth.w * abs(t.faceNormal));
 #endif
+    if (opacity != 0u) opacity |= vctOrientationBits(t.faceNormal);
     uint writable = 0u;  // bit k - k0
     uint written = 0u, killedByFiner = 0u, killedNotDirty = 0u;
     for (int k = k0; k <= k1; ++k) {
@@ -433,9 +434,10 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
 #ifndef BL_VOXEL_OPACITY_ONLY
     uint directions = blVctFrame.params.z;  // 0 (opacity only), 1 (isotropic) or 6
     if (writable == 0u || directions == 0u) return;
-    // Emittance: the samples inside the triangle, counted per voxel along the axis — voxel k's count in bits
-    // 5k..5k+4 of one word (at most 16 each): a counter array indexed by a computed k is kept in memory, not in
-    // registers.
+    // Emittance: the pixel's samples inside the triangle (edges owned by one side only, so that shared edges count
+    // once) give the area of the surface it stands for; isotropic emittance also counts them per voxel along the
+    // axis — voxel k's count in bits 5k..5k+4 of one word (at most 16 each): a counter array indexed by a computed k
+    // is kept in memory, not in registers.
     uint samples = 0u;
     uint inside = 0u;
     for (int sy = 0; sy < 4; ++sy)
@@ -482,15 +484,21 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
             if (weight == 0.0) continue;
             // Light leaving along the projection axis goes to the column's last voxel on that side and the one
             // behind it, so that no voxel of the same column (thickness, or a tilted plane's spread) covers it and
-            // a filtered sample between the two still sees the surface's radiance; light leaving sideways stays
-            // in each sample's own voxel.
+            // a filtered sample between the two still sees the surface's radiance. Light leaving sideways goes to
+            // every voxel of the column the surface makes opaque: each blocks a sideways cone by the surface's
+            // opacity, so each must send the surface's light too (the resolve weighs the radiance by that opacity).
+            // Kept in the samples' own voxels, the tilted plane's spread and the thickness were dark and opaque,
+            // and a tilted wall sent a cone 70 % of its light (a closed sphere's cones gathered 63 %). Isotropic
+            // emittance keeps each sample's light in its own voxel: its mips add light along the axes a surface
+            // does not block, so light in the thickness too would count a wall twice.
             // The column's ends come from the geometry alone (not from what this update may write), so that a
             // voxel gets the same light whichever update writes it.
             bool axial = directions > 1u && d % 3u == uint(axis);
             int end = d < 3u ? k1 - k0 : 0;
             int behind = d < 3u ? end - 1 : end + 1;
             for (int k = 0; k < BL_VOXEL_MAX_SPAN; ++k) {
-                uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u) : (samples >> (5u * uint(k))) & 31u;
+                uint count = axial ? ((k == end || (k == behind && behind <= k1 - k0)) ? inside : 0u)
+                                   : (directions == 1u ? (samples >> (5u * uint(k))) & 31u : inside);
                 if (count == 0u || (writable & (1u << uint(k))) == 0u) continue;
                 ivec3 voxel = origin + blVoxelUnproject(ivec3(pixelInLevel, k0 + k), axis);
                 precise float share = weight * float(count) * sampleArea;  // of the voxel's face, projected along d

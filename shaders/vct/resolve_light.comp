@@ -5,8 +5,8 @@
 #include "bricklight/rgb9e5.glsl"
 // Turns the light one box of one level gathered into radiance: each direction's atlas word holds the tagged index of
 // the pool entry the voxelization summed the voxel's fixed-point light in (bricklight/voxelize.glsl), or still the
-// previous update's radiance (no light this time: 0); the word becomes the radiance as RGB9E5 bits (a
-// coverage-weighted mean where surfaces overlap in projection), and the entry is zeroed for the next update.
+// previous update's radiance (no light this time: 0); the word becomes the light a cone sees through the voxel's
+// face as RGB9E5 bits (below), and the entry is zeroed for the next update.
 // Rows of 32 along x: neighbouring threads touch neighbouring texels.
 layout(local_size_x = 32, local_size_y = 2, local_size_z = 1) in;
 BL_CONSTANTS(0) uniform Box {
@@ -32,13 +32,24 @@ void main() {
         }
         uint entry = 4u * vctLightEntryOf(word);
         vec3 radiance = vec3(float(light.words[entry]), float(light.words[entry + 1u]), float(light.words[entry + 2u])) * box.scales.x;
-        // Surfaces that cover more than the voxel's face along this direction cover one another: their sum would
-        // count the hidden ones too (two parallel walls, both sides of a box thinner than the voxel), and light fed
-        // back through bounces would grow. The face then sends their coverage-weighted mean radiance.
-        // (Exact where coverage <= 1; elsewhere a division, which the GLSL and SPIR-V compilers of one driver may
-        // round differently: Mesa's agree, bit for bit, as the cross-backend tests check.)
+        // What a cone sees through the voxel's face: the radiance of the surfaces that send light this way (their
+        // coverage-weighted mean: where they cover more than the face they hide one another, and a sum would count
+        // the hidden ones too — two parallel walls, both sides of a box thinner than the voxel — and light fed back
+        // through bounces would grow) times the share of the face they block, the voxel's opacity along the axis,
+        // so that the light per unit of opacity a cone takes is the surfaces' radiance wherever they lie in the
+        // voxel. (The light premultiplied by its own coverage instead made a tilted wall's voxels send less than
+        // their opacity takes: their coverage is the surface's area in the voxel, their opacity the whole normal
+        // component.)
+        // (A division, which the GLSL and SPIR-V compilers of one driver may round differently: Mesa's agree, bit
+        // for bit, as the cross-backend tests check.)
         precise float coverage = float(light.words[entry + 3u]) / VCT_COVERAGE_UNITS;
-        radiance /= max(coverage, 1.0);
+        if (box.params.y == 1u) {
+            radiance /= max(coverage, 1.0);  // isotropic: one value for every direction, premultiplied by coverage
+        } else {
+            float opacity = vctUnpackOpacity(imageLoad(atlas, vctTexel(0u, level, voxel, resolution)).x)[d % 3u];
+            precise vec3 weighted = radiance * (opacity / coverage);
+            radiance = coverage > 0.0 ? weighted : vec3(0.0);
+        }
         light.words[entry] = 0u;
         light.words[entry + 1u] = 0u;
         light.words[entry + 2u] = 0u;

@@ -78,8 +78,9 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
                 if (got != expected) {
                     if (++mismatches < 8) UNSCOPED_INFO("level 0 voxel " << x << "," << y << "," << z << ": " << got);
                 }
-                // Emittance per direction: each face sends its light towards its normal, weighted by the part of the
-                // voxel's face it covers.
+                // Emittance per direction: each face sends its light towards its normal from the voxels it makes
+                // opaque along it, weighted by that opacity (1: what a cone sees through the voxel's face is the
+                // face's radiance wherever in the voxel it lies, however much of the face it covers).
                 for (int d = 0; d < 6; ++d) {
                     const int axis = d % 3;
                     const bool positive = d < 3;
@@ -87,9 +88,9 @@ void emissiveCubeVoxelizesExactly(const std::string& backend) {
                     float area = 0.0f;
                     if (v[axis] == layer)
                         area = coverage(v[(axis + 1) % 3], lo.x, hi.x) * coverage(v[(axis + 2) % 3], lo.x, hi.x);
-                    // Quarters of a face of these radiances are exact in RGB9E5: no rounding.
+                    // These radiances are exact in RGB9E5: no rounding.
                     for (int c = 0; c < 3; ++c) {
-                        const float expected = area * radiance[c];
+                        const float expected = area > 0.0f ? radiance[c] : 0.0f;
                         const float word = emittance[h.wordIndex(0, v, uint32_t(d * 3 + c))];
                         if (word != expected && ++mismatches < 8)
                             UNSCOPED_INFO("level 0 voxel " << x << "," << y << "," << z << " direction " << d << " channel " << c
@@ -331,7 +332,8 @@ void refusesBadInput(const std::string& backend) {
     const std::vector<float> emittance = h.emittance();
     CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 0)] == 0.0f);  // +X, red (NaN)
     CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 1)] == 0.0f);  // +X, green (negative)
-    CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 2)] == 2.0f * 0.25f);  // a quarter of the +X face, blue 2 (exact in RGB9E5)
+    // A quarter of the +X face, which the voxel's opacity along x (1) counts whole: blue 2 (exact in RGB9E5).
+    CHECK(emittance[h.wordIndex(0, {5, 5, 5}, 2)] == 2.0f);
     REQUIRE_NO_MESSAGES(td);
 }
 
@@ -356,11 +358,12 @@ void hookSeesTheFragment(const std::string& backend) {
     const std::vector<float> emittance = h.emittance();
     for (int y = 4; y <= 5; ++y)
         for (int x = 4; x <= 5; ++x) {
-            const float share = 9.0f / 16.0f;  // the samples of the voxel's face inside the square
-            auto word = [&](uint32_t c) { return emittance[h.wordIndex(0, {x, y, 10}, 2 * 3 + c)] / share; };  // +Z
+            // The hook's light as the voxel sends it through its +Z face: its radiance (the mean over the samples of
+            // the voxel's face inside the square, 9 of 16, all at the same point) times the voxel's opacity along z, 1.
+            auto word = [&](uint32_t c) { return emittance[h.wordIndex(0, {x, y, 10}, 2 * 3 + c)]; };  // +Z
             const glm::vec3 seen{word(0), word(1), word(2)};
             INFO("voxel " << x << "," << y << ": the hook saw " << seen.x << "," << seen.y << "," << seen.z);
-            // RGB9E5 keeps 9 bits of the largest channel (z = 10.25): half a unit is under 2^-6 after the share.
+            // RGB9E5 keeps 9 bits of the largest channel (z = 10.25): half a unit is 2^-6.
             const float margin = 10.25f / 512.0f;
             CHECK(seen.x == Approx(x + 0.5f).margin(margin));
             CHECK(seen.y == Approx(y + 0.5f).margin(margin));
