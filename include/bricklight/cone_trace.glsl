@@ -101,48 +101,6 @@ vec3 blVctLevelUvw(uint level, vec3 pFinest, float resolution, uint levels) {
 }
 
 
-// The orientation bits (vct_layout.glsl, vctOrientationBits) of the voxel nearest an atlas coordinate: read
-// unfiltered, since bits do not blend.
-uint blVctOrientationBits(vec3 uvw) {
-    ivec3 size = textureSize(blVctOpacityVolume, 0);
-    ivec3 t = ivec3(floor(uvw * vec3(size)));
-    t.y -= size.y * int(floor(float(t.y) / float(size.y)));  // the sampler repeats in y
-    t = clamp(t, ivec3(0), size - 1);
-    return uint(texelFetch(blVctOpacityVolume, t, 0).a * 255.0 + 0.5);
-}
-
-// Where a voxel's axis opacities and orientation bits describe surfaces of one orientation, their normal up to sign,
-// scaled as the opacities are (its components' magnitudes are the axis opacities): m · d is then the share of a
-// cone's cross-section they block. False where the bits leave two opaque axes' relative sign open or name both signs
-// (corners, several surfaces): the axes are then taken apart, as VXGI does.
-bool blVctPlane(vec3 axes, uint bits, out vec3 m) {
-    const float significant = 0.1;  // an axis less opaque than this may take either sign: its share is small
-    m = axes;
-    int r = axes.x >= axes.y ? (axes.x >= axes.z ? 0 : 2) : (axes.y >= axes.z ? 1 : 2);  // the most opaque axis
-    if (axes[r] < significant) return false;
-    for (int pair = 0; pair < 3; ++pair) {
-        int i = pair, j = (pair + 1) % 3;
-        uint b = (bits >> uint(2 * pair)) & 3u;
-        bool both = axes[i] >= significant && axes[j] >= significant;
-        if (b == 3u && both) return false;  // surfaces of both kinds
-        if (both && b == 0u) return false;  // two opaque axes, no surface with both: a corner
-        if (b == 3u) continue;
-        // The other axis of a pair with the reference takes its sign relative to it.
-        if (i == r && b != 0u) m[j] = b == 1u ? axes[j] : -axes[j];
-        if (j == r && b != 0u) m[i] = b == 1u ? axes[i] : -axes[i];
-    }
-    // Both other axes opaque: the pair between them must agree with the signs taken (a plane's three signs multiply
-    // to the same as its pairs say).
-    int u = (r + 1) % 3, v = (r + 2) % 3;
-    if (axes[u] >= significant && axes[v] >= significant) {
-        int pair = u < v ? (v - u == 1 ? u : v) : (u - v == 1 ? v : u);
-        uint b = (bits >> uint(2 * pair)) & 3u;
-        bool same = m[u] * m[v] > 0.0;
-        if ((b == 1u) != same) return false;
-    }
-    return true;
-}
-
 // A level's (or mip's) volumes at a point (finest-voxel coordinates): opacity in w, emittance towards −dir in xyz.
 vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint levels) {
     vec3 uvw = blVctLevelUvw(level, pFinest, resolution, levels);
@@ -155,32 +113,17 @@ vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint
     float step = 1.0 / float(vctRegions(directions));
     uvw.x *= step / (resolution + 2.0);
     vec3 axes = textureLod(blVctOpacityVolume, uvw, 0.0).rgb;
-    // Surfaces of one orientation, not along an axis (a tilted wall, a sphere): taken apart by axes, a wall seen
-    // at an angle blocked Σ |n_i d_i| > |n · d| of the cone (a grazing cone lost itself in the wall it left), and the
-    // axes whose component disagrees with the view showed the wall's other side — a closed sphere's cones gathered
-    // 63 % of its light. The plane's own normal gives both: opacity |m · d|, and the light of the side facing back.
-    vec3 m;
-    bool plane = blVctPlane(axes, blVctOrientationBits(uvw), m);
-    float planeOpacity = abs(dot(m, dir));
-    if (directions == 0u) return vec4(0.0, 0.0, 0.0, min(plane ? planeOpacity : dot(w, axes), 1.0));
-    // The faces that look back along the cone: −X (region 4) for a cone going +x, +X (region 1) otherwise; for a
-    // plane, the faces its side that faces back along the cone sends through.
-    vec3 facing = plane ? (dot(m, dir) < 0.0 ? m : -m) : -dir;
-    vec3 faces = directions == 1u ? vec3(1.0) : mix(vec3(4.0, 5.0, 6.0), vec3(1.0, 2.0, 3.0), greaterThan(facing, vec3(0.0)));
+    if (directions == 0u) return vec4(0.0, 0.0, 0.0, min(dot(w, axes), 1.0));
+    // The faces that look back along the cone: −X (region 4) for a cone going +x, +X (region 1) otherwise.
+    vec3 faces = directions == 1u ? vec3(1.0) : mix(vec3(1.0, 2.0, 3.0), vec3(4.0, 5.0, 6.0), greaterThan(dir, vec3(0.0)));
     vec3 ex = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.x * step, uvw.yz), 0.0).rgb;
     vec3 ey = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.y * step, uvw.yz), 0.0).rgb;
     vec3 ez = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.z * step, uvw.yz), 0.0).rgb;
-    vec3 weights = plane ? axes : w;
-    float opacity = dot(weights, axes);
-    vec3 light = weights.x * ex + weights.y * ey + weights.z * ez;
-    // A plane: its radiance (the light per unit of opacity of the faces it sends through) over the share it blocks.
-    if (plane) {
-        light *= opacity > 1.0e-6 ? planeOpacity / opacity : 0.0;
-        opacity = planeOpacity;
-    }
     // Where the weighted opacities sum past 1 (a corner, a solid voxel seen diagonally) the opacity saturates; the
     // light is scaled with it, so that a sample's light per unit of opacity — the surfaces' radiance — stays as it
     // is (unscaled, a diagonal cone into a corner read up to √3 times the walls' radiance).
+    float opacity = dot(w, axes);
+    vec3 light = w.x * ex + w.y * ey + w.z * ez;
     return opacity > 1.0 ? vec4(light / opacity, 1.0) : vec4(light, opacity);
 }
 
@@ -279,8 +222,10 @@ BlConeResult blTraceCone(BlCone cone) {
         // trilinear reads spread it over two voxels' length, and consecutive samples through one voxel see the same
         // surfaces: each step holds the share alpha × step / size of them, and the shares of one crossing add (a
         // surface lies in exactly one step), so an opaque wall ends the cone. Compounded as independent layers
-        // (Beer), 15–25 % of the light passed through the walls of a closed box. Samples after empty space, or more
-        // than two sample widths on, meet other surfaces: their transmittances multiply.
+        // (Beer), 15–25 % of the light passed through the walls of a closed box. Samples after empty space, or where
+        // the opacity rises again after falling below half its peak, meet other surfaces: their transmittances
+        // multiply. (A fixed window of two sample widths split a wall crossed at an angle, whose trilinear spread is
+        // longer along the cone, into two crossings that compounded: 25 % of a cone passed a closed box's floor.)
         bool rising = alpha > crossingLast * 1.25 + 0.01;
         if (alpha < 0.01 || (rising && crossingLast < 0.5 * crossingPeak)) {
             crossingBase = transmittance;

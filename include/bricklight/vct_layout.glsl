@@ -15,8 +15,7 @@
 #define BRICKLIGHT_VCT_LAYOUT_GLSL
 
 // Opacity words: how much of a voxel's cross-section blocks light travelling along x, y and z, 8-bit fixed
-// point each (bits 0–7, 8–15, 16–23: the RGB of the RGBA8_UNORM view; VXGI 1.0's directional opacity; bits 24–29,
-// read unfiltered through the view's alpha, the surfaces' orientation: vctOrientationBits). A surface
+// point each (bits 0–7, 8–15, 16–23: the RGB of the RGBA8_UNORM view; VXGI 1.0's directional opacity). A surface
 // blocks light along each axis by the normal's component on it (a wall across x blocks x fully and y, z not at
 // all); downsampling keeps the axes apart, so that a wall across a coarse voxel still blocks a cone crossing it.
 const uint BL_VCT_OPACITY_AXIS_ONE = 255u;
@@ -26,27 +25,9 @@ uint vctPackOpacity(vec3 a) {
     uvec3 q = uvec3(scaled);
     return q.x | (q.y << 8u) | (q.z << 16u);
 }
-// Bits 24–29: the orientation of the voxel's surfaces, for each pair of axes (xy, yz, zx) whether their normals'
-// components on the two axes have the same sign (bit 24 + 2 × pair) or opposite signs (bit 25 + 2 × pair); both
-// bits: surfaces of both kinds (a corner, a curved surface crossing an axis plane). Neither: no surface with both
-// components. The axis opacities alone cannot tell a wall that rises along x + y from one along x − y, and a cone
-// seen at an angle needs to: such a wall blocks a cone by |n · d|, not Σ |n_i d_i|, and the cone sees the one side
-// of it that faces back along it (bricklight/cone_trace.glsl). Two-sided, so a normal and its negation agree.
-const uint VCT_ORIENTATION_BITS = 0x3F000000u;
-uint vctOrientationBits(vec3 n) {
-    // A component under this (about 3°) leaves its pairs unmarked: its sign is noise and its share small.
-    const float significant = 0.05;
-    vec3 a = abs(n);
-    uint bits = 0u;
-    for (int pair = 0; pair < 3; ++pair) {
-        int i = pair, j = (pair + 1) % 3;
-        if (a[i] >= significant && a[j] >= significant) bits |= (n[i] * n[j] > 0.0 ? 1u : 2u) << uint(24 + 2 * pair);
-    }
-    return bits;
-}
 uint vctMaxOpacity(uint a, uint b) {
     uvec3 m = max(uvec3(a, a >> 8u, a >> 16u) & 255u, uvec3(b, b >> 8u, b >> 16u) & 255u);
-    return m.x | (m.y << 8u) | (m.z << 16u) | ((a | b) & VCT_ORIENTATION_BITS);
+    return m.x | (m.y << 8u) | (m.z << 16u);
 }
 // A parent's opacity words from its 2³ children's (child i at 2·voxel + (i & 1, (i >> 1) & 1, i >> 2)): along each
 // axis the two children of each column combine as complements, 1 − (1 − a)(1 − b), and the four columns average.
@@ -65,7 +46,6 @@ uint vctDownsampleOpacity(uint children[8]) {
         }
         word |= ((sum + 510u) / 1020u) << shift;
     }
-    for (int i = 0; i < 8; ++i) word |= children[i] & VCT_ORIENTATION_BITS;  // the surfaces of every child
     return word;
 }
 // A product with the folded constant, not a division: compilers turn `/ 255.0` into a division on one device and a

@@ -412,7 +412,6 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
 #else
     uint opacity = vctPackOpacity(t.depth.w * abs(t.faceNormal));
 #endif
-    if (opacity != 0u) opacity |= vctOrientationBits(t.faceNormal);
     uint writable = 0u;  // bit k - k0
     uint written = 0u, killedByFiner = 0u, killedNotDirty = 0u;
     for (int k = k0; k <= k1; ++k) {
