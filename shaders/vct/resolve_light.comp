@@ -23,6 +23,7 @@ void main() {
     if (any(greaterThanEqual(local, box.size.xyz))) return;
     uint level = uint(box.minLevel.w), resolution = box.params.x;
     ivec3 voxel = box.minLevel.xyz + local;
+    vec3 opacity = vctUnpackOpacity(imageLoad(atlas, vctTexel(0u, level, voxel, resolution)).x);  // along x, y, z
     for (uint d = 0u; d < box.params.y; ++d) {
         ivec3 texel = vctTexel(1u + d, level, voxel, resolution);
         uint word = imageLoad(atlas, texel).x;
@@ -45,10 +46,11 @@ void main() {
         precise float coverage = float(light.words[entry + 3u]) / VCT_COVERAGE_UNITS;
         if (box.params.y == 1u) {
             radiance /= max(coverage, 1.0);  // isotropic: one value for every direction, premultiplied by coverage
+        } else if (coverage > 0.0) {
+            precise float blocked = opacity[d % 3u] / coverage;
+            radiance *= blocked;
         } else {
-            float opacity = vctUnpackOpacity(imageLoad(atlas, vctTexel(0u, level, voxel, resolution)).x)[d % 3u];
-            precise vec3 weighted = radiance * (opacity / coverage);
-            radiance = coverage > 0.0 ? weighted : vec3(0.0);
+            radiance = vec3(0.0);
         }
         light.words[entry] = 0u;
         light.words[entry + 1u] = 0u;
