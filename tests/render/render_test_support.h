@@ -130,10 +130,10 @@ inline scenes::TriangleMesh groundPlane(float half, glm::vec3 albedo) {
 
 // A closed sphere seen from inside (radius 1): albedo rho, every surface emitting radiance `emission` towards
 // the inside. Its light is known in closed form: after n bounces L = emission · Σ_{k ≤ n} rhoᵏ, converged
-// emission / (1 − rho), the same everywhere.
-inline scenes::SceneGeometry emittingSphere(float rho, float emission) {
+// emission / (1 − rho), the same everywhere. 20 × 4^subdivisions triangles.
+inline scenes::SceneGeometry emittingSphere(float rho, float emission, uint32_t subdivisions = 3) {
     scenes::SceneGeometry s;
-    scenes::TriangleMesh sphere = scenes::icosphere(3);
+    scenes::TriangleMesh sphere = scenes::icosphere(subdivisions);
     for (size_t i = 0; i < sphere.indices.size(); i += 3) std::swap(sphere.indices[i + 1], sphere.indices[i + 2]);  // face inwards
     sphere.albedo = glm::vec3(rho);
     sphere.emission = glm::vec3(emission);
@@ -142,6 +142,19 @@ inline scenes::SceneGeometry emittingSphere(float rho, float emission) {
     s.camera = {glm::vec3(0.1f, -0.2f, 0.3f), glm::vec3(0.5f, 0.2f, -1.0f), glm::vec3(0, 1, 0), 90.0f};
     s.computeBounds();
     return s;
+}
+
+// The mean indirect-diffuse light of a fast-path renderer of `scene` with options `o` after `frameCount` frames, every
+// pixel finite: the closed-form tests' measure (emittingSphere).
+inline double indirectMeanAfter(TestDevice& td, const scenes::SceneGeometry& scene, const render::RasterOptions& o, uint32_t frameCount) {
+    std::string error;
+    auto r = render::RasterRenderer::create(*td.device, scene, o, &error);
+    INFO(error);
+    REQUIRE(r);
+    frames(td, *r, frameCount);
+    const render::Image indirect = r->read(render::Aov::IndirectDiffuse);
+    REQUIRE(allFinite(indirect.rgb));
+    return imageMean(indirect);
 }
 
 // A white furnace: `mesh` alone at the origin under a uniform sky of radiance 1, seen from 4 units away.
