@@ -443,9 +443,10 @@ void blVoxelPixel(BlVoxelTriangle t, ivec2 pixelInLevel, vec3 interpolatedNormal
         for (int sx = 0; sx < 4; ++sx) {
             vec2 s = pixel + (vec2(sx, sy) + 0.5) * 0.25;
             if (!blVoxelOwns(t.edge[0], s) || !blVoxelOwns(t.edge[1], s) || !blVoxelOwns(t.edge[2], s)) continue;
+            ++inside;  // every sample in the triangle counts, whatever this update may write (see below)
+            if (directions != 1u) continue;
             precise float w = clamp(t.plane.x + t.plane.y * s.x + t.plane.z * s.y, t.depth.x, t.depth.y);
             int k = int(floor(w)) + t.offset.z - k0;
-            ++inside;  // every sample in the triangle counts, whatever this update may write (see below)
             if (k >= 0 && k < BL_VOXEL_MAX_SPAN) samples += 1u << (5u * uint(k));
         }
     if (inside == 0u) return;
