@@ -22,14 +22,17 @@ void giShRead(GiShReads reads, int i, vec3 coefficient, float w, inout vec3 diff
     lobe += coefficient * (reads.lobe[i] * w);
 }
 
-// The up to 4 probes of the tiles around the pixel, weighted bilinearly, by how close they are to the
-// pixel's plane and how similar their normal is. Returns the total weight (0: no usable probe).
+// The up to 4 probes of the tiles around the pixel, weighted by their distance to the pixel on screen (a tent
+// 1.5 tiles wide, squared), by how close they are to the pixel's plane and how similar their normal is. Returns
+// the total weight (0: no usable probe). Each probe sits on a pixel jittered anywhere in its tile, so bilinear
+// weights between tile centres gave a probe three quarters of a tile away as much weight as one beside the
+// pixel: light was spread over twice the distance, and where a wall's light changes steeply towards an edge
+// (the corridor's walls near its lit end) the pixels by the edge took the light of probes farther from it.
 float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diffuse, out vec3 lobe) {
     diffuse = vec3(0.0);
     lobe = vec3(0.0);
-    vec2 f = (vec2(pixel) + 0.5) / float(giProbeTile()) - 0.5;
-    ivec2 t0 = ivec2(floor(f));
-    vec2 w2 = f - vec2(t0);
+    ivec2 t0 = ivec2(floor((vec2(pixel) + 0.5) / float(giProbeTile()) - 0.5));
+    float reach = 1.5 * float(giProbeTile());
     float distance = length(p - giFrame.camera.xyz);
     float total = 0.0;
     for (int k = 0; k < 4; ++k) {
@@ -44,8 +47,8 @@ float giScreenProbes(uvec2 pixel, vec3 p, vec3 n, GiShReads reads, out vec3 diff
         vec3 m = giProbeNormal(info);
         float plane = abs(dot(q - p, n)) / (0.01 * distance + 1e-6);
         float facing = max(dot(n, m), 0.0);
-        vec2 b = mix(1.0 - w2, w2, vec2(o));
-        float w = (b.x * b.y + 1e-3) * exp(-plane * plane) * pow(facing, 8.0) * covered;
+        float near = max(1.0 - length(vec2(giProbePixel(info)) - vec2(pixel)) / reach, 0.0);
+        float w = (near * near + 1e-3) * exp(-plane * plane) * pow(facing, 8.0) * covered;
         if (w <= 1e-6) continue;
         for (int i = 0; i < 9; ++i) giShRead(reads, i, probeIrradianceSH[index * 9u + uint(i)].rgb, w, diffuse, lobe);
         total += w;

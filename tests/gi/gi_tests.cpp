@@ -113,10 +113,11 @@ void corridorAgainstReference(const std::string& backend) {
     // Issue 36's thin walls: the built-in corridor, an L of single-sided walls (no thickness) lit by one lamp around
     // the corner from the camera, so nearly all the light on screen has bounced among surfaces the camera never saw
     // (the path tracer's one bounce is a tenth of it). 96 × 64, 120 frames, against 1024 spp. Measured (lavapipe and
-    // llvmpipe, against 2048 spp): indirect mean 86 % (GL 91 %), relMSE 0.033 since probe rays follow a path through the
-    // never-seen surfaces (fill_probes_body.glsl); before, 26 % and 0.25 (their light taken from the probe's own).
-    // Not converged at 120 frames: 71 % at 240, 65 % at 480 (docs/gi.md, Known limitations). Bounds: mean ratio in
-    // [0.75, 1.15], relMSE below 0.07 (the reference's own noise is ~0.012 of it).
+    // llvmpipe): indirect mean 98.7 % (GL 104.7 %), relMSE 0.045 (GL 0.059) since reprojected probe texels are checked
+    // for parallax and pixels weigh probes by their distance (reproject_probes.comp, gi_irradiance.glsl); 85 % (GL 91 %)
+    // before, 26 % before probe rays followed a path through the never-seen surfaces. Still drifts with more frames:
+    // 91 % at 240, 86 % at 480 (docs/gi.md, Known limitations). Bounds: mean ratio in [0.75, 1.15], relMSE below 0.07
+    // (the reference's own noise is ~0.012 of it).
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     render::RasterOptions o;
