@@ -180,7 +180,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
             return;
         }
     }
-    vec4 value = vec4(radiance, kind == GI_TEXEL_HIT ? GI_TEXEL_HIT + min(hit.t, 60000.0) : kind);
+    vec4 value = vec4(radiance, kind);
     if (reprojected && old.a > GI_TEXEL_UNKNOWN_HIT) value.rgb = mix(old.rgb, radiance, GI_PROBE_BLEND);
     imageStore(probes, texel, value);
 }

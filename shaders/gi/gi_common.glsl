@@ -215,8 +215,6 @@ vec2 giHammersley(uint i, uint n) {
 #define GI_TEXEL_UNKNOWN_HIT 0.5  // the ray hit a surface whose radiance no cache holds yet
 #define GI_TEXEL_MISS 0.75        // the environment
 #define GI_TEXEL_HIT 1.0          // the radiance cache at the hit
-// A hit's texel stores GI_TEXEL_HIT + the hit's distance (world units; 0: unknown) in its alpha, for the reprojection's
-// parallax test (reproject_probes.comp).
 uvec2 giProbePixel(uvec4 info) { return uvec2(info.x & 0xFFFFu, info.x >> 16); }
 vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
 
