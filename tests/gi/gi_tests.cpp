@@ -113,10 +113,9 @@ void corridorAgainstReference(const std::string& backend) {
     // Issue 36's thin walls: the built-in corridor, an L of single-sided walls (no thickness) lit by one lamp around
     // the corner from the camera, so nearly all the light on screen has bounced among surfaces the camera never saw
     // (the path tracer's one bounce is a tenth of it). 96 × 64, 120 frames, against 1024 spp. Measured (lavapipe and
-    // llvmpipe): indirect mean 98.7 % (GL 104.7 %), relMSE 0.045 (GL 0.059) since reprojected probe texels are checked
-    // for parallax and pixels weigh probes by their distance (reproject_probes.comp, gi_irradiance.glsl); 85 % (GL 91 %)
-    // before, 26 % before probe rays followed a path through the never-seen surfaces. Still drifts with more frames:
-    // 91 % at 240, 86 % at 480 (docs/gi.md, Known limitations). Bounds: mean ratio in [0.75, 1.15], relMSE below 0.07
+    // llvmpipe): indirect mean 89.5 %, relMSE 0.038 since pixels weigh probes at their own pixels (gi_irradiance.glsl);
+    // 85 % (GL 91 %) before, 26 % before probe rays followed a path through the never-seen surfaces. Not converged at
+    // 120 frames: 68 % at 480 (docs/gi.md, Known limitations). Bounds: mean ratio in [0.75, 1.15], relMSE below 0.07
     // (the reference's own noise is ~0.012 of it).
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
