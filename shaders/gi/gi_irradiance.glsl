@@ -22,8 +22,8 @@ void giShRead(GiShReads reads, int i, vec3 coefficient, float w, inout vec3 diff
     lobe += coefficient * (reads.lobe[i] * w);
 }
 
-// The up to 4 probes of the tiles around the pixel, weighted by their distance to the pixel on screen (a tent
-// 1.5 tiles wide, squared), by how close they are to the pixel's plane and how similar their normal is. Returns
+// The up to 4 probes of the tiles around the pixel, weighted by their distance to the pixel on screen (a squared
+// tent reaching 1.5 tiles), by how close they are to the pixel's plane and how similar their normal is. Returns
 // the total weight (0: no usable probe). Each probe sits on a pixel jittered anywhere in its tile, so bilinear
 // weights between tile centres gave a probe three quarters of a tile away as much weight as one beside the
 // pixel: light was spread over twice the distance, and where a wall's light changes steeply towards an edge
