@@ -20,6 +20,7 @@ enum GpuFlags : uint32_t {
     FlagResetHistory = 2u,
     FlagHistoryValid = 8u,
     FlagCameraMotion = 16u,  // no motion vectors: downsample.comp derives them from depth and the cameras
+    FlagProbeParallax = 32u,  // reproject_probes.comp marks carried texels whose hit lies elsewhere from the new probe
 };
 
 struct GpuFrame {  // BL_CONSTANTS(1)

@@ -85,6 +85,7 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
     if (d.resetHistory) flags |= FlagResetHistory;
     if (historyValid_) flags |= FlagHistoryValid;
     if (!d.gbuffer.motionVectors) flags |= FlagCameraMotion;
+    if (!(desc_.flags & ContextFlags::NoProbeParallax)) flags |= FlagProbeParallax;
     frame_ = GpuFrame{};
     frame_.size[0] = width_;
     frame_.size[1] = height_;

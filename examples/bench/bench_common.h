@@ -29,6 +29,7 @@ struct Options {
     float giCoarsen = -1.0f;     // gi: TraceParams::coarsenAfterVoxels (< 0: GI's default)
     uint32_t giProbeTile = 0;    // gi: ContextDesc::probeTile (0: automatic)
     bool giNoCameraCheck = false;  // gi: ContextFlags::NoCameraCheck
+    bool giNoProbeParallax = false;  // gi: ContextFlags::NoProbeParallax
     bool giTotalOnly = false;    // gi: time only the whole GI (passes may overlap; no per-pass figures)
     // gi: how alpha-tested meshes enter the field ("alpha-aware", "opaque", "left-out"); empty: in a scene that has
     // them, opaque then alpha-aware, and the alpha-aware run's extra cost (bench_gi.cpp).

@@ -103,6 +103,7 @@ int benchGi(const Options& o, const scenes::SceneGeometry& geometry, std::unique
     cd.internalResolution = resolutionOf(o.scalePercent);
     cd.probeTile = o.giProbeTile;
     if (o.giNoCameraCheck) cd.flags |= gi::ContextFlags::NoCameraCheck;
+    if (o.giNoProbeParallax) cd.flags |= gi::ContextFlags::NoProbeParallax;
     if (alphaAware) cd.flags |= gi::ContextFlags::AlphaCache;
     Error error;
     auto context = gi::GiContext::create(*device, *scene, cd, &error);

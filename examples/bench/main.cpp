@@ -53,6 +53,7 @@ namespace {
                  "                            [--coarsen N]  (diffuse GI rays' voxels per cascade; 0 off; default GI's)\n"
                  "                            [--probe-tile 0|8|16]  (internal pixels per probe tile side; 0 automatic)\n"
                  "                            [--no-camera-check]  (ContextFlags::NoCameraCheck: its cost measured apart)\n"
+                 "                            [--no-probe-parallax]  (ContextFlags::NoProbeParallax: the probes' parallax test off)\n"
                  "                            [--timing passes|total]  (total: time only the whole GI, so that its passes\n"
                  "                             may overlap as they do untimed; default passes)\n"
                  "                            [--foliage alpha-aware|opaque|left-out]  (alpha-tested meshes in the field;\n"
@@ -114,6 +115,7 @@ Options parse(int argc, char** argv) {
             o.giProbeTile = number(value(), "--probe-tile", 0, 16);
             if (o.giProbeTile != 0 && o.giProbeTile != 8 && o.giProbeTile != 16) usage("--probe-tile must be 0, 8 or 16");
         } else if (a == "--no-camera-check") o.giNoCameraCheck = true;
+        else if (a == "--no-probe-parallax") o.giNoProbeParallax = true;
         else if (a == "--iterations") o.giIterations = number(value(), "--iterations", 1, gi::kMaxTraceIterations);
         else if (a == "--foliage") {
             o.giFoliage = value();

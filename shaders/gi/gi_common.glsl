@@ -92,6 +92,7 @@ ivec3 giCacheSlotBase(uint slot) { return ivec3(slot % 64u, (slot / 64u) % 64u, 
 #define GI_FLAG_RESET_HISTORY 2u
 #define GI_FLAG_HISTORY_VALID 8u   // a previous frame exists (not the first dispatch)
 #define GI_FLAG_CAMERA_MOTION 16u  // no motion vectors given: the motion of a still world under the camera
+#define GI_FLAG_PROBE_PARALLAX 32u  // the probes' reprojection tests parallax (ContextFlags::NoProbeParallax off)
 
 #define GI_ENV_NONE 0u
 #define GI_ENV_CUBE 1u
@@ -215,6 +216,10 @@ vec2 giHammersley(uint i, uint n) {
 #define GI_TEXEL_UNKNOWN_HIT 0.5  // the ray hit a surface whose radiance no cache holds yet
 #define GI_TEXEL_MISS 0.75        // the environment
 #define GI_TEXEL_HIT 1.0          // the radiance cache at the hit
+// A hit's texel holds GI_TEXEL_HIT + the hit's distance (world units) in its alpha, for the reprojection's parallax
+// test (reproject_probes.comp). A negative alpha marks a texel the reprojection carried over whose hit may lie in
+// another direction from the new probe: fill_probes traces it again first, and restores the sign of those it has
+// no ray left for.
 uvec2 giProbePixel(uvec4 info) { return uvec2(info.x & 0xFFFFu, info.x >> 16); }
 vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
 
