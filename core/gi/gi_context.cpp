@@ -55,7 +55,7 @@ bool GiContextImpl::init(Error* error) {
     if (uint32_t(desc_.internalResolution) > uint32_t(InternalResolution::Percent25))
         return bad(ErrorCode::InvalidArgument, "internalResolution " + std::to_string(uint32_t(desc_.internalResolution)) + " is not one of the four scales");
     if (desc_.flags & ~uint32_t(ContextFlags::NoSpecular | ContextFlags::NoDenoiser | ContextFlags::ReversedDepth | ContextFlags::NoCameraCheck |
-                                    ContextFlags::AlphaCache))
+                                    ContextFlags::AlphaCache | ContextFlags::NoProbeParallax))
         return bad(ErrorCode::InvalidArgument, "unknown flag bits in flags");
     if (desc_.injectTile != 0 && desc_.injectTile != 1 && desc_.injectTile != 2 && desc_.injectTile != 4 && desc_.injectTile != 8)
         return bad(ErrorCode::InvalidArgument, "injectTile " + std::to_string(desc_.injectTile) + " is not 0 (automatic), 1, 2, 4 or 8");

@@ -87,6 +87,7 @@ struct RasterOptions {
     uint32_t giCacheBricks = 0;  // gi::ContextDesc::radianceCacheBricks (0: the default)
     uint32_t giInjectTile = 0;   // gi::ContextDesc::injectTile (0: automatic)
     uint32_t giProbeTile = 0;    // gi::ContextDesc::probeTile (0: automatic)
+    uint32_t giFlags = 0;        // gi::ContextFlags added to those the renderer sets itself
     gi::TraceParams giTrace;            // gi::DispatchDesc::trace (live: setGiTuning)
     float giRoughnessThreshold = 0.75f;  // gi::DispatchDesc::roughnessThreshold (live)
     GiTechnique giTechnique = GiTechnique::Sdf;

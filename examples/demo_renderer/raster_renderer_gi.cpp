@@ -93,6 +93,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
     gd.radianceCacheBricks = options_.giCacheBricks;
     gd.injectTile = options_.giInjectTile;
     gd.probeTile = options_.giProbeTile;
+    gd.flags |= options_.giFlags;
     gd.debugName = "render gi";
     gd.errorCallback = options_.errorCallback;
     if (alphaAwareFoliage()) gd.flags |= gi::ContextFlags::AlphaCache;

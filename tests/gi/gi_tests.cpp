@@ -117,23 +117,31 @@ void corridorAgainstReference(const std::string& backend) {
     // light lies in another direction from the new probe (reproject_probes.comp); 89.5 % before, 26 % before probe
     // rays followed a path through the never-seen surfaces. Not converged at 120 frames: 81 % at 480 (docs/gi.md,
     // Known limitations). Bounds: mean ratio in [0.85, 1.15], relMSE below 0.06 (the reference's own noise is
-    // ~0.012 of it).
+    // ~0.012 of it). With ContextFlags::NoProbeParallax (texels carried without the test) the old bounds: mean ratio
+    // in [0.75, 1.15], relMSE below 0.07 (measured 89.5 %, relMSE 0.038).
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    render::RasterOptions o;
-    o.width = kCorridorWidth;
-    o.height = kCorridorHeight;
-    o.gi = true;
-    std::string error;
-    auto gi = render::RasterRenderer::create(*td.device, scenes::corridor(), o, &error);
-    INFO(error);
-    REQUIRE(gi);
-    frames(td, *gi, 120);
     auto reference = corridorReference(td);
-    const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
-    REQUIRE(allFinite(indirect.rgb));
-    checkAgainstReference("indirect-diffuse", indirect, reference.read(render::Aov::IndirectDiffuse),
-                          {.relMse = 0.06, .ssim = 0.2, .minMean = 0.85, .maxMean = 1.15});
+    for (const bool parallax : {true, false}) {
+        render::RasterOptions o;
+        o.width = kCorridorWidth;
+        o.height = kCorridorHeight;
+        o.gi = true;
+        o.giFlags = parallax ? 0u : uint32_t(gi::ContextFlags::NoProbeParallax);
+        std::string error;
+        auto gi = render::RasterRenderer::create(*td.device, scenes::corridor(), o, &error);
+        INFO(error);
+        REQUIRE(gi);
+        frames(td, *gi, 120);
+        const render::Image indirect = gi->read(render::Aov::IndirectDiffuse);
+        REQUIRE(allFinite(indirect.rgb));
+        if (parallax)
+            checkAgainstReference("indirect-diffuse", indirect, reference.read(render::Aov::IndirectDiffuse),
+                                  {.relMse = 0.06, .ssim = 0.2, .minMean = 0.85, .maxMean = 1.15});
+        else
+            checkAgainstReference("indirect-diffuse, NoProbeParallax", indirect, reference.read(render::Aov::IndirectDiffuse),
+                                  {.relMse = 0.07, .ssim = 0.2, .minMean = 0.75, .maxMean = 1.15});
+    }
     REQUIRE_NO_MESSAGES(td);
 }
 
