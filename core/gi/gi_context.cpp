@@ -94,8 +94,10 @@ bool GiContextImpl::init(Error* error) {
     shaders_.propagate = shader("gi/propagate_sh.comp");
     shaders_.spawn = shader("gi/spawn_probes.comp");
     shaders_.reprojectProbes = shader("gi/reproject_probes.comp");
-    shaders_.fill = shader("gi/fill_probes.comp");
-    shaders_.fillVct = shader("gi/fill_probes_vct.comp");
+    // Without the parallax test no texel is marked: the variant without the marked texels' second round.
+    const bool parallax = !(desc_.flags & ContextFlags::NoProbeParallax);
+    shaders_.fill = shader(parallax ? "gi/fill_probes.comp" : "gi/fill_probes_carried.comp");
+    shaders_.fillVct = shader(parallax ? "gi/fill_probes_vct.comp" : "gi/fill_probes_vct_carried.comp");
     shaders_.pretrace = shader("gi/specular_pretrace.comp");
     shaders_.relight = shader("gi/relight_cache.comp");
     shaders_.reprojectGi = shader("gi/reproject_gi.comp");

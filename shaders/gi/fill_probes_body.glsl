@@ -1,4 +1,4 @@
-// Included by fill_probes.comp and fill_probes_vct.comp (which defines GI_UNSEEN_FROM_VCT).
+// Included by fill_probes{,_vct}{,_carried}.comp: _vct defines GI_UNSEEN_FROM_VCT, all but _carried GI_PROBE_PARALLAX.
 #include "bricklight/bindings.glsl"
 #include "bricklight/trace.glsl"
 #include "gi_common.glsl"
@@ -185,6 +185,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     imageStore(probes, texel, value);
 }
 
+#ifdef GI_PROBE_PARALLAX
 // The group's rays this frame (probe slot << 6 | texel): the first 64 one texel of each 2×2 block in turn
 // (GI_FILL_NONE where the probe is invalid), then the texels the reprojection marked; and how many.
 #define GI_FILL_NONE 0xFFFFFFFFu
@@ -236,3 +237,28 @@ void main() {
         giFillTexel(at, index, probe, local, carried, vec4(old.rgb, abs(old.a)));
     }
 }
+#else
+// Without the parallax test (ContextFlags::NoProbeParallax) no texel is marked: one ray per thread and frame, the
+// turns alone. A variant of its own, since the marked texels' list and second round cost the turns' rays a quarter
+// more on an H200 even when nothing is marked.
+void main() {
+    uint probeIndex = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u + gl_LocalInvocationIndex / 16u;
+    if (probeIndex >= giFrame.tiles.x * giFrame.tiles.y) return;
+    uvec2 tile = uvec2(probeIndex % giFrame.tiles.x, probeIndex / giFrame.tiles.x);
+    uvec4 info = probeInfo[probeIndex];
+    uint block = gl_LocalInvocationIndex % 16u;
+    uvec2 base = uvec2(block % 4u, block / 4u) * 2u;
+    bool valid = (info.w & GI_PROBE_VALID) != 0u;
+    bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
+    uint turn = giFrameIndex() & 3u;
+    for (uint k = 0u; k < 4u; ++k) {
+        uvec2 local = base + uvec2(k & 1u, k >> 1);
+        ivec2 texel = ivec2(tile * 8u + local);
+        if (!valid || (k != turn && !reprojected)) imageStore(probes, texel, vec4(0.0));  // GI_TEXEL_EMPTY
+    }
+    if (!valid) return;
+    uvec2 local = base + uvec2(turn & 1u, turn >> 1);
+    vec4 old = reprojected ? imageLoad(probes, ivec2(tile * 8u + local)) : vec4(0.0);
+    giFillTexel(tile, probeIndex, info, local, reprojected, old);
+}
+#endif
