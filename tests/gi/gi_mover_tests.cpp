@@ -128,10 +128,12 @@ void giFollowsMover(const std::string& backend) {
     CHECK(sideB(settled) > 0.5 * sideB(refB));
     CHECK(sideB(settled) < 1.5 * sideB(refB));
     // kFramesAfterMove frames after: A has no more green than the still renderer (no ghost: measured within 1 % of
-    // B's green from the 9th frame on, both backends), and B has gained most of what a renderer that saw the box
-    // there from its first frame has after as many frames (measured 0.73 of it; docs/gi.md, *Movers*, says
+    // B's green from the 9th frame on, both backends; since the probes' parallax test 4–6 % below it, nearer the path
+    // tracer's), nor less than half the path tracer's there, and B has gained most of what a renderer that saw the
+    // box there from its first frame has after as many frames (measured 0.73 of it; docs/gi.md, *Movers*, says
     // what is known of the rest).
-    CHECK(std::abs(sideA(after) - sideA(settled)) < 0.05 * sideB(settled));
+    CHECK(sideA(after) < sideA(settled) + 0.05 * sideB(settled));
+    CHECK(sideA(after) > 0.5 * sideA(refB));
     CHECK(sideB(after) > 0.6 * sideB(fresh));
 }
 
