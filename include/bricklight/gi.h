@@ -45,9 +45,9 @@ enum : uint32_t {
     // (sdf::InstanceDesc::alphaTested). Without it those instances' cards are solid to the GI. Needs geometry
     // shaders.
     AlphaCache = 1u << 4,
-    // Carry the screen probes' texels from one frame to the next without the parallax test (docs/gi.md, "Probe
-    // reprojection"): no texel is traced again because the light it carries lies in another direction from the
-    // new probe. Cheaper with a moving camera (the atrium's GI on an H200, docs/performance.md) but the light
+    // Carry the screen probes' texels from one frame to the next without the parallax test (docs/gi.md,
+    // *Departures*, "Probe rays"): no texel is traced again because the light it carries lies in another direction
+    // from the new probe. Cheaper, most with a moving camera (docs/performance.md has the figures), but the light
     // comes from the wrong places where a wall is seen at grazing angles or objects stand near the probes: the
     // `corridor`'s indirect light drifts to two thirds of the path tracer's.
     NoProbeParallax = 1u << 5,

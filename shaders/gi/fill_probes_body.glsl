@@ -239,8 +239,8 @@ void main() {
 }
 #else
 // Without the parallax test (ContextFlags::NoProbeParallax) no texel is marked: one ray per thread and frame, the
-// turns alone. A variant of its own, since the marked texels' list and second round cost the turns' rays a quarter
-// more on an H200 even when nothing is marked.
+// turns alone. A variant of its own, since the marked texels' list and second round slow the turns' rays even when
+// nothing is marked (docs/notes/gi-quality.md).
 void main() {
     uint probeIndex = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u + gl_LocalInvocationIndex / 16u;
     if (probeIndex >= giFrame.tiles.x * giFrame.tiles.y) return;
