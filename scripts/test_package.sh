@@ -73,8 +73,10 @@ for b in "${backends[@]}"; do
 done
 
 step "add_subdirectory: a parent project with its own trace-API shader (GL backend only, null device)"
+# Unoptimized (-O0, no debug information): the check runs on a null device, and what this build is for, every
+# library source compiled alone with the parent's flags, costs a fifth less time than at -O3.
 cmake -S "$root/tests/package/subdirectory" -B "$work/subdirectory-build" -G Ninja -DBRICKLIGHT_SOURCE_DIR="$root" \
-  -DCMAKE_BUILD_TYPE=Release > "$work/subdirectory-configure.log" || { cat "$work/subdirectory-configure.log"; exit 1; }
+  -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG=-O0 -DCMAKE_CXX_FLAGS_DEBUG=-O0 > "$work/subdirectory-configure.log" || { cat "$work/subdirectory-configure.log"; exit 1; }
 cmake --build "$work/subdirectory-build" --target subdirectory_check > "$work/subdirectory-build.log" ||
   { cat "$work/subdirectory-build.log"; exit 1; }
 if [ -e "$work/subdirectory-build/bin" ] || [ -e "$work/subdirectory-build/lib" ]; then

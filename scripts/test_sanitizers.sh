@@ -4,9 +4,10 @@
 #      backends, as a unity build (two thirds of the time), and builds only the CPU-side test programs (target
 #      bricklight-cpu-tests) and the fuzzers;
 #   2. runs the CPU-side tests there (ctest -L cpu): any sanitizer report fails its test;
-#   3. runs every fuzzer for BRICKLIGHT_FUZZ_SECONDS seconds (default 20) from its seeds
-#      (tests/fuzz/seeds/<fuzzer>/) and prints how many inputs it ran; a crash, a leak, a timeout or an
-#      out-of-memory fails the script (the input that did it is left in <work-dir>/findings/<fuzzer>/).
+#   3. runs every fuzzer for BRICKLIGHT_FUZZ_SECONDS seconds (default 8: the seeds replayed and new inputs
+#      tried; a real hunt wants BRICKLIGHT_FUZZ_SECONDS=600) from its seeds (tests/fuzz/seeds/<fuzzer>/) and
+#      prints how many inputs it ran; a crash, a leak, a timeout or an out-of-memory fails the script (the
+#      input that did it is left in <work-dir>/findings/<fuzzer>/).
 # tests/CMakeLists.txt registers this as the ctest test bricklight-sanitizers, with the main build's shader
 # compiler: the shaders are data to the code under test, and a compiler built and run under ASan only costs time.
 #
@@ -21,7 +22,7 @@ if [ $# -eq 2 ]; then shaderc=(-DBRICKLIGHT_SHADERC="$2"); fi
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 mkdir -p "$1"
 work="$(cd "$1" && pwd)"
-seconds="${BRICKLIGHT_FUZZ_SECONDS:-20}"
+seconds="${BRICKLIGHT_FUZZ_SECONDS:-8}"
 if ! command -v clang++ > /dev/null; then
   echo "test_sanitizers: clang++ is missing (scripts/bootstrap.sh installs it)" >&2
   exit 1

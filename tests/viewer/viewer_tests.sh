@@ -12,7 +12,7 @@
 #    with status 0. The screenshots change as they should: the direct view of one frame and the final
 #    image with GI off of a later one differ only by the direct light's noise (relMSE < 0.02), GI on
 #    brightens the final image (mean > 1.1x).
-# 4. Frame time at 640x360 (printed, not asserted).
+# 4. Frame time at 640x360 over 5 frames (printed, not asserted; a CPU driver's frame there takes about a second).
 # 5. A refused camera: exit 1 and no screenshot; --screenshot-dir on a file or a missing folder refused.
 # 6. Without a display: exit status 1 and the message, no crash.
 set -uo pipefail
@@ -94,7 +94,7 @@ below "$(awk -v a="$off_mean" 'BEGIN { print a * 1.1 }')" "$gi_mean" || fail "tu
 [ -s "$work/bricklight-viewer-4.png" ] || fail "no screenshot after the resize"
 
 # 4. Frame time at 640x360 (lavapipe / llvmpipe; informative).
-"$viewer" --backend "$backend" --window 640x360 --exit-after 40 --no-vsync --log >"$work/timing.log" 2>&1 ||
+"$viewer" --backend "$backend" --window 640x360 --exit-after 5 --no-vsync --log >"$work/timing.log" 2>&1 ||
   fail "viewer at 640x360: $(cat "$work/timing.log")"
 grep "frame time" "$work/timing.log" | sed "s/^/$backend 640x360: /"
 
