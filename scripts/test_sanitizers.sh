@@ -5,9 +5,9 @@
 #      bricklight-cpu-tests) and the fuzzers;
 #   2. runs the CPU-side tests there (ctest -L cpu): any sanitizer report fails its test;
 #   3. runs every fuzzer for BRICKLIGHT_FUZZ_SECONDS seconds (default 8: the seeds replayed and new inputs
-#      tried; a real hunt wants BRICKLIGHT_FUZZ_SECONDS=600) from its seeds (tests/fuzz/seeds/<fuzzer>/) and
-#      prints how many inputs it ran; a crash, a leak, a timeout or an out-of-memory fails the script (the
-#      input that did it is left in <work-dir>/findings/<fuzzer>/).
+#      tried; a longer hunt: BRICKLIGHT_FUZZ_SECONDS=300, within the ctest test's 30-minute timeout) from its
+#      seeds (tests/fuzz/seeds/<fuzzer>/) and prints how many inputs it ran; a crash, a leak, a timeout or an
+#      out-of-memory fails the script (the input that did it is left in <work-dir>/findings/<fuzzer>/).
 # tests/CMakeLists.txt registers this as the ctest test bricklight-sanitizers, with the main build's shader
 # compiler: the shaders are data to the code under test, and a compiler built and run under ASan only costs time.
 #
