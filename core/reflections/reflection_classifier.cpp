@@ -43,7 +43,16 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
     c->screenList_ = buffer(tiles * 64 * 4, readWrite, "reflection screen-space ray list");
     c->sdfList_ = buffer(uint64_t(width) * height * 4, readWrite, "reflection SDF ray list");
     c->denoiseList_ = buffer(tiles * 4, readWrite, "reflection denoiser tile list");
-    c->counts_ = buffer(kReflectionCountWords * 4, readWrite | rhi::BufferUsage::IndirectArgs, "reflection ray counts");
+    {
+        const uint32_t zeros[kReflectionCountWords] = {};
+        rhi::BufferDesc bd;
+        bd.size = sizeof(zeros);
+        bd.usage = readWrite | rhi::BufferUsage::IndirectArgs;
+        bd.debugName = "reflection ray counts A";
+        c->counts_[0] = device.createBuffer(bd, zeros);
+        bd.debugName = "reflection ray counts B";
+        c->counts_[1] = device.createBuffer(bd, zeros);
+    }
     c->params_ = buffer(sizeof(ReflectionParams), rhi::BufferUsage::ShaderRead, "reflection classifier parameters");
     rhi::TextureDesc td;
     td.format = rhi::Format::R32_UINT;
@@ -71,7 +80,7 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
     sampler.minFilter = sampler.magFilter = rhi::Filter::Linear;
     sampler.debugName = "reflection classifier linear";
     c->linear_ = device.createSampler(sampler);
-    if (!c->classify_ || !c->args_ || !c->trace_ || !c->debug_ || !c->clear_ || !c->screenList_ || !c->sdfList_ || !c->denoiseList_ || !c->counts_ || !c->params_ ||
+    if (!c->classify_ || !c->args_ || !c->trace_ || !c->debug_ || !c->clear_ || !c->screenList_ || !c->sdfList_ || !c->denoiseList_ || !c->counts_[0] || !c->counts_[1] || !c->params_ ||
         !c->hitCounters_[0] || !c->hitCounters_[1] || !c->tileInfo_ || !c->tileStats_ || !c->noMotion_ || !c->point_ || !c->linear_)
         return fail("the device could not create the classifier's buffers, textures or passes (see its messages)", ErrorCode::DeviceFailure);
     rhi::ClearValue zero{};
@@ -80,7 +89,7 @@ std::unique_ptr<ReflectionClassifier> ReflectionClassifier::create(rhi::IDevice&
 }
 
 ReflectionClassifier::~ReflectionClassifier() {
-    for (rhi::BufferHandle b : {screenList_, sdfList_, denoiseList_, counts_, params_})
+    for (rhi::BufferHandle b : {screenList_, sdfList_, denoiseList_, counts_[0], counts_[1], params_})
         if (b) device_.destroy(b);
     for (rhi::TextureHandle t : {hitCounters_[0], hitCounters_[1], tileInfo_, tileStats_, noMotion_})
         if (t) device_.destroy(t);
@@ -155,9 +164,8 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
     p.options = glm::uvec4(d.samplesPerQuad, d.gbuffer.roughnessChannel, d.gbuffer.roughnessPerceptual ? 1u : 0u, d.camera.reversedDepth ? 1u : 0u);
     p.options2 = glm::uvec4(d.useHitCounter ? 1u : 0u, d.useScreenSpace ? 1u : 0u, d.useSdf ? 1u : 0u, d.gbuffer.motionVectors ? 1u : 0u);
     p.frame = glm::uvec4(d.frameIndex, 0u, 0u, 0u);
-    device_.beginMarker("parameters and counts");
+    device_.beginMarker("parameters");
     const bool paramsOk = writeParams(&p, 0, offsetof(ReflectionParams, trace));
-    if (paramsOk) device_.clearBuffer(counts_, {}, 0u);
     device_.endMarker();
     if (!paramsOk) return fail("the device refused the parameters (see its messages)", ErrorCode::DeviceFailure);
 
@@ -173,13 +181,18 @@ bool ReflectionClassifier::classify(const ReflectionClassifyDesc& d, Error* erro
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, screenList_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, sdfList_, {}, rhi::Access::Write});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{2, denoiseList_, {}, rhi::Access::Write});
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{3, counts_, {}, rhi::Access::Atomic});
+    // The counts this classification adds to were zeroed by the previous one, which this one zeroes for the next: no
+    // clear and barrier ahead of the pass.
+    const uint32_t counting = countIndex_ ^ 1u;
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{3, counts_[counting], {}, rhi::Access::Atomic});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{4, counts_[countIndex_], {}, rhi::Access::Write});
     s.bindings.storageImages.push(rhi::storageImage(0, history, rhi::Access::Read));
     s.bindings.storageImages.push(rhi::storageImage(1, written, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(2, tileInfo_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(3, tileStats_, rhi::Access::Write));
     // 4 × 4 tiles per group (classify_reflections.comp).
     if (!device_.dispatch(s, (tilesX() + 3) / 4, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);
+    countIndex_ = counting;
     if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)", ErrorCode::DeviceFailure);
     current_ ^= 1u;
     depth_ = d.gbuffer.depth;
@@ -194,7 +207,7 @@ bool ReflectionClassifier::recordArgs() {
     rhi::DispatchState s;
     s.shader = args_;
     s.label = "reflection dispatch arguments";
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, counts_, {}, rhi::Access::ReadWrite});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, rayCounts(), {}, rhi::Access::ReadWrite});
     return device_.dispatch(s, 1, 1, 1);
 }
 
@@ -203,7 +216,7 @@ ReflectionClassifyCounts ReflectionClassifier::readCounts() {
     ReflectionClassifyCounts c;
     const size_t tiles = size_t(tilesX()) * tilesY();
     std::vector<uint32_t> info(tiles), stats(tiles);
-    if (!device_.readBuffer(counts_, 0, sizeof(w), w) || !device_.readTexture(tileInfo_, {}, info.data()) ||
+    if (!device_.readBuffer(rayCounts(), 0, sizeof(w), w) || !device_.readTexture(tileInfo_, {}, info.data()) ||
         !device_.readTexture(tileStats_, {}, stats.data()))
         return c;
     c.screenEntries = w[9];
@@ -226,6 +239,6 @@ ReflectionClassifyCounts ReflectionClassifier::readCounts() {
     return c;
 }
 
-MemoryUse ReflectionClassifier::memoryUse() const { return detail::MemoryTally(device_).add(screenList_).add(sdfList_).add(denoiseList_).add(counts_).add(params_).add(hitCounters_[0]).add(hitCounters_[1]).add(tileInfo_).add(tileStats_).add(noMotion_).use(); }
+MemoryUse ReflectionClassifier::memoryUse() const { return detail::MemoryTally(device_).add(screenList_).add(sdfList_).add(denoiseList_).add(counts_[0]).add(counts_[1]).add(params_).add(hitCounters_[0]).add(hitCounters_[1]).add(tileInfo_).add(tileStats_).add(noMotion_).use(); }
 
 }  // namespace bricklight::reflections

@@ -68,11 +68,11 @@ bool ReflectionClassifier::traceScreenSpace(const ReflectionTraceDesc& d, Error*
     s.bindings.textures.push(rhi::TextureBinding{3, rhi::wholeTexture(d.depthPyramid), point_});
     s.bindings.textures.push(rhi::TextureBinding{4, rhi::wholeTexture(d.previousLit), linear_});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, sdfList_, {}, rhi::Access::Write});
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, counts_, {}, rhi::Access::Atomic});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, rayCounts(), {}, rhi::Access::Atomic});
     s.bindings.storageImages.push(rhi::storageImage(0, d.output, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(1, hitCounters_[current_], rhi::Access::Atomic));
     s.bindings.storageImages.push(rhi::storageImage(2, tileInfo_, rhi::Access::Atomic));
-    if (!device_.dispatchIndirect(s, counts_, kReflectionArgsScreenTrace)) return fail("the device refused the trace (see its messages)", ErrorCode::DeviceFailure);
+    if (!device_.dispatchIndirect(s, rayCounts(), kReflectionArgsScreenTrace)) return fail("the device refused the trace (see its messages)", ErrorCode::DeviceFailure);
     if (!recordArgs()) return fail("the device refused the arguments pass (see its messages)", ErrorCode::DeviceFailure);
     traced_ = true;
     return true;

@@ -44,10 +44,13 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
     bd.debugName = "shadow tile list";
     c->tiles_ = device.createBuffer(bd);
+    const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
     bd.size = kCountWords * 4;
     bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead | rhi::BufferUsage::IndirectArgs;
-    bd.debugName = "shadow tile count";
-    c->count_ = device.createBuffer(bd);
+    bd.debugName = "shadow tile count A";
+    c->counts_[0] = device.createBuffer(bd, counts);
+    bd.debugName = "shadow tile count B";
+    c->counts_[1] = device.createBuffer(bd, counts);
     bd.size = sizeof(ShadowClassifyParams);
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "shadow classifier parameters";
@@ -70,16 +73,14 @@ std::unique_ptr<ShadowClassifier> ShadowClassifier::create(rhi::IDevice& device,
     bd.usage = rhi::BufferUsage::ShaderRead | rhi::BufferUsage::ShaderWrite;
     bd.debugName = "shadow classifier: no alpha cache";
     c->alphaCacheNone_ = device.createBuffer(bd, noAlphaCache);
-    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->count_ || !c->params_ || !c->hitMask_ || !c->sureMask_ || !c->point_ ||
+    if (!c->classify_ || !c->trace_ || !c->resolve_ || !c->tiles_ || !c->counts_[0] || !c->counts_[1] || !c->params_ || !c->hitMask_ || !c->sureMask_ || !c->point_ ||
         !c->alphaCacheNone_)
         return fail("the device could not create the classifier's buffers, hit mask or pass (see its messages)", ErrorCode::DeviceFailure);
-    const uint32_t counts[kCountWords] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
-    device.writeBuffer(c->count_, 0, counts, sizeof(counts));
     return c;
 }
 
 ShadowClassifier::~ShadowClassifier() {
-    for (rhi::BufferHandle b : {tiles_, count_, params_, alphaCacheNone_})
+    for (rhi::BufferHandle b : {tiles_, counts_[0], counts_[1], params_, alphaCacheNone_})
         if (b) device_.destroy(b);
     for (rhi::TextureHandle t : {hitMask_, sureMask_})
         if (t) device_.destroy(t);
@@ -179,10 +180,9 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
         std::memcpy(lastParams_.data(), &p, sizeof(p));
         paramsWritten_ = true;
     }
-    device_.beginMarker("counts");
-    device_.clearBuffer(count_, rhi::BufferRange{0, 4}, 0u);
-    device_.clearBuffer(count_, rhi::BufferRange{12, (kCountWords - 3) * 4}, 0u);  // words 3..7
-    device_.endMarker();
+    // The counts this classification adds to were zeroed by the previous one, which this one's first thread zeroes for
+    // the next: no clear and barrier ahead of the pass.
+    const uint32_t counting = countIndex_ ^ 1u;
     rhi::DispatchState s;
     s.shader = classify_;
     s.label = "classify shadows";
@@ -191,10 +191,12 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
     s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(d.gbuffer.normals), point_});
     s.bindings.textures.push(rhi::TextureBinding{2, rhi::wholeTexture(shadowMap), point_});
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, tiles_, {}, rhi::Access::Write});
-    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, count_, {}, rhi::Access::Atomic});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, counts_[counting], {}, rhi::Access::Atomic});
+    s.bindings.storageBuffers.push(rhi::StorageBufferBinding{2, counts_[countIndex_], {}, rhi::Access::Write});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::Write));
     if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);  // 2 × 4 tiles a group
+    countIndex_ = counting;
     depth_ = d.gbuffer.depth;
     normals_ = d.gbuffer.normals;
     alphaCache_ = d.alphaCache;
@@ -216,7 +218,7 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, Error* error) {
     s.label = "trace shadow rays";
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{0, params_, {}});
     s.bindings.readBuffers.push(rhi::ReadBufferBinding{1, tiles_, {}});
-    s.bindings.readBuffers.push(rhi::ReadBufferBinding{2, count_, {}});
+    s.bindings.readBuffers.push(rhi::ReadBufferBinding{2, tileCount(), {}});
     s.bindings.textures.push(rhi::TextureBinding{0, rhi::wholeTexture(depth_), point_});
     s.bindings.textures.push(rhi::TextureBinding{1, rhi::wholeTexture(normals_), point_});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::ReadWrite));
@@ -224,7 +226,7 @@ bool ShadowClassifier::trace(const sdf::SdfScene& field, Error* error) {
     // Atomic: a ray that reaches its bound on cards passed is counted in the cache's header (gi::GiContext::raysAtAlphaBound).
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{7, alphaCache_ ? alphaCache_ : alphaCacheNone_, {}, rhi::Access::Atomic});
     field.traceBindings(s.bindings);
-    if (!device_.dispatchIndirect(s, count_, 0)) {
+    if (!device_.dispatchIndirect(s, tileCount(), 0)) {
         if (error) *error = {ErrorCode::DeviceFailure, "shadow classifier: the device refused the trace (see its messages)"};
         return false;
     }
@@ -257,7 +259,7 @@ bool ShadowClassifier::resolve(rhi::TextureHandle output, Error* error) {
 ShadowClassifyCounts ShadowClassifier::readCounts() {
     uint32_t w[kCountWords] = {};
     ShadowClassifyCounts c;
-    if (!device_.readBuffer(count_, 0, sizeof(w), w)) return c;
+    if (!device_.readBuffer(tileCount(), 0, sizeof(w), w)) return c;
     c.listedTiles = w[7];
     c.cutOffTiles = w[3];
     c.rayPixels = w[4];
@@ -266,6 +268,6 @@ ShadowClassifyCounts ShadowClassifier::readCounts() {
     return c;
 }
 
-MemoryUse ShadowClassifier::memoryUse() const { return detail::MemoryTally(device_).add(tiles_).add(count_).add(params_).add(alphaCacheNone_).add(hitMask_).add(sureMask_).use(); }
+MemoryUse ShadowClassifier::memoryUse() const { return detail::MemoryTally(device_).add(tiles_).add(counts_[0]).add(counts_[1]).add(params_).add(alphaCacheNone_).add(hitMask_).add(sureMask_).use(); }
 
 }  // namespace bricklight::shadows

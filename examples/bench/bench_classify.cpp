@@ -5,8 +5,10 @@
 // of 0.5°, one ray a pixel to a point of its disc, a new point each frame) and the shadow denoiser in place of the resolve.
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include "bench_common.h"
 #include "bricklight/shadows/classifier.h"
@@ -121,6 +123,27 @@ int runClassify(const Options& o) {
     const uint32_t pixels = o.width * o.height;
     std::printf("pixels facing the sun %u of %u; needing a ray %u (%.1f %% of all pixels) in %u listed tiles of %u\n", counts.activePixels, pixels,
                 counts.rayPixels, 100.0 * counts.rayPixels / pixels, counts.listedTiles, classifier->tilesX() * classifier->tilesY());
+    // What the blocker search decided without rays, against a ray for every sun-facing pixel (the normals mode, the
+    // same rays): pixels whose answers differ are the search's wrong decisions (or the cascades mode's bounded ray
+    // intervals).
+    {
+        auto readMask = [&]() {
+            std::vector<uint16_t> halfs(size_t(o.width) * o.height);
+            device->waitIdle();
+            if (!device->readTexture(mask, {}, halfs.data())) halfs.clear();
+            return halfs;
+        };
+        const std::vector<uint16_t> searched = readMask();
+        d.mode = shadows::ShadowClassifyMode::Normals;
+        frame();
+        d.mode = shadows::ShadowClassifyMode::Cascades;
+        const std::vector<uint16_t> traced = readMask();
+        size_t differ = 0;
+        for (size_t i = 0; i < searched.size() && i < traced.size(); ++i)
+            differ += (glm::unpackHalf1x16(searched[i]) > 0.5f) != (glm::unpackHalf1x16(traced[i]) > 0.5f) ? 1 : 0;
+        std::printf("decided against a ray for every sun-facing pixel: %zu pixels differ (%.3f %% of the sun-facing)\n", differ,
+                    100.0 * double(differ) / std::max(1u, counts.activePixels));
+    }
     // Soft shadows and the denoiser (a still camera: the history accumulates as in a still frame of a game).
     auto denoiser = shadows::ShadowDenoiser::create(*device, {o.width, o.height}, &error);
     if (!denoiser) {

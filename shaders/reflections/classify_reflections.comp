@@ -26,6 +26,9 @@ BL_STORAGE_BUFFER(2) DenoiseList { uint denoiseTiles[]; } denoiseList;
 // 11 SDF rays, 12 denoiser tiles: the only global atomics, three per group. The statistics go per tile to tileInfo
 // and tileStats and are summed on the CPU (readCounts): same-address atomics from every group bound the pass.
 BL_STORAGE_BUFFER(3) Counts { uint counts[24]; } count;
+// The counts the next classification adds to (the previous one's): zeroed here, so that no clear, and no barrier
+// after it, precede the pass.
+BL_STORAGE_BUFFER(4) NextCounts { uint counts[24]; } nextCount;
 BL_IMAGE(0, r32ui) uniform readonly uimage2D history;
 BL_IMAGE(1, r32ui) uniform writeonly uimage2D counter;
 BL_IMAGE(2, r32ui) uniform writeonly uimage2D tileInfo;
@@ -56,6 +59,8 @@ void main() {
     uint frame = params.frame.x;
 
     if (gl_LocalInvocationIndex == 0u) {
+        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u)
+            for (uint i = 0u; i < 24u; ++i) nextCount.counts[i] = 0u;
         groupScreen = 0u;
         groupSdf = 0u;
         groupDenoise = 0u;

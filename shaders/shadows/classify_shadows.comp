@@ -19,6 +19,9 @@ BL_STORAGE_BUFFER(0) Tiles { uvec4 tiles[]; } list;
 // Groups of 8 listed tiles (the trace's dispatchIndirect x), 1, 1, cut-off tiles, ray pixels, cut-off pixels, active pixels,
 // listed tiles.
 BL_STORAGE_BUFFER(1) Counts { uint counts[8]; } count;
+// The counts the next classification adds to (the previous one's): zeroed here, so that no clear, and no barrier
+// after it, precede the pass.
+BL_STORAGE_BUFFER(2) NextCounts { uint counts[8]; } nextCount;
 BL_IMAGE(0, r32ui) uniform writeonly uimage2D hitMask;
 BL_IMAGE(1, r32ui) uniform writeonly uimage2D sureMask;  // bit set: the answer is sure (no ray, or a sure ray later)
 
@@ -68,6 +71,8 @@ void main() {
         maxT[slot] = 0u;
     }
     if (gl_LocalInvocationID.x == 0u) {
+        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u)
+            for (uint i = 0u; i < 8u; ++i) nextCount.counts[i] = (i == 1u || i == 2u) ? 1u : 0u;  // indirect y, z: 1
         groupListed = 0u;
         groupRays = 0u;
         groupCutTiles = 0u;

@@ -109,7 +109,8 @@ struct ReflectionClassifierDesc {
 //   SDF ray list             buffer, W·H uints                     packed rays (unpadded), the trace's misses after
 //                                                                 the classifier's
 //   denoiser tile list       buffer, ⌈W/8⌉·⌈H/8⌉ uints             top-left pixel y << 16 | x of each tile with a ray
-//   ray counts               buffer, 24 uints, IndirectArgs        the offsets above
+//   ray counts A, B          buffer, 24 uints, IndirectArgs        the offsets above; classify() adds to one and
+//                                                                 zeroes the other, which the next classify() adds to
 //   hit counters ×2          R32_UINT ⌈W/8⌉ × ⌈H/8⌉, ping-pong     per tile: new hits (bits 0..7), new misses (8..15),
 //                                                                 previous hits (16..23), previous misses (24..31)
 //   tile info                R32_UINT ⌈W/8⌉ × ⌈H/8⌉               class (bits 0..1), screen rays (8..15), SDF rays
@@ -142,7 +143,9 @@ public:
     rhi::BufferHandle screenRayList() const { return screenList_; }
     rhi::BufferHandle sdfRayList() const { return sdfList_; }
     rhi::BufferHandle denoiseTileList() const { return denoiseList_; }
-    rhi::BufferHandle rayCounts() const { return counts_; }  // the arguments and counts (offsets above)
+    // The arguments and counts (offsets above) of the last classify(): two buffers alternate (each classify() zeroes the
+    // other for the next), so ask for it after each classify() rather than keeping it.
+    rhi::BufferHandle rayCounts() const { return counts_[countIndex_]; }
     // The counters the last classify() wrote and the trace added to: the next classify() reads them as history.
     // Before the first classify(), zero (tests may write their own here to seed the history).
     rhi::TextureHandle hitCounter() const { return hitCounters_[current_]; }
@@ -164,7 +167,9 @@ private:
     rhi::IDevice& device_;
     uint32_t width_ = 0, height_ = 0;
     rhi::ShaderHandle classify_, args_, trace_, debug_, clear_;
-    rhi::BufferHandle screenList_, sdfList_, denoiseList_, counts_, params_;
+    rhi::BufferHandle screenList_, sdfList_, denoiseList_, params_;
+    rhi::BufferHandle counts_[2];  // classify() adds to one and zeroes the other for the next classify()
+    uint32_t countIndex_ = 1;      // counts_[countIndex_]: the last classify()'s
     rhi::TextureHandle hitCounters_[2], tileInfo_, tileStats_, noMotion_;
     rhi::SamplerHandle point_, linear_;
     uint32_t current_ = 0;  // which hit counter the last classify() wrote

@@ -104,10 +104,11 @@ struct ShadowClassifierDesc {
 
 //   resource                 format                              holds
 //   shadow tile list         buffer, uvec4 per tile (≤ tiles)    the listed tiles (ShadowClassifyDesc's comment)
-//   shadow tile count        buffer, 8 words, indirect args      groups of 8 listed tiles, 1, 1 (dispatchIndirect
+//   shadow tile count A, B   buffer, 8 words, indirect args      groups of 8 listed tiles, 1, 1 (dispatchIndirect
 //                                                                arguments: 256 threads, 32 per tile), then cut-off
 //                                                                tiles, ray pixels, cut-off pixels, active pixels,
-//                                                                listed tiles
+//                                                                listed tiles; classify() adds to one and zeroes
+//                                                                the other, which the next classify() adds to
 //   shadow hit mask          R32_UINT, ⌈W/8⌉ × ⌈H/4⌉            per tile, bit 1: shadowed or not known; 0: lit.
 //                                                                Preloaded with the shadow maps' answer (their
 //                                                                filtered taps); trace() replaces the listed
@@ -120,7 +121,7 @@ public:
     ShadowClassifier(const ShadowClassifier&) = delete;
     ShadowClassifier& operator=(const ShadowClassifier&) = delete;
 
-    // Records the clear of the counts and the classification; false with *error, recording nothing, for missing or
+    // Records the classification; false with *error, recording nothing, for missing or
     // mis-sized inputs or bad parameters.
     bool classify(const ShadowClassifyDesc& desc, Error* error = nullptr);
     // Hybrid shadows, after classify(): one ray per masked pixel of each listed tile (dispatchIndirect on tileCount(),
@@ -136,7 +137,9 @@ public:
     bool resolve(rhi::TextureHandle output, Error* error = nullptr);
 
     rhi::BufferHandle tileList() const { return tiles_; }
-    rhi::BufferHandle tileCount() const { return count_; }  // dispatchIndirect arguments at offset 0
+    // dispatchIndirect arguments at offset 0, and the counts: the buffer the last classify() wrote (two alternate: read
+    // it after each classify(), do not keep it).
+    rhi::BufferHandle tileCount() const { return counts_[countIndex_]; }
     rhi::TextureHandle hitMask() const { return hitMask_; }
     // R32_UINT like hitMask(): bit set where the pixel's answer is sure — decided by the blocker search (every tap
     // or none blocking, facing away, sky) or by a sure ray (ShadowClassifyDesc::sureRaysOnly); clear where it is the
@@ -163,7 +166,9 @@ private:
     bool classified_ = false;
     std::array<uint8_t, kShadowParamsBytes> lastParams_{};  // what params_ holds
     bool paramsWritten_ = false;
-    rhi::BufferHandle tiles_, count_, params_;
+    rhi::BufferHandle tiles_, params_;
+    rhi::BufferHandle counts_[2];  // classify() adds to one and zeroes the other for the next classify()
+    uint32_t countIndex_ = 1;      // counts_[countIndex_]: the last classify()'s
     rhi::TextureHandle hitMask_, sureMask_;
     rhi::SamplerHandle point_;
 };
