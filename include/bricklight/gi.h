@@ -99,8 +99,8 @@ struct TraceParams {
     // Diffuse rays stand for cones (64 per probe): once one has gone this many voxels of its current
     // cascade, it goes on in the next coarser cascade (BlSdfRay::coarsenAfterVoxels), as the cone's
     // footprint has outgrown the finer voxels. Fewer steps per ray; 0 turns it off (a ray leaves a cascade
-    // only at its boundary). Specular rays of GGX roughness α coarsen after max(this, 1/α) voxels (their
-    // lobe's width), shadow rays never.
+    // only at its boundary). Specular rays of GGX roughness α coarsen after max(1, 0.35 / 2.6α) times this
+    // (where their lobe, about 2.6α across, has a diffuse ray's footprint), shadow rays never.
     float coarsenAfterVoxels = 4.0f;
 };
 constexpr uint32_t kMaxTraceIterations = 4096;

@@ -238,12 +238,13 @@ BlSdfRay giMakeRay(vec3 origin, vec3 direction, float tMax, uint kind) {
     if (kind == GI_RAY_DIFFUSE) ray.coarsenAfterVoxels = giFrame.traceLimits.y;
     return ray;
 }
-// A specular ray of GGX roughness α: its lobe is a cone too, about α·t wide at distance t, so it coarsens
-// once that outgrows the voxel (t > 1/α voxels), never sooner than a diffuse ray; near-mirrors (small α)
-// hardly coarsen.
+// A specular ray of GGX roughness α: its lobe is a cone too. The half-vectors spread about 1.3α across at half maximum
+// and reflection doubles that, so the lobe is about 2.6α·t wide at distance t. It coarsens once that footprint reaches
+// the one at which a diffuse ray (a probe texel, about 0.35 rad across) does, and never sooner than a diffuse ray:
+// after max(1, 0.35 / 2.6α) times the diffuse rays' voxels. Near-mirrors (small α) hardly coarsen.
 BlSdfRay giMakeSpecularRay(vec3 origin, vec3 direction, float tMax, float alpha) {
     BlSdfRay ray = giMakeRay(origin, direction, tMax, GI_RAY_SPECULAR);
-    if (giFrame.traceLimits.y > 0.0 && alpha > 1e-3) ray.coarsenAfterVoxels = max(giFrame.traceLimits.y, 1.0 / alpha);
+    if (giFrame.traceLimits.y > 0.0 && alpha > 1e-3) ray.coarsenAfterVoxels = giFrame.traceLimits.y * max(1.0, 0.35 / (2.6 * alpha));
     return ray;
 }
 #endif
