@@ -42,7 +42,7 @@ void memoryUseCountsEveryResource(const std::string& backend) {
     REQUIRE(classifier);
     const MemoryUse shadow = classifier->memoryUse();
     CHECK(shadow.totalBytes == sum(shadow));
-    CHECK(shadow.resources.size() == 6);  // tile list, count, parameters, the no-alpha-cache stand-in, hit and sure masks
+    CHECK(shadow.resources.size() == 7);  // tile list, two counts, parameters, the no-alpha-cache stand-in, hit and sure masks
     CHECK(shadow.totalBytes >= uint64_t(w / 8) * (h / 4) * (16 + 4 + 4));  // a tile: list entry, hit and sure mask words
 
     auto shadowDenoiser = shadows::ShadowDenoiser::create(*td.device, {w, h}, &error);
@@ -55,7 +55,7 @@ void memoryUseCountsEveryResource(const std::string& backend) {
     REQUIRE(reflectionClassifier);
     const MemoryUse listed = reflectionClassifier->memoryUse();
     CHECK(listed.totalBytes == sum(listed));
-    CHECK(listed.resources.size() == 10);
+    CHECK(listed.resources.size() == 11);  // three lists, two counts, parameters, two hit counters, tile info and statistics, the no-motion stand-in
 
     auto reflectionDenoiser = reflections::ReflectionDenoiser::create(*td.device, {w, h}, &error);
     REQUIRE(reflectionDenoiser);
