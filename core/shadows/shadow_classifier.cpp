@@ -173,15 +173,15 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
         p.options2.w = sm->height;
         shadowMap = d.shadowMap;
     }
-    // The parameters only when they changed (a still camera and sun: never), the counts with fills: the dispatch
-    // arguments' y and z (1, 1) were written at creation.
+    // The parameters only when they changed (a still camera and sun: never).
     if (!paramsWritten_ || std::memcmp(&p, lastParams_.data(), sizeof(p)) != 0) {
         device_.writeBuffer(params_, 0, &p, sizeof(p));
         std::memcpy(lastParams_.data(), &p, sizeof(p));
         paramsWritten_ = true;
     }
-    // The counts this classification adds to were zeroed by the previous one, which this one's first thread zeroes for
-    // the next: no clear and barrier ahead of the pass.
+    // The counts this classification adds to were zeroed by the previous one (both were created holding zeros and the
+    // dispatch arguments' y and z, 1, 1), which this one's first thread zeroes for the next: no clear and barrier ahead
+    // of the pass.
     const uint32_t counting = countIndex_ ^ 1u;
     rhi::DispatchState s;
     s.shader = classify_;
