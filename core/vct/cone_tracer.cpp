@@ -72,6 +72,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     t->traceSpecular_ = shaders::createCoreShader(device, "vct/trace_specular.comp");
     t->traceDiffuseSdf_ = shaders::createCoreShader(device, "vct/trace_diffuse_sdf.comp");
     t->traceSpecularSdf_ = shaders::createCoreShader(device, "vct/trace_specular_sdf.comp");
+    t->traceOcclusion_ = shaders::createCoreShader(device, "vct/trace_occlusion.comp");
     const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
                                {"vct specular history 0", "vct specular history 1"},
                                {"vct guide 0", "vct guide 1"}};
@@ -89,7 +90,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
     sd.debugName = "vct point";
     t->point_ = device.createSampler(sd);
-    bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->params_ &&
+    bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->traceOcclusion_ && t->params_ &&
               t->point_;
     for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
     if (!ok) return fail("the device could not create the tracing passes or their history", ErrorCode::DeviceFailure);
@@ -102,7 +103,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
 ConeTracer::~ConeTracer() {
     for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1], guide_[0], guide_[1]})
         if (t) device_.destroy(t);
-    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_})
+    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_, traceOcclusion_})
         if (s) device_.destroy(s);
     for (rhi::ShaderHandle s : {coneSamples_, coneSamplesSdf_, coneSamplesView_})
         if (s) device_.destroy(s);
@@ -194,7 +195,7 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
     };
     device_.beginMarker("vct diffuse");
     rhi::DispatchState trace;
-    trace.shader = d.occlusionField ? traceDiffuseSdf_ : traceDiffuse_;
+    trace.shader = d.occlusionField ? traceDiffuseSdf_ : (cd.emittance == EmittanceMode::None ? traceOcclusion_ : traceDiffuse_);
     trace.label = "vct trace diffuse";
     common(trace.bindings);
     bindField(trace.bindings, d);

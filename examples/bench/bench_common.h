@@ -38,6 +38,7 @@ struct Options {
     std::string vctEmittance = "aniso";           // vct: aniso, iso or none
     uint32_t vctCones = 8, vctSparsity = 2;       // vct: diffuse cones, tracing sparsity
     float vctSpecularJitter = -1.0f;              // vct: ConeTraceParams::specularJitter (< 0: the default)
+    float vctTracingStep = -1.0f;                 // vct: ConeTraceParams::tracingStep (< 0: the default)
     bool vctSdfOcclusion = false;                 // vct: cones stop at the distance field's surfaces
     bool vctRegistered = false;                   // vct: voxelize through vct::VoxelScene (culled) instead of one draw
     bool vctCompute = false;                      // vct: ... with its compute voxelizer (vct::Voxelizer::Compute)

@@ -167,6 +167,7 @@ int runVct(const Options& o) {
         params.diffuseCones = o.vctCones;
         params.tracingSparsity = o.vctSparsity;
         if (o.vctSpecularJitter >= 0.0f) params.specularJitter = o.vctSpecularJitter;
+        if (o.vctTracingStep > 0.0f) params.tracingStep = o.vctTracingStep;
         BenchCamera previous = cameraAt(geometry.camera, 0.0f, aspect, size);
         auto frame = [&](uint32_t f) {
             const BenchCamera now = cameraAt(geometry.camera, 0.1f * float(f), aspect, size);
@@ -249,10 +250,11 @@ int runVct(const Options& o) {
     };
 
     std::printf("scene %s: %llu triangles; %s on %s; %ux%u; clip-map %u^3 x %u levels, finest voxel %.4g, emittance %s; %u diffuse "
-                "cones, sparsity %u, occlusion %s\n",
+                "cones, sparsity %u, step %.2f, occlusion %s\n",
                 geometry.name.c_str(), (unsigned long long)geometry.triangleCount(), o.backend.c_str(), device->capabilities().deviceName.c_str(),
                 o.width, o.height, o.vctResolution, o.vctLevels, 2.0f * size / float(o.vctResolution * (1u << (o.vctLevels - 1))),
-                o.vctEmittance.c_str(), o.vctCones, o.vctSparsity, o.vctSdfOcclusion ? "sdf" : "voxels");
+                o.vctEmittance.c_str(), o.vctCones, o.vctSparsity,
+                double(o.vctTracingStep > 0.0f ? o.vctTracingStep : vct::ConeTraceParams{}.tracingStep), o.vctSdfOcclusion ? "sdf" : "voxels");
     PhaseTimes gi, ao;
     vct::MemoryUse giMemory, aoMemory;
     uint64_t giVoxels = 0, aoVoxels = 0;

@@ -62,7 +62,7 @@ namespace {
                  "       bricklight-bench vct [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--json FILE] [--resolution 32|64|128|256] [--levels 2-8]\n"
                  "                            [--emittance aniso|iso|none] [--cones 1-32] [--sparsity 1-4]\n"
-                 "                            [--occlusion voxels|sdf] [--jitter PERCENT] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
+                 "                            [--occlusion voxels|sdf] [--step PERCENT] [--jitter PERCENT] [--voxelizer draw|scene|compute] [--split VOXELS] [--persistent]\n"
                  "                            [--move VOXELS]  (the anchor's step a frame along x, in finest voxels)\n"
                  "       bricklight-bench classify [--scene atrium|NAME|FILE] [--backend vulkan|gl] [--width W] [--height H]\n"
                  "                            [--frames N] [--cascades N] [--taps 8|16|24|32]  (the shadow classifier and hybrid shadows)\n");
@@ -144,7 +144,8 @@ Options parse(int argc, char** argv) {
         else if (a == "--taps") {
             o.classifyTaps = number(value(), "--taps", 8, 32);
             if (o.classifyTaps % 8) usage("--taps must be 8, 16, 24 or 32");
-        } else if (a == "--jitter") o.vctSpecularJitter = float(number(value(), "--jitter (percent)", 0, 100)) / 100.0f;
+        } else if (a == "--step") o.vctTracingStep = float(number(value(), "--step (percent)", 25, 100)) / 100.0f;
+        else if (a == "--jitter") o.vctSpecularJitter = float(number(value(), "--jitter (percent)", 0, 100)) / 100.0f;
         else if (a == "--occlusion") {
             const std::string v = value();
             if (v != "voxels" && v != "sdf") usage("--occlusion must be voxels or sdf");

@@ -1,7 +1,9 @@
 // Cone tracing through the voxel clip-map (include/bricklight/vct.h), for our GI passes and for an
 // application's own shaders (refraction, reflections, probes): bind Clipmap::traceBindings() and call
 // blTraceCone. Slots: the textures BL_CONE_TRACE_TEXTURE_BASE and + 1 (default 8 and 9) and the read buffer
-// BL_CONE_TRACE_FRAME_SLOT (default 7); define either before the include to move them.
+// BL_CONE_TRACE_FRAME_SLOT (default 7); define either before the include to move them. Define
+// BL_CONE_TRACE_OCCLUSION_ONLY for cones that need only their transmittance (ambient occlusion): the light's
+// arithmetic is compiled out and a cone's radiance is zero.
 //
 // Units: a cone's distances are in finest voxels from its origin unless said otherwise. A cone is a string of
 // samples, each as wide as the cone there (sample diameter = t × coneFactor, at least one finest voxel),
@@ -108,12 +110,20 @@ vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint
     // direction's component on it: the share of the voxel's silhouette that face makes (VXGI's weighting). A
     // wall seen at an angle blocks and sends less per voxel, and the cone crosses more of its voxels.
     vec3 w = abs(dir);
+#ifdef BL_CONE_TRACE_OCCLUSION_ONLY
+    const uint directions = 0u;  // the cones carry no light: the light's arithmetic is compiled out
+#else
     uint directions = blVctFrame.params.z;  // 0: no emittance (opacity only), 1: isotropic, 6: six directions
+#endif
     // x in the atlas: the opacity region's coordinate, and each region a 1 / regions step further.
     float step = 1.0 / float(vctRegions(directions));
     uvw.x *= step / (resolution + 2.0);
     vec3 axes = textureLod(blVctOpacityVolume, uvw, 0.0).rgb;
-    if (directions == 0u) return vec4(0.0, 0.0, 0.0, min(dot(w, axes), 1.0));
+    // Where nothing blocks, nothing sends light: a voxel's light is stored premultiplied by the share of it its
+    // surfaces block (resolve_light.comp; the downsampling keeps that), so the three emittance reads would give
+    // zero — or, where a share below half an 8-bit step rounded every axis's opacity to zero, a fraction of a
+    // percent of the surfaces' radiance. Most samples of a cone lie in empty space: this skips three of four reads.
+    if (directions == 0u || all(equal(axes, vec3(0.0)))) return vec4(0.0, 0.0, 0.0, min(dot(w, axes), 1.0));
     // The faces that look back along the cone: −X (region 4) for a cone going +x, +X (region 1) otherwise.
     vec3 faces = directions == 1u ? vec3(1.0) : mix(vec3(1.0, 2.0, 3.0), vec3(4.0, 5.0, 6.0), greaterThan(dir, vec3(0.0)));
     vec3 ex = textureLod(blVctEmittanceVolume, vec3(uvw.x + faces.x * step, uvw.yz), 0.0).rgb;
@@ -194,7 +204,11 @@ BlConeResult blTraceCone(BlCone cone) {
         size = max(min(size, (planeT + t * planeCos) / 3.0), 1.0);
         if (surfaceT - t < 1.0) {
             bool known;
+#ifdef BL_CONE_TRACE_OCCLUSION_ONLY
+            vec3 light = vec3(0.0);
+#else
             vec3 light = blVctSurfaceRadiance((origin + cone.direction * surfaceT) * finest, cone.direction, known);
+#endif
             float lagged = lag == 0u ? transmittance : (lag == 1u ? lag1 : lag2);
             r.radiance += lagged * light;
 #ifdef BL_CONE_TRACE_RECORD  // a debug pass's hook: (world position, world diameter, level (255: the surface read), T, light added)

@@ -300,7 +300,10 @@ struct ConeTraceParams {
     uint32_t diffuseCones = 8;      // 1..32 cones over the hemisphere, cosine-weighted
     float diffuseConeAngle = 0.0f;  // full angle in radians; 0: from the count (each cone covers 2π / cones sr)
     uint32_t tracingSparsity = 2;   // 1..4: diffuse cones traced for one pixel per N×N block (another each frame)
-    float tracingStep = 0.5f;       // 0.25..1: diffuse cones' sample spacing / sample diameter (smaller: smoother, slower)
+    // 0.25..1: diffuse cones' sample spacing / sample diameter (smaller: smoother, slower). VXGI's 0.5 suits
+    // opacity compounded per step (Beer); here the shares of one crossing add, and reads one sample width apart
+    // still sum a wall's trilinear spread whole, so 1 keeps the light (docs/vct.md, *Speed*) at half the samples.
+    float tracingStep = 1.0f;
     float specularTracingStep = 1.0f;  // the same for the specular cone (VXGI's defaults: 0.5 diffuse, 1 specular)
     float opacityCorrection = 1.0f; // 0.1..10: scales the opacity each step takes (higher: darker, more contrast)
     uint32_t lightLeakLag = 0;      // 0..2: samples the transmittance lags (VXGI 1.0 used 2; 0 leaks least)
@@ -386,6 +389,7 @@ private:
     uint32_t sparsity_ = 0;  // of the low-resolution textures as created
     rhi::ShaderHandle traceDiffuse_, resolveDiffuse_, traceSpecular_;
     rhi::ShaderHandle traceDiffuseSdf_, traceSpecularSdf_;  // the variants for TraceDesc::occlusionField
+    rhi::ShaderHandle traceOcclusion_;  // the diffuse cones without light, for a clip-map without emittance
     rhi::TextureHandle lowDiffuse_, lowGuide_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], guide_[2];
     rhi::BufferHandle params_;

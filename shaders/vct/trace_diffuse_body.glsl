@@ -1,4 +1,4 @@
-// Included by trace_diffuse.comp and trace_diffuse_sdf.comp (which defines VCT_SDF_OCCLUSION).
+// Included by trace_diffuse.comp, trace_diffuse_sdf.comp (which defines VCT_SDF_OCCLUSION) and trace_occlusion.comp.
 // Sparse diffuse tracing (VXGI's tracingSparsity): one pixel of each N×N block (a different one each frame)
 // traces the diffuse cones; its surface goes to the guide, for resolve_diffuse.comp's geometry-aware upsample.
 #include "trace_common.glsl"
