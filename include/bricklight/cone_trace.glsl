@@ -204,11 +204,7 @@ BlConeResult blTraceCone(BlCone cone) {
         size = max(min(size, (planeT + t * planeCos) / 3.0), 1.0);
         if (surfaceT - t < 1.0) {
             bool known;
-#ifdef BL_CONE_TRACE_OCCLUSION_ONLY
-            vec3 light = vec3(0.0);
-#else
             vec3 light = blVctSurfaceRadiance((origin + cone.direction * surfaceT) * finest, cone.direction, known);
-#endif
             float lagged = lag == 0u ? transmittance : (lag == 1u ? lag1 : lag2);
             r.radiance += lagged * light;
 #ifdef BL_CONE_TRACE_RECORD  // a debug pass's hook: (world position, world diameter, level (255: the surface read), T, light added)
