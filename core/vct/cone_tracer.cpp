@@ -1,6 +1,7 @@
 // vct::ConeTracer: diffuse, specular and ambient light from the clip-map for every pixel of a G-buffer
-// (include/bricklight/vct.h; the passes are shaders/vct/trace_diffuse.comp, resolve_diffuse.comp and
-// trace_specular.comp).
+// (include/bricklight/vct.h; the passes are shaders/vct/trace_diffuse.comp, resolve_diffuse.comp, refine_diffuse.comp,
+// resolve_refined.comp and trace_specular.comp).
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -55,6 +56,10 @@ rhi::TextureHandle makeTexture(rhi::IDevice& device, uint32_t w, uint32_t h, rhi
 
 const uint32_t kNoGuide = 0x7FC00000u;  // NO_GUIDE in trace_common.glsl
 
+void bindWriteImage(rhi::Bindings& bindings, uint8_t slot, rhi::TextureHandle t) {
+    bindings.storageImages.push(rhi::storageImage(slot, t, rhi::Access::Write));
+}
+
 }  // namespace
 
 std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipmap& clipmap, const ConeTracerDesc& desc,
@@ -63,6 +68,9 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     const bricklight::detail::Refusal fail(error, "cone tracer");
     if (width == 0 || height == 0 || width > device.capabilities().limits.maxTextureSize2D || height > device.capabilities().limits.maxTextureSize2D)
         return fail("size " + std::to_string(width) + "x" + std::to_string(height) + " is zero or exceeds the device's 2D texture size", ErrorCode::WrongSize);
+    // The shaders hold the capacity as a float (exact to 2^24).
+    if (desc.refinementEntries != kAutomaticRefinement && desc.refinementEntries > (1u << 24))
+        return fail("refinementEntries " + std::to_string(desc.refinementEntries) + " exceeds 16777216");
     shaders::link_bricklight_vct();
     std::unique_ptr<ConeTracer> t(new ConeTracer(device, clipmap));
     t->width_ = width;
@@ -73,6 +81,8 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     t->traceDiffuseSdf_ = shaders::createCoreShader(device, "vct/trace_diffuse_sdf.comp");
     t->traceSpecularSdf_ = shaders::createCoreShader(device, "vct/trace_specular_sdf.comp");
     t->traceOcclusion_ = shaders::createCoreShader(device, "vct/trace_occlusion.comp");
+    t->refineDiffuse_ = shaders::createCoreShader(device, "vct/refine_diffuse.comp");
+    t->resolveRefined_ = shaders::createCoreShader(device, "vct/resolve_refined.comp");
     const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
                                {"vct specular history 0", "vct specular history 1"},
                                {"vct guide 0", "vct guide 1"}};
@@ -86,12 +96,31 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "vct trace parameters";
     t->params_ = device.createBuffer(bd);
+    // The refinement (shaders/vct/refine_list.glsl): room for a quarter of the pixels' cone results — 8 cones of one
+    // pixel in 32 (sparse samples fit all but 0.02 % of the atrium's pixels); past it the resolve traces a pixel's cones
+    // itself, as before.
+    t->refineEntries_ = desc.refinementEntries != kAutomaticRefinement ? desc.refinementEntries
+                                                                      : std::max<uint32_t>(uint32_t(uint64_t(width) * height / 4), 256u);
+    bd.size = std::max<uint64_t>(uint64_t(t->refineEntries_) * 16, 16);
+    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
+    bd.debugName = "vct refined cones";
+    t->refineCones_ = device.createBuffer(bd);
+    bd.size = std::max<uint64_t>(uint64_t(t->refineEntries_) * 4, 16);
+    bd.debugName = "vct refined pixels";
+    t->refineList_ = device.createBuffer(bd);
+    const uint32_t counts[8] = {0, 1, 1, 0, 1, 1, 0, 0};  // dispatchIndirect's y and z stay 1
+    bd.size = sizeof(counts);
+    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead | rhi::BufferUsage::IndirectArgs;
+    bd.debugName = "vct refined count A";
+    t->refineCounts_[0] = device.createBuffer(bd, counts);
+    bd.debugName = "vct refined count B";
+    t->refineCounts_[1] = device.createBuffer(bd, counts);
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
     sd.debugName = "vct point";
     t->point_ = device.createSampler(sd);
     bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->traceOcclusion_ && t->params_ &&
-              t->point_;
+              t->point_ && t->refineDiffuse_ && t->resolveRefined_ && t->refineCones_ && t->refineList_ && t->refineCounts_[0] && t->refineCounts_[1];
     for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
     if (!ok) return fail("the device could not create the tracing passes or their history", ErrorCode::DeviceFailure);
     rhi::ClearValue none{};
@@ -103,8 +132,10 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
 ConeTracer::~ConeTracer() {
     for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1], guide_[0], guide_[1]})
         if (t) device_.destroy(t);
-    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_, traceOcclusion_})
+    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_, traceOcclusion_, refineDiffuse_, resolveRefined_})
         if (s) device_.destroy(s);
+    for (rhi::BufferHandle b : {refineCounts_[0], refineCounts_[1], refineList_, refineCones_})
+        if (b) device_.destroy(b);
     for (rhi::ShaderHandle s : {coneSamples_, coneSamplesSdf_, coneSamplesView_})
         if (s) device_.destroy(s);
     if (coneSampleRecord_) device_.destroy(coneSampleRecord_);
@@ -185,22 +216,19 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
     std::memcpy(&stepBits, &p.specularTracingStep, 4);
     std::memcpy(&rotationBits, &rotation, 4);
     b.sparseOffset = glm::uvec4(phase % s, phase / s, stepBits, rotationBits);
-    b.specular = glm::vec4(p.specularJitter, float(frame_ % 4096u), 0.0f, 0.0f);
+    b.specular = glm::vec4(p.specularJitter, float(frame_ % 4096u), float(refineEntries_), 0.0f);
     device_.writeBuffer(params_, 0, &b, sizeof(b));
 
     const uint32_t cur = frame_ & 1u, prev = cur ^ 1u;
     auto common = [&](rhi::Bindings& bindings) { bindCommon(bindings, d); };
-    auto image = [](rhi::Bindings& bindings, uint8_t slot, rhi::TextureHandle t) {
-        bindings.storageImages.push(rhi::storageImage(slot, t, rhi::Access::Write));
-    };
     device_.beginMarker("vct diffuse");
     rhi::DispatchState trace;
     trace.shader = d.occlusionField ? traceDiffuseSdf_ : (cd.emittance == EmittanceMode::None ? traceOcclusion_ : traceDiffuse_);
     trace.label = "vct trace diffuse";
     common(trace.bindings);
     bindField(trace.bindings, d);
-    image(trace.bindings, 0, lowDiffuse_);
-    image(trace.bindings, 1, lowGuide_);
+    bindWriteImage(trace.bindings, 0, lowDiffuse_);
+    bindWriteImage(trace.bindings, 1, lowGuide_);
     device_.dispatch(trace, (lowW + 7) / 8, (lowH + 7) / 8, 1);
 
     rhi::DispatchState resolve;
@@ -211,10 +239,16 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
     resolve.bindings.textures.push(rhi::TextureBinding{5, rhi::wholeTexture(lowGuide_), point_});
     resolve.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(diffuseHistory_[prev]), point_});
     resolve.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
-    image(resolve.bindings, 0, d.outputDiffuse);
-    image(resolve.bindings, 1, diffuseHistory_[cur]);
-    image(resolve.bindings, 2, guide_[cur]);
+    bindWriteImage(resolve.bindings, 0, d.outputDiffuse);
+    bindWriteImage(resolve.bindings, 1, diffuseHistory_[cur]);
+    bindWriteImage(resolve.bindings, 2, guide_[cur]);
+    // The counts this frame's resolve adds to were zeroed by the previous frame's (both were created holding zeros and
+    // the dispatch arguments' 1s), which zeroes the other for the next.
+    resolve.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, refineCounts_[cur], {}, rhi::Access::Atomic});
+    resolve.bindings.storageBuffers.push(rhi::StorageBufferBinding{1, refineList_, {}, rhi::Access::Write});
+    resolve.bindings.storageBuffers.push(rhi::StorageBufferBinding{2, refineCounts_[prev], {}, rhi::Access::Write});
     device_.dispatch(resolve, (width_ + 7) / 8, (height_ + 7) / 8, 1);
+    dispatchRefinement(d);
     device_.endMarker();
 
     if (d.outputSpecular) {
@@ -226,14 +260,47 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
         bindField(spec.bindings, d);
         spec.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(specularHistory_[prev]), point_});
         spec.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
-        image(spec.bindings, 0, d.outputSpecular);
-        image(spec.bindings, 1, specularHistory_[cur]);
+        bindWriteImage(spec.bindings, 0, d.outputSpecular);
+        bindWriteImage(spec.bindings, 1, specularHistory_[cur]);
         device_.dispatch(spec, (width_ + 7) / 8, (height_ + 7) / 8, 1);
         device_.endMarker();
     }
     ++frame_;
     latest_ = d;
     return true;
+}
+
+// The refinement's cones, one to an invocation, then each refined pixel's sum and blend (shaders/vct/refine_list.glsl).
+void ConeTracer::dispatchRefinement(const TraceDesc& d) {
+    const uint32_t cur = frame_ & 1u, prev = cur ^ 1u;
+    rhi::DispatchState refine;
+    refine.shader = refineDiffuse_;
+    refine.label = "vct refine diffuse";
+    bindCommon(refine.bindings, d);
+    refine.bindings.readBuffers.push(rhi::ReadBufferBinding{4, refineCounts_[cur], {}});
+    refine.bindings.readBuffers.push(rhi::ReadBufferBinding{5, refineList_, {}});
+    refine.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, refineCones_, {}, rhi::Access::Write});
+    device_.dispatchIndirect(refine, refineCounts_[cur], 0);
+
+    rhi::DispatchState refined;
+    refined.shader = resolveRefined_;
+    refined.label = "vct resolve refined";
+    bindCommon(refined.bindings, d);
+    refined.bindings.readBuffers.push(rhi::ReadBufferBinding{0, refineCones_, {}});
+    refined.bindings.readBuffers.push(rhi::ReadBufferBinding{4, refineCounts_[cur], {}});
+    refined.bindings.readBuffers.push(rhi::ReadBufferBinding{5, refineList_, {}});
+    refined.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(diffuseHistory_[prev]), point_});
+    refined.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
+    bindWriteImage(refined.bindings, 0, d.outputDiffuse);
+    bindWriteImage(refined.bindings, 1, diffuseHistory_[cur]);
+    device_.dispatchIndirect(refined, refineCounts_[cur], 12);
+}
+
+uint32_t ConeTracer::readRefinedPixels() {
+    if (frame_ == 0) return 0;
+    uint32_t counts[8] = {};
+    device_.readBuffer(refineCounts_[(frame_ - 1u) & 1u], 0, sizeof(counts), counts);
+    return counts[6];  // REFINE_LISTED in shaders/vct/refine_list.glsl
 }
 
 void ConeTracer::bindField(rhi::Bindings& bindings, const TraceDesc& d) const {
@@ -256,10 +323,11 @@ MemoryUse ConeTracer::memoryUse() const {
             use.resources.push_back({d->debugName, rhi::subresourceBytes(*d, {})});
             use.totalBytes += use.resources.back().bytes;
         }
-    if (const rhi::BufferDesc* d = device_.describe(params_)) {
-        use.resources.push_back({d->debugName, d->size});
-        use.totalBytes += d->size;
-    }
+    for (rhi::BufferHandle b : {params_, refineCounts_[0], refineCounts_[1], refineList_, refineCones_})
+        if (const rhi::BufferDesc* d = device_.describe(b)) {
+            use.resources.push_back({d->debugName, d->size});
+            use.totalBytes += d->size;
+        }
     return use;
 }
 

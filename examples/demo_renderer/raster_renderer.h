@@ -102,6 +102,7 @@ struct RasterOptions {
     uint32_t vctLightSamples = 4;  // light samples per voxelization fragment
     float vctThickness = 1.0f;     // vct::VoxelMaterial::thickness of every surface (two-sided: half each side)
     vct::ConeTraceParams vctTrace;
+    uint32_t vctRefinementEntries = vct::kAutomaticRefinement;  // vct::ConeTracerDesc::refinementEntries
     // Cones stop at the first surface the distance field's ray meets along their axis (vct::TraceDesc::
     // occlusionField): the renderer builds the field for voxel cone tracing too.
     bool vctSdfOcclusion = false;
@@ -164,6 +165,8 @@ public:
     // the samples themselves; empty without the cone tracer.
     Image vctConeSamplesView();
     std::vector<vct::ConeSample> vctConeSamples();
+    // The pixels the latest frame's cone tracer refined (vct::ConeTracer::readRefinedPixels); 0 without it.
+    uint32_t vctRefinedPixels();
     // The pixel whose cones View::VctConeSamples shows (default: the centre; clamped to the image).
     void setVctProbePixel(uint32_t x, uint32_t y) { probePixel_ = glm::uvec2(x, y); }
     // A GI debug view of the latest frame (tone-mapped, 0..1); empty without GI.

@@ -39,7 +39,7 @@ bool RasterRenderer::createVct(const scenes::SceneGeometry& scene, std::string* 
     // The SDF GI with the clip-map's light for unseen surfaces voxelizes only; it traces no cones.
     const bool traceCones = options_.vxao || (options_.gi && options_.giTechnique == GiTechnique::Vct);
     if (traceCones) {
-        coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, {options_.width, options_.height}, &why);
+        coneTracer_ = vct::ConeTracer::create(device_, *clipmap_, {options_.width, options_.height, options_.vctRefinementEntries}, &why);
         if (!coneTracer_) return fail(why.message);
     }
     if (probePixel_.x == ~0u) probePixel_ = glm::uvec2(options_.width / 2, options_.height / 2);
@@ -158,6 +158,8 @@ Image RasterRenderer::vctConeSamplesView() {
 std::vector<vct::ConeSample> RasterRenderer::vctConeSamples() {
     return coneTracer_ ? coneTracer_->readConeSamples() : std::vector<vct::ConeSample>{};
 }
+
+uint32_t RasterRenderer::vctRefinedPixels() { return coneTracer_ ? coneTracer_->readRefinedPixels() : 0u; }
 
 Image RasterRenderer::readDebugView() {
     Image img;

@@ -85,11 +85,15 @@ BlCone blDefaultCone(vec3 origin, vec3 direction, float coneFactor) {
 // The cone factor of a cone of full angle `angle` (radians).
 float blConeFactor(float angle) { return 2.0 * tan(0.5 * angle); }
 
+// 2^e as a float, for −126 ≤ e ≤ 127: built from its exponent bits, exact — without the integer-to-float conversions
+// and reciprocals of float(1u << level) and a division by it, which many GPUs run on slower units than arithmetic.
+float blVctPow2(int e) { return uintBitsToFloat(uint(e + 127) << 23u); }
+
 // Where a level's voxels hold a point (finest-voxel coordinates), as texture coordinates of the atlas's opacity
 // region, except x: texels from the region's first column. Levels ≥ the level count are the coarsest level's mips
 // (vct_layout.glsl), which cover what it covers.
 vec3 blVctLevelUvw(uint level, vec3 pFinest, float resolution, uint levels) {
-    vec3 p = pFinest / float(1u << level);  // the level's voxel coordinates
+    vec3 p = pFinest * blVctPow2(-int(level));  // the level's voxel coordinates
     float slices = float(vctTracedSlices(levels, uint(resolution)));
     if (level < levels) {
         // Toroidal in x and z onto the border column and slice; y wraps in the sampler.
@@ -150,6 +154,25 @@ uint blVctHoldingLevel(uint level, vec3 pFinest, float marginFinest, uint levels
     return level;
 }
 
+// blVctHoldingLevel for a cone's samples, in finest voxels: `boxLevel`, `boxLo` and `boxHi` keep the region of the
+// level last tested (boxLevel ≥ the level count: none yet), so that a sample reads the buffer's origins only where
+// the cone changes level — a few times a cone, not at every sample. The same comparisons scaled by the level's
+// voxel size (a power of two, which scales exactly), so it answers bit for bit as blVctHoldingLevel does.
+uint blVctHoldingLevelOfCone(uint level, vec3 pFinest, float marginFinest, uint levels, float resolution,
+                             inout uint boxLevel, inout vec3 boxLo, inout vec3 boxHi) {
+    for (; level < levels; ++level) {
+        float scale = blVctPow2(int(level));
+        if (level != boxLevel) {
+            boxLevel = level;
+            boxLo = vec3(blVctFrame.origin[level].xyz) * scale;
+            boxHi = boxLo + resolution * scale;
+        }
+        float m = marginFinest + scale;
+        if (all(greaterThanEqual(pFinest, boxLo + m)) && all(lessThanEqual(pFinest, boxHi - m))) break;
+    }
+    return level;
+}
+
 // The light a surface at `position` (world; e.g. where a ray met it) sends back along −`direction`, as its finest
 // voxels hold it: sampled half a finest voxel in front of it, divided by the opacity there. `known` is false
 // outside the clip-map and where the voxels hold (almost) no surface.
@@ -187,6 +210,8 @@ BlConeResult blTraceCone(BlCone cone) {
     bool hasPlane = dot(cone.planeNormal, cone.planeNormal) > 0.0;
     float planeT = hasPlane ? cone.planeDistance / finest : 1.0e30;
     float planeCos = hasPlane ? max(dot(cone.direction, cone.planeNormal), 0.0) : 0.0;
+    uint boxLevel = levels;  // the level whose region boxLo..boxHi hold (blVctHoldingLevelOfCone)
+    vec3 boxLo = vec3(0.0), boxHi = vec3(0.0);
     for (int i = 0; i < 256; ++i) {
         // The sample's diameter in finest voxels. Before the surface the axis met (surfaceDistance) samples narrow
         // so as to end in front of it: a sample that reached past it would average in what lies behind the wall
@@ -217,7 +242,7 @@ BlConeResult blTraceCone(BlCone cone) {
         vec3 p = origin + cone.direction * t;
         // Wider than the coarsest level's voxels: its mips, which cover the same region.
         float fLevel = min(log2(size), float(top));
-        uint level = blVctHoldingLevel(min(uint(fLevel), levels - 1u), p, 0.5 * size, levels, resolution);
+        uint level = blVctHoldingLevelOfCone(min(uint(fLevel), levels - 1u), p, 0.5 * size, levels, resolution, boxLevel, boxLo, boxHi);
         if (level >= levels) break;  // left the clip-map
         if (level == levels - 1u) level = max(level, uint(fLevel));
         float f = max(fLevel - float(level), 0.0);

@@ -353,8 +353,14 @@ struct ConeSample {
     uint32_t cone = 0;
 };
 
+constexpr uint32_t kAutomaticRefinement = 0xFFFFFFFFu;  // ConeTracerDesc::refinementEntries: a quarter of the pixel count
+
 struct ConeTracerDesc {
     uint32_t width = 0, height = 0;  // the G-buffer's size in pixels
+    // The refinement's room, in cone results (20 bytes each): pixels that no sparse sample fits trace their own cones in
+    // a pass of their own, one cone to an invocation, as long as their cones fit (the rest in the resolve, one pixel's
+    // cones one after another, which made the pass wait on them). 0: all in the resolve (docs/vct.md, Passes).
+    uint32_t refinementEntries = kAutomaticRefinement;
 };
 
 // The tracing passes: sparse diffuse cones + geometry-aware upsample with refinement + temporal reprojection
@@ -379,6 +385,9 @@ public:
     bool debugConeSamples(uint32_t x, uint32_t y, rhi::TextureHandle output, Error* error = nullptr);
     // The samples debugConeSamples recorded last, cone by cone (waits for the GPU; tests and tools).
     std::vector<ConeSample> readConeSamples();
+    // How many pixels the latest dispatch() refined (no sparse sample fit them), those the refinement had no room for
+    // included; reads the count back from the device (for tests and tools).
+    uint32_t readRefinedPixels();
     MemoryUse memoryUse() const;
 
 private:
@@ -390,6 +399,9 @@ private:
     rhi::ShaderHandle traceDiffuse_, resolveDiffuse_, traceSpecular_;
     rhi::ShaderHandle traceDiffuseSdf_, traceSpecularSdf_;  // the variants for TraceDesc::occlusionField
     rhi::ShaderHandle traceOcclusion_;  // the diffuse cones without light, for a clip-map without emittance
+    rhi::ShaderHandle refineDiffuse_, resolveRefined_;  // the refinement's cones and blend (shaders/vct/refine_list.glsl)
+    rhi::BufferHandle refineCounts_[2], refineList_, refineCones_;
+    uint32_t refineEntries_ = 0;  // cone results refineCones_ holds
     rhi::TextureHandle lowDiffuse_, lowGuide_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], guide_[2];
     rhi::BufferHandle params_;
@@ -398,6 +410,7 @@ private:
     rhi::ShaderHandle coneSamples_, coneSamplesSdf_, coneSamplesView_;  // cone_samples.cpp, created at first use
     rhi::BufferHandle coneSampleRecord_;
     bool bindLowResolution(uint32_t sparsity, Error* error = nullptr);
+    void dispatchRefinement(const TraceDesc& desc);  // after the resolve, within frame_'s dispatch
     void bindCommon(rhi::Bindings& bindings, const TraceDesc& desc) const;  // the G-buffer, the clip-map, the parameters
     void bindField(rhi::Bindings& bindings, const TraceDesc& desc) const;   // the occlusion field, if any
 };

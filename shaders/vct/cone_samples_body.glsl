@@ -35,7 +35,7 @@ void main() {
     vec3 normal = surfaceNormal(pixel);
     uint cones = diffuseConeCount();
     recordingCone = k;
-    if (k < cones) blTraceCone(diffuseCone(k, cones, position, normal, uintBitsToFloat(trace.sparseOffset.w)));
+    if (k < cones) blTraceCone(diffuseCone(k, cones, position, normal, uintBitsToFloat(trace.sparseOffset.w), diffuseFrame(position, normal)));
     if (k == 0u && probe.pixel.z != 0) {
         recordingCone = 32u;
         blTraceCone(specularCone(pixel, position, normal));

@@ -1,21 +1,27 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Full-resolution diffuse light from the sparse samples: each pixel weighs the four nearest blocks' samples by
-// distance, normal agreement and distance from their surface's plane; a pixel none of them fits traces its own
-// cones (VXGI's refinement). Then the temporal blend with the reprojected history, where the surface there
-// last frame is the same one.
+// distance, normal agreement and distance from their surface's plane; a pixel none of them fits is listed for its own
+// cones (VXGI's refinement: refine_list.glsl), traced here only where the list is full. Then the temporal blend with
+// the reprojected history, where the surface there last frame is the same one.
 #include "trace_common.glsl"
+#include "history_blend.glsl"
+#include "refine_list.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 BL_TEXTURE(4) uniform sampler2D lowDiffuse;
 BL_TEXTURE(5) uniform usampler2D lowGuide;
-BL_TEXTURE(6) uniform sampler2D previousHistory;
-BL_TEXTURE(7) uniform usampler2D previousGuide;
 BL_IMAGE(0, rgba16f) uniform writeonly image2D outputDiffuse;
 BL_IMAGE(1, rgba16f) uniform writeonly image2D history;
 BL_IMAGE(2, rgba32ui) uniform writeonly uimage2D guide;
+BL_STORAGE_BUFFER(0) RefineCounts { uint words[8]; } counts;
+BL_STORAGE_BUFFER(1) RefineList { uint pixels[]; } list;
+// The counts the next frame's resolve adds to (the previous frame's): zeroed here, so that no clear precedes the pass.
+BL_STORAGE_BUFFER(2) NextRefineCounts { uint words[8]; } nextCounts;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel == ivec2(0))
+        for (uint i = 0u; i < 8u; ++i) nextCounts.words[i] = (i == 1u || i == 2u || i == 4u || i == 5u) ? 1u : 0u;  // indirect y, z: 1
     if (any(greaterThanEqual(pixel, ivec2(trace.size.xy)))) return;
     float depth = texelFetch(gDepth, pixel, 0).r;
     if (isSky(depth)) {
@@ -50,17 +56,19 @@ void main() {
     vec4 current;
     if (total > 1.0e-4) {
         current = sum / total;
-    } else {  // no sample fits this pixel: trace it
+    } else {  // no sample fits this pixel: listed for its own cones (refine_list.glsl), traced here if the list is full
+        uint slot = atomicAdd(counts.words[REFINE_LISTED], 1u);
+        if (slot < refineCapacity()) {
+            list.pixels[slot] = packRefinePixel(pixel);
+            atomicMax(counts.words[0], ((slot + 1u) * diffuseConeCount() + 63u) / 64u);
+            atomicMax(counts.words[3], (slot + 64u) / 64u);
+            imageStore(guide, pixel, packGuide(position, normal));
+            return;
+        }
         current = diffuseAt(position, normal, uintBitsToFloat(trace.sparseOffset.w));
     }
 
-    ivec2 previous;
-    vec4 result = current;
-    if ((trace.lowSize.w & FLAG_RESET) == 0u && previousPixel(pixel, position, previous)) {
-        vec3 p, n;
-        if (unpackGuide(texelFetch(previousGuide, previous, 0), p, n) && distance(p, position) < 0.5 * voxel && dot(n, normal) > 0.9)
-            result = mix(current, texelFetch(previousHistory, previous, 0), clamp(trace.limits.z, 0.0, 0.98));
-    }
+    vec4 result = blendHistory(pixel, position, normal, voxel, current);
     imageStore(outputDiffuse, pixel, result);
     imageStore(history, pixel, result);
     imageStore(guide, pixel, packGuide(position, normal));

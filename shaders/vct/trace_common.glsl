@@ -20,7 +20,8 @@ BL_READ_BUFFER(6) TraceParams {
     vec4 limits;              // x max distance (world), y ambient range (world), z temporal weight, w light-leak lag
     uvec4 sparseOffset;       // xy: the pixel of each block traced this frame; z: the specular tracing step (float bits);
                               // w: this frame's turn of the diffuse cones (float bits, radians)
-    vec4 specular;            // x: tangent jitter (0..1 of the cone's half width), y: the frame (float)
+    vec4 specular;            // x: tangent jitter (0..1 of the cone's half width), y: the frame (float), z: the refinement's
+                              // cone results (float; refine_list.glsl)
 } trace;
 
 BL_TEXTURE(0) uniform sampler2D gDepth;
@@ -65,8 +66,8 @@ float voxelSizeAt(vec3 position) {
     return blVctFrame.scales.x * float(1u << min(level, blVctFrame.params.y - 1u));
 }
 
-BlCone coneAt(vec3 position, vec3 normal, vec3 direction, float coneFactor) {
-    float voxel = voxelSizeAt(position);
+// A cone from a surface whose level's finest voxel is `voxel` (voxelSizeAt) world units wide.
+BlCone coneAtVoxel(vec3 position, float voxel, vec3 normal, vec3 direction, float coneFactor) {
     BlCone c = blDefaultCone(position + normal * (trace.cone.w * voxel), direction, coneFactor);
     c.firstSampleT = 0.0;
     c.planeNormal = normal;
@@ -93,18 +94,34 @@ BlCone coneAt(vec3 position, vec3 normal, vec3 direction, float coneFactor) {
     return c;
 }
 
+BlCone coneAt(vec3 position, vec3 normal, vec3 direction, float coneFactor) {
+    return coneAtVoxel(position, voxelSizeAt(position), normal, direction, coneFactor);
+}
+
+// What a surface's diffuse cones share: its normal's tangent frame and the voxel size there, found once for all of
+// them (a level search and two square roots a cone otherwise).
+struct DiffuseFrame {
+    vec3 tangent, bitangent;
+    float voxel;
+};
+DiffuseFrame diffuseFrame(vec3 position, vec3 normal) {
+    DiffuseFrame f;
+    vec3 helper = abs(normal.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+    f.tangent = normalize(cross(helper, normal));
+    f.bitangent = cross(normal, f.tangent);
+    f.voxel = voxelSizeAt(position);
+    return f;
+}
+
 // Diffuse cone k of `cones` at a surface: spread cosine-weighted over the hemisphere (a Fibonacci spiral, turned by
 // `rotation` radians: the same for every pixel of a frame, so that neighbouring pixels' cones take the same faces
 // and branches; another each frame for the temporal blend), so that the mean of the cones' radiance is irradiance / π.
-BlCone diffuseCone(uint k, uint cones, vec3 position, vec3 normal, float rotation) {
-    vec3 helper = abs(normal.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
-    vec3 tangent = normalize(cross(helper, normal));
-    vec3 bitangent = cross(normal, tangent);
+BlCone diffuseCone(uint k, uint cones, vec3 position, vec3 normal, float rotation, DiffuseFrame frame) {
     float u = (float(k) + 0.5) / float(cones);
     float radius = sqrt(u);
     float phi = float(k) * 2.39996323 + rotation;
-    vec3 d = normalize(radius * cos(phi) * tangent + radius * sin(phi) * bitangent + sqrt(max(1.0 - u, 0.0)) * normal);
-    return coneAt(position, normal, d, trace.cone.x);
+    vec3 d = normalize(radius * cos(phi) * frame.tangent + radius * sin(phi) * frame.bitangent + sqrt(max(1.0 - u, 0.0)) * normal);
+    return coneAtVoxel(position, frame.voxel, normal, d, trace.cone.x);
 }
 
 uint diffuseConeCount() { return clamp(trace.lowSize.z, 1u, 32u); }
@@ -112,9 +129,10 @@ uint diffuseConeCount() { return clamp(trace.lowSize.z, 1u, 32u); }
 // Diffuse light at a surface: rgb irradiance / π, w the mean transmittance at the ambient range (ambient occlusion).
 vec4 diffuseAt(vec3 position, vec3 normal, float rotation) {
     uint cones = diffuseConeCount();
+    DiffuseFrame frame = diffuseFrame(position, normal);
     vec4 sum = vec4(0.0);
     for (uint k = 0u; k < cones; ++k) {
-        BlConeResult r = blTraceCone(diffuseCone(k, cones, position, normal, rotation));
+        BlConeResult r = blTraceCone(diffuseCone(k, cones, position, normal, rotation, frame));
         sum += vec4(r.radiance, r.ambient);
     }
     return sum / float(cones);
