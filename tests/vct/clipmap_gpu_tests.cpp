@@ -140,8 +140,25 @@ void coneSamplesRefuseBadRequests(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// The shaders hold the refinement's room as a float: past 2^24 entries it would round, so it is refused.
+void coneTracerRefusesTooLargeARefinement(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    vct::ClipmapDesc desc;
+    desc.levels = kLevels;
+    desc.resolution = kResolution;
+    Error error;
+    auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
+    REQUIRE(clipmap);
+    CHECK_FALSE(vct::ConeTracer::create(*td.device, *clipmap, {16, 16, (1u << 24) + 1u}, &error));
+    CHECK(error.message.find("refinementEntries 16777217") != std::string::npos);
+    CHECK(vct::ConeTracer::create(*td.device, *clipmap, {16, 16, 0}, &error));
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
 BACKEND_TEST("the cone tracer's sample record refuses requests before any trace", "[vct]", coneSamplesRefuseBadRequests)
+BACKEND_TEST("the cone tracer refuses a refinement room past 2^24 entries", "[vct]", coneTracerRefusesTooLargeARefinement)
 BACKEND_TEST("clip-map clears exactly the voxels that entered its levels", "[vct]", clearsWhatEntered)
 BACKEND_TEST("clip-map refuses a bad description", "[vct]", refusesBadDescriptions)
