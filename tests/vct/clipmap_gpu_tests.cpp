@@ -3,6 +3,7 @@
 // include/bricklight/vct_layout.glsl equals ClipmapPlacement::toroidalTexel), and nothing else is touched.
 #include <catch2/catch.hpp>
 
+#include <memory>
 #include <vector>
 
 #include "backend_test.h"
@@ -117,15 +118,23 @@ void refusesBadDescriptions(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
-void coneSamplesRefuseBadRequests(const std::string& backend) {
-    TestDevice td = makeDevice(backend);
-    REQUIRE(td.device);
+// A clip-map of kLevels × kResolution³ (six directions) for the cone tracer's refusals.
+std::unique_ptr<vct::Clipmap> smallClipmap(TestDevice& td) {
     vct::ClipmapDesc desc;
     desc.levels = kLevels;
     desc.resolution = kResolution;
     Error error;
     auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
+    INFO(error.message);
     REQUIRE(clipmap);
+    return clipmap;
+}
+
+void coneSamplesRefuseBadRequests(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    auto clipmap = smallClipmap(td);
+    Error error;
     auto tracer = vct::ConeTracer::create(*td.device, *clipmap, {16, 16}, &error);
     REQUIRE(tracer);
     rhi::TextureDesc od;
@@ -144,12 +153,8 @@ void coneSamplesRefuseBadRequests(const std::string& backend) {
 void coneTracerRefusesTooLargeARefinement(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
-    vct::ClipmapDesc desc;
-    desc.levels = kLevels;
-    desc.resolution = kResolution;
+    auto clipmap = smallClipmap(td);
     Error error;
-    auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
-    REQUIRE(clipmap);
     CHECK_FALSE(vct::ConeTracer::create(*td.device, *clipmap, {16, 16, (1u << 24) + 1u}, &error));
     CHECK(error.message.find("refinementEntries 16777217") != std::string::npos);
     CHECK(vct::ConeTracer::create(*td.device, *clipmap, {16, 16, 0}, &error));
