@@ -141,23 +141,10 @@ vec4 blVctSampleLevel(uint level, vec3 pFinest, vec3 dir, float resolution, uint
     return opacity > 1.0 ? vec4(light / opacity, 1.0) : vec4(light, opacity);
 }
 
-// The finest level ≥ `level` that holds the point (finest-voxel coordinates) with `margin` of its voxels to
-// spare; the level count if none does.
-uint blVctHoldingLevel(uint level, vec3 pFinest, float marginFinest, uint levels, float resolution) {
-    for (; level < levels; ++level) {
-        float scale = float(1u << level);
-        vec3 p = pFinest / scale;
-        vec3 lo = vec3(blVctFrame.origin[level].xyz);
-        float m = marginFinest / scale + 1.0;
-        if (all(greaterThanEqual(p, lo + m)) && all(lessThanEqual(p, lo + resolution - m))) break;
-    }
-    return level;
-}
-
-// blVctHoldingLevel for a cone's samples, in finest voxels: `boxLevel`, `boxLo` and `boxHi` keep the region of the
-// level last tested (boxLevel ≥ the level count: none yet), so that a sample reads the buffer's origins only where
-// the cone changes level — a few times a cone, not at every sample. The same comparisons scaled by the level's
-// voxel size (a power of two, which scales exactly), so it answers bit for bit as blVctHoldingLevel does.
+// The finest level ≥ `level` that holds the point (finest-voxel coordinates) with `marginFinest` finest voxels and one
+// of the level's own to spare; the level count if none does. `boxLevel`, `boxLo` and `boxHi` keep the region of the
+// level last tested, in finest voxels (boxLevel ≥ the level count: none yet), so that a cone's samples read the
+// buffer's origins only where the cone changes level — a few times a cone, not at every sample.
 uint blVctHoldingLevelOfCone(uint level, vec3 pFinest, float marginFinest, uint levels, float resolution,
                              inout uint boxLevel, inout vec3 boxLo, inout vec3 boxHi) {
     for (; level < levels; ++level) {
@@ -171,6 +158,13 @@ uint blVctHoldingLevelOfCone(uint level, vec3 pFinest, float marginFinest, uint 
         if (all(greaterThanEqual(pFinest, boxLo + m)) && all(lessThanEqual(pFinest, boxHi - m))) break;
     }
     return level;
+}
+
+// The same for one point.
+uint blVctHoldingLevel(uint level, vec3 pFinest, float marginFinest, uint levels, float resolution) {
+    uint boxLevel = levels;
+    vec3 boxLo = vec3(0.0), boxHi = vec3(0.0);
+    return blVctHoldingLevelOfCone(level, pFinest, marginFinest, levels, resolution, boxLevel, boxLo, boxHi);
 }
 
 // The light a surface at `position` (world; e.g. where a ray met it) sends back along −`direction`, as its finest
