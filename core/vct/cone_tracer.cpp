@@ -1,6 +1,6 @@
 // vct::ConeTracer: diffuse, specular and ambient light from the clip-map for every pixel of a G-buffer
-// (include/bricklight/vct.h; the passes are shaders/vct/trace_diffuse.comp, resolve_diffuse.comp, refine_diffuse.comp,
-// resolve_refined.comp and trace_specular.comp).
+// (include/bricklight/vct.h; the passes are shaders/vct/trace_diffuse.comp, resolve_diffuse.comp, refine_diffuse.comp
+// and trace_specular.comp).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -82,7 +82,6 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     t->traceSpecularSdf_ = shaders::createCoreShader(device, "vct/trace_specular_sdf.comp");
     t->traceOcclusion_ = shaders::createCoreShader(device, "vct/trace_occlusion.comp");
     t->refineDiffuse_ = shaders::createCoreShader(device, "vct/refine_diffuse.comp");
-    t->resolveRefined_ = shaders::createCoreShader(device, "vct/resolve_refined.comp");
     const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
                                {"vct specular history 0", "vct specular history 1"},
                                {"vct guide 0", "vct guide 1"}};
@@ -96,19 +95,16 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     bd.usage = rhi::BufferUsage::ShaderRead;
     bd.debugName = "vct trace parameters";
     t->params_ = device.createBuffer(bd);
-    // The refinement (shaders/vct/refine_list.glsl): room for a quarter of the pixels' cone results — 8 cones of one
-    // pixel in 32 (sparse samples fit all but 0.02 % of the atrium's pixels); past it the resolve traces a pixel's cones
-    // itself, as before.
+    // The refinement (shaders/vct/refine_list.glsl): room for a quarter of the pixels' cones — 8 cones of one pixel in
+    // 32 (sparse samples fit all but 0.02 % of the atrium's pixels); past it the resolve traces a pixel's cones itself,
+    // as before. A listed pixel takes one word; the list holds a word per entry, enough for one-cone tracing.
     t->refineEntries_ = desc.refinementEntries != kAutomaticRefinement ? desc.refinementEntries
                                                                       : std::max<uint32_t>(uint32_t(uint64_t(width) * height / 4), 256u);
-    bd.size = std::max<uint64_t>(uint64_t(t->refineEntries_) * 16, 16);
-    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
-    bd.debugName = "vct refined cones";
-    t->refineCones_ = device.createBuffer(bd);
     bd.size = std::max<uint64_t>(uint64_t(t->refineEntries_) * 4, 16);
+    bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead;
     bd.debugName = "vct refined pixels";
     t->refineList_ = device.createBuffer(bd);
-    const uint32_t counts[8] = {0, 1, 1, 0, 1, 1, 0, 0};  // dispatchIndirect's y and z stay 1
+    const uint32_t counts[8] = {0, 1, 1, 0, 0, 0, 0, 0};  // dispatchIndirect's y and z stay 1
     bd.size = sizeof(counts);
     bd.usage = rhi::BufferUsage::ShaderWrite | rhi::BufferUsage::ShaderRead | rhi::BufferUsage::IndirectArgs;
     bd.debugName = "vct refined count A";
@@ -120,7 +116,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     sd.debugName = "vct point";
     t->point_ = device.createSampler(sd);
     bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->traceOcclusion_ && t->params_ &&
-              t->point_ && t->refineDiffuse_ && t->resolveRefined_ && t->refineCones_ && t->refineList_ && t->refineCounts_[0] && t->refineCounts_[1];
+              t->point_ && t->refineDiffuse_ && t->refineList_ && t->refineCounts_[0] && t->refineCounts_[1];
     for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
     if (!ok) return fail("the device could not create the tracing passes or their history", ErrorCode::DeviceFailure);
     rhi::ClearValue none{};
@@ -132,9 +128,9 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
 ConeTracer::~ConeTracer() {
     for (rhi::TextureHandle t : {lowDiffuse_, lowGuide_, diffuseHistory_[0], diffuseHistory_[1], specularHistory_[0], specularHistory_[1], guide_[0], guide_[1]})
         if (t) device_.destroy(t);
-    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_, traceOcclusion_, refineDiffuse_, resolveRefined_})
+    for (rhi::ShaderHandle s : {traceDiffuse_, resolveDiffuse_, traceSpecular_, traceDiffuseSdf_, traceSpecularSdf_, traceOcclusion_, refineDiffuse_})
         if (s) device_.destroy(s);
-    for (rhi::BufferHandle b : {refineCounts_[0], refineCounts_[1], refineList_, refineCones_})
+    for (rhi::BufferHandle b : {refineCounts_[0], refineCounts_[1], refineList_})
         if (b) device_.destroy(b);
     for (rhi::ShaderHandle s : {coneSamples_, coneSamplesSdf_, coneSamplesView_})
         if (s) device_.destroy(s);
@@ -270,7 +266,7 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
     return true;
 }
 
-// The refinement's cones, one to an invocation, then each refined pixel's sum and blend (shaders/vct/refine_list.glsl).
+// The refined pixels' cones, one to an invocation, each pixel's sum and blend (shaders/vct/refine_list.glsl).
 void ConeTracer::dispatchRefinement(const TraceDesc& d) {
     const uint32_t cur = frame_ & 1u, prev = cur ^ 1u;
     rhi::DispatchState refine;
@@ -279,21 +275,11 @@ void ConeTracer::dispatchRefinement(const TraceDesc& d) {
     bindCommon(refine.bindings, d);
     refine.bindings.readBuffers.push(rhi::ReadBufferBinding{4, refineCounts_[cur], {}});
     refine.bindings.readBuffers.push(rhi::ReadBufferBinding{5, refineList_, {}});
-    refine.bindings.storageBuffers.push(rhi::StorageBufferBinding{0, refineCones_, {}, rhi::Access::Write});
+    refine.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(diffuseHistory_[prev]), point_});
+    refine.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
+    bindWriteImage(refine.bindings, 0, d.outputDiffuse);
+    bindWriteImage(refine.bindings, 1, diffuseHistory_[cur]);
     device_.dispatchIndirect(refine, refineCounts_[cur], 0);
-
-    rhi::DispatchState refined;
-    refined.shader = resolveRefined_;
-    refined.label = "vct resolve refined";
-    bindCommon(refined.bindings, d);
-    refined.bindings.readBuffers.push(rhi::ReadBufferBinding{0, refineCones_, {}});
-    refined.bindings.readBuffers.push(rhi::ReadBufferBinding{4, refineCounts_[cur], {}});
-    refined.bindings.readBuffers.push(rhi::ReadBufferBinding{5, refineList_, {}});
-    refined.bindings.textures.push(rhi::TextureBinding{6, rhi::wholeTexture(diffuseHistory_[prev]), point_});
-    refined.bindings.textures.push(rhi::TextureBinding{7, rhi::wholeTexture(guide_[prev]), point_});
-    bindWriteImage(refined.bindings, 0, d.outputDiffuse);
-    bindWriteImage(refined.bindings, 1, diffuseHistory_[cur]);
-    device_.dispatchIndirect(refined, refineCounts_[cur], 12);
 }
 
 uint32_t ConeTracer::readRefinedPixels() {
@@ -323,7 +309,7 @@ MemoryUse ConeTracer::memoryUse() const {
             use.resources.push_back({d->debugName, rhi::subresourceBytes(*d, {})});
             use.totalBytes += use.resources.back().bytes;
         }
-    for (rhi::BufferHandle b : {params_, refineCounts_[0], refineCounts_[1], refineList_, refineCones_})
+    for (rhi::BufferHandle b : {params_, refineCounts_[0], refineCounts_[1], refineList_})
         if (const rhi::BufferDesc* d = device_.describe(b)) {
             use.resources.push_back({d->debugName, d->size});
             use.totalBytes += d->size;

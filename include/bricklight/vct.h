@@ -357,9 +357,10 @@ constexpr uint32_t kAutomaticRefinement = 0xFFFFFFFFu;  // ConeTracerDesc::refin
 
 struct ConeTracerDesc {
     uint32_t width = 0, height = 0;  // the G-buffer's size in pixels
-    // The refinement's room, in cone results (20 bytes each): pixels that no sparse sample fits trace their own cones in
-    // a pass of their own, one cone to an invocation, as long as their cones fit (the rest in the resolve, one pixel's
-    // cones one after another, which made the pass wait on them). 0: all in the resolve (docs/vct.md, Passes).
+    // The refinement's room, in cones (4 bytes each; a listed pixel takes its diffuse cone count): pixels that no sparse
+    // sample fits trace their own cones in a pass of their own, one cone to an invocation, as long as their cones fit
+    // (the rest in the resolve, one pixel's cones one after another, which made the pass wait on them). 0: all in the
+    // resolve (docs/vct.md, Passes).
     uint32_t refinementEntries = kAutomaticRefinement;
 };
 
@@ -399,9 +400,9 @@ private:
     rhi::ShaderHandle traceDiffuse_, resolveDiffuse_, traceSpecular_;
     rhi::ShaderHandle traceDiffuseSdf_, traceSpecularSdf_;  // the variants for TraceDesc::occlusionField
     rhi::ShaderHandle traceOcclusion_;  // the diffuse cones without light, for a clip-map without emittance
-    rhi::ShaderHandle refineDiffuse_, resolveRefined_;  // the refinement's cones and blend (shaders/vct/refine_list.glsl)
-    rhi::BufferHandle refineCounts_[2], refineList_, refineCones_;
-    uint32_t refineEntries_ = 0;  // cone results refineCones_ holds
+    rhi::ShaderHandle refineDiffuse_;  // the refinement's cones and blend (shaders/vct/refine_list.glsl)
+    rhi::BufferHandle refineCounts_[2], refineList_;
+    uint32_t refineEntries_ = 0;  // cones the refinement holds room for: refineList_'s words
     rhi::TextureHandle lowDiffuse_, lowGuide_;
     rhi::TextureHandle diffuseHistory_[2], specularHistory_[2], guide_[2];
     rhi::BufferHandle params_;

@@ -21,7 +21,7 @@ BL_STORAGE_BUFFER(2) NextRefineCounts { uint words[8]; } nextCounts;
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel == ivec2(0))
-        for (uint i = 0u; i < 8u; ++i) nextCounts.words[i] = (i == 1u || i == 2u || i == 4u || i == 5u) ? 1u : 0u;  // indirect y, z: 1
+        for (uint i = 0u; i < 8u; ++i) nextCounts.words[i] = (i == 1u || i == 2u) ? 1u : 0u;  // indirect y, z: 1
     if (any(greaterThanEqual(pixel, ivec2(trace.size.xy)))) return;
     float depth = texelFetch(gDepth, pixel, 0).r;
     if (isSky(depth)) {
@@ -60,8 +60,7 @@ void main() {
         uint slot = atomicAdd(counts.words[REFINE_LISTED], 1u);
         if (slot < refineCapacity()) {
             list.pixels[slot] = packRefinePixel(pixel);
-            atomicMax(counts.words[0], ((slot + 1u) * diffuseConeCount() + 63u) / 64u);
-            atomicMax(counts.words[3], (slot + 64u) / 64u);
+            atomicMax(counts.words[0], slot / refinePixelsPerGroup() + 1u);
             imageStore(guide, pixel, packGuide(position, normal));
             return;
         }
