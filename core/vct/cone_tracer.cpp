@@ -35,14 +35,14 @@ namespace {
 
 // The passes' parameters (TraceParams in shaders/vct/trace_common.glsl, std430).
 struct TraceParamsBlock {
-    glm::mat4 inverseViewProjection, previousViewProjection;
+    glm::mat4 inverseViewProjection, previousViewProjection, previousInverseViewProjection;
     glm::vec4 eye;
     glm::uvec4 size, lowSize;
     glm::vec4 normalUnpackScale, normalUnpackOffset, cone, limits;
     glm::uvec4 sparseOffset;
     glm::vec4 specular;
 };
-static_assert(sizeof(TraceParamsBlock) == 272);
+static_assert(sizeof(TraceParamsBlock) == 336);
 
 rhi::TextureHandle makeTexture(rhi::IDevice& device, uint32_t w, uint32_t h, rhi::Format format, const char* name) {
     rhi::TextureDesc td;
@@ -54,7 +54,7 @@ rhi::TextureHandle makeTexture(rhi::IDevice& device, uint32_t w, uint32_t h, rhi
     return device.createTexture(td);
 }
 
-const uint32_t kNoGuide = 0x7FC00000u;  // NO_GUIDE in trace_common.glsl
+const uint32_t kNoGuide = 0x7FC00000u;  // NO_PIXEL_GUIDE in trace_common.glsl
 
 void bindWriteImage(rhi::Bindings& bindings, uint8_t slot, rhi::TextureHandle t) {
     bindings.storageImages.push(rhi::storageImage(slot, t, rhi::Access::Write));
@@ -76,19 +76,22 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     t->width_ = width;
     t->height_ = height;
     t->traceDiffuse_ = shaders::createCoreShader(device, "vct/trace_diffuse.comp");
-    t->resolveDiffuse_ = shaders::createCoreShader(device, "vct/resolve_diffuse.comp");
+    // A clip-map without emittance (voxel AO) gives only ambient: its resolve and refinement trace occlusion-only cones
+    // and keep a one-channel history.
+    const bool occlusionOnly = clipmap.desc().emittance == EmittanceMode::None;
+    t->resolveDiffuse_ = shaders::createCoreShader(device, occlusionOnly ? "vct/resolve_occlusion.comp" : "vct/resolve_diffuse.comp");
     t->traceSpecular_ = shaders::createCoreShader(device, "vct/trace_specular.comp");
     t->traceDiffuseSdf_ = shaders::createCoreShader(device, "vct/trace_diffuse_sdf.comp");
     t->traceSpecularSdf_ = shaders::createCoreShader(device, "vct/trace_specular_sdf.comp");
     t->traceOcclusion_ = shaders::createCoreShader(device, "vct/trace_occlusion.comp");
-    t->refineDiffuse_ = shaders::createCoreShader(device, "vct/refine_diffuse.comp");
+    t->refineDiffuse_ = shaders::createCoreShader(device, occlusionOnly ? "vct/refine_occlusion.comp" : "vct/refine_diffuse.comp");
     const char* names[3][2] = {{"vct diffuse history 0", "vct diffuse history 1"},
                                {"vct specular history 0", "vct specular history 1"},
                                {"vct guide 0", "vct guide 1"}};
     for (int i = 0; i < 2; ++i) {
-        t->diffuseHistory_[i] = makeTexture(device, width, height, rhi::Format::RGBA16_FLOAT, names[0][i]);
+        t->diffuseHistory_[i] = makeTexture(device, width, height, occlusionOnly ? rhi::Format::R16_FLOAT : rhi::Format::RGBA16_FLOAT, names[0][i]);
         t->specularHistory_[i] = makeTexture(device, width, height, rhi::Format::RGBA16_FLOAT, names[1][i]);
-        t->guide_[i] = makeTexture(device, width, height, rhi::Format::RGBA32_UINT, names[2][i]);
+        t->guide_[i] = makeTexture(device, width, height, rhi::Format::RG32_UINT, names[2][i]);
     }
     rhi::BufferDesc bd;
     bd.size = sizeof(TraceParamsBlock);
@@ -199,6 +202,7 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
     TraceParamsBlock b{};
     b.inverseViewProjection = glm::inverse(d.camera.projection * d.camera.view);
     b.previousViewProjection = d.camera.previousProjection * d.camera.previousView;
+    b.previousInverseViewProjection = glm::inverse(b.previousViewProjection);
     b.eye = glm::vec4(d.cameraPosition, 0.0f);
     b.size = glm::uvec4(width_, height_, s, frame_);
     b.lowSize = glm::uvec4(lowW, lowH, p.diffuseCones, (d.resetHistory || frame_ == 0 ? 1u : 0u) | (d.gbuffer.motionVectors ? 2u : 0u));

@@ -11,6 +11,7 @@
 BL_READ_BUFFER(6) TraceParams {
     mat4 inverseViewProjection;
     mat4 previousViewProjection;
+    mat4 previousInverseViewProjection;
     vec4 eye;                 // xyz camera position
     uvec4 size;               // xy display size, z sparsity (pixels per block side), w frame
     uvec4 lowSize;            // xy sparse grid, z diffuse cones, w flags (1: reset history, 2: motion vectors given)
@@ -44,20 +45,47 @@ vec3 surfaceNormal(ivec2 pixel) {
     return dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
 }
 
-// The guide: the surface a pixel (or a block's traced pixel) saw, bit-exact in an RGBA32_UINT texel.
-uvec4 packGuide(vec3 position, vec3 normal) {
-    vec2 o = normal.xy / (abs(normal.x) + abs(normal.y) + abs(normal.z));  // octahedral
+uint packOctahedral(vec3 normal) {
+    vec2 o = normal.xy / (abs(normal.x) + abs(normal.y) + abs(normal.z));
     o = normal.z >= 0.0 ? o : (1.0 - abs(o.yx)) * vec2(o.x >= 0.0 ? 1.0 : -1.0, o.y >= 0.0 ? 1.0 : -1.0);
-    return uvec4(floatBitsToUint(position), packSnorm2x16(o));
+    return packSnorm2x16(o);
 }
+vec3 unpackOctahedral(uint word) {
+    vec2 o = unpackSnorm2x16(word);
+    vec3 normal = vec3(o, 1.0 - abs(o.x) - abs(o.y));
+    if (normal.z < 0.0) normal.xy = (1.0 - abs(normal.yx)) * vec2(normal.x >= 0.0 ? 1.0 : -1.0, normal.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(normal);
+}
+
+// The guide of a block's traced pixel: the surface it saw, bit-exact in an RGBA32_UINT texel (the upsample weighs
+// each pixel by its distance from that surface's plane).
+uvec4 packGuide(vec3 position, vec3 normal) { return uvec4(floatBitsToUint(position), packOctahedral(normal)); }
 const uvec4 NO_GUIDE = uvec4(0x7FC00000u, 0u, 0u, 0u);  // a NaN position: nothing there
 bool unpackGuide(uvec4 g, out vec3 position, out vec3 normal) {
     position = uintBitsToFloat(g.xyz);
-    vec2 o = unpackSnorm2x16(g.w);
-    normal = vec3(o, 1.0 - abs(o.x) - abs(o.y));
-    if (normal.z < 0.0) normal.xy = (1.0 - abs(normal.yx)) * vec2(normal.x >= 0.0 ? 1.0 : -1.0, normal.y >= 0.0 ? 1.0 : -1.0);
-    normal = normalize(normal);
+    normal = unpackOctahedral(g.w);
     return g.x != NO_GUIDE.x;
+}
+
+// The guide of a full-resolution pixel, for the next frame's temporal test: its device depth and normal in an
+// RG32_UINT texel — half the bytes of a position's; the next frame rebuilds the position through this frame's
+// inverse view-projection (trace.previousInverseViewProjection), to float precision, far inside the test's half voxel.
+uvec2 packPixelGuide(float depth, vec3 normal) { return uvec2(floatBitsToUint(depth), packOctahedral(normal)); }
+const uvec2 NO_PIXEL_GUIDE = uvec2(0x7FC00000u, 0u);  // a NaN depth: nothing there
+bool unpackPreviousPixelGuide(uvec2 g, ivec2 previous, out vec3 position, out vec3 normal) {
+    vec2 ndc = (vec2(previous) + 0.5) / vec2(trace.size.xy) * 2.0 - 1.0;
+    vec4 p = trace.previousInverseViewProjection * vec4(ndc, uintBitsToFloat(g.x), 1.0);
+    position = p.xyz / p.w;
+    normal = unpackOctahedral(g.y);
+    return g.x != NO_PIXEL_GUIDE.x;
+}
+
+// The surface a pixel's reprojected history saw last frame is this one: within half a voxel (`voxel` world units,
+// the level's at the surface) and facing the same way.
+// `guide` is last frame's pixel guide at `previous`.
+bool sameSurfaceLastFrame(uvec2 guide, ivec2 previous, vec3 position, vec3 normal, float voxel) {
+    vec3 p, n;
+    return unpackPreviousPixelGuide(guide, previous, p, n) && distance(p, position) < 0.5 * voxel && dot(n, normal) > 0.9;
 }
 
 // The finest voxel size of the level that holds a world point (cones start that many voxels off the surface).

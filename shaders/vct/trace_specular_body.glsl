@@ -25,9 +25,7 @@ void main() {
     ivec2 previous;
     vec4 result = current;
     if ((trace.lowSize.w & FLAG_RESET) == 0u && previousPixel(pixel, position, previous)) {
-        vec3 p, n;
-        float voxel = voxelSizeAt(position);
-        if (unpackGuide(texelFetch(previousGuide, previous, 0), p, n) && distance(p, position) < 0.5 * voxel && dot(n, normal) > 0.9)
+        if (sameSurfaceLastFrame(texelFetch(previousGuide, previous, 0).xy, previous, position, normal, voxelSizeAt(position)))
             result = mix(current, texelFetch(previousHistory, previous, 0), clamp(trace.limits.z, 0.0, 0.98));
     }
     imageStore(outputSpecular, pixel, result);
