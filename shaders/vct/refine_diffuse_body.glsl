@@ -1,7 +1,7 @@
 // Included by refine_diffuse.comp and refine_occlusion.comp (which defines BL_CONE_TRACE_OCCLUSION_ONLY).
 // The refined pixels (refine_list.glsl): a group holds whole pixels, one invocation per cone, so that a pixel's cones
 // run side by side rather than one after another; then each pixel's first invocation sums its cones in order — as
-// diffuseAt does, to the bit — and blends the sum with the history as resolve_diffuse.comp blends the others.
+// diffuseAt does, to the bit — and blends the sum with the history as the resolve blends the others.
 #include "trace_common.glsl"
 #include "history_blend.glsl"
 #include "refine_list.glsl"
