@@ -90,7 +90,8 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
                                {"vct guide 0", "vct guide 1"}};
     for (int i = 0; i < 2; ++i) {
         t->diffuseHistory_[i] = makeTexture(device, width, height, occlusionOnly ? rhi::Format::R16_FLOAT : rhi::Format::RGBA16_FLOAT, names[0][i]);
-        t->specularHistory_[i] = makeTexture(device, width, height, rhi::Format::RGBA16_FLOAT, names[1][i]);
+        if (!occlusionOnly)  // a clip-map without emittance has no specular light to trace (dispatch refuses the output)
+            t->specularHistory_[i] = makeTexture(device, width, height, rhi::Format::RGBA16_FLOAT, names[1][i]);
         t->guide_[i] = makeTexture(device, width, height, rhi::Format::RG32_UINT, names[2][i]);
     }
     rhi::BufferDesc bd;
@@ -120,7 +121,7 @@ std::unique_ptr<ConeTracer> ConeTracer::create(rhi::IDevice& device, const Clipm
     t->point_ = device.createSampler(sd);
     bool ok = t->traceDiffuse_ && t->resolveDiffuse_ && t->traceSpecular_ && t->traceDiffuseSdf_ && t->traceSpecularSdf_ && t->traceOcclusion_ && t->params_ &&
               t->point_ && t->refineDiffuse_ && t->refineList_ && t->refineCounts_[0] && t->refineCounts_[1];
-    for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && t->specularHistory_[i] && t->guide_[i];
+    for (int i = 0; i < 2; ++i) ok = ok && t->diffuseHistory_[i] && (occlusionOnly || t->specularHistory_[i]) && t->guide_[i];
     if (!ok) return fail("the device could not create the tracing passes or their history", ErrorCode::DeviceFailure);
     rhi::ClearValue none{};
     none.u[0] = kNoGuide;
@@ -182,6 +183,10 @@ bool ConeTracer::dispatch(const TraceDesc& d, Error* error) {
         if (in.output && (td->format != rhi::Format::RGBA16_FLOAT || !(td->usage & rhi::TextureUsage::Storage)))
             return fail(std::string(in.name) + " must be RGBA16_FLOAT with Storage usage", ErrorCode::WrongFormat);
     }
+    if (d.outputSpecular && clipmap_.desc().emittance == EmittanceMode::None)
+        return fail("outputSpecular needs a clip-map with emittance: this one has none (voxel AO), so its specular cones would carry no "
+                    "light",
+                    ErrorCode::Unsupported);
     if (d.gbuffer.roughnessChannel > 3) return fail("roughnessChannel " + std::to_string(d.gbuffer.roughnessChannel) + " is outside 0..3");
     // Motion vectors are read as UV motion (current − previous) as they are.
     if (d.gbuffer.motionVectors && d.gbuffer.motionVectorScale != glm::vec2(1.0f))

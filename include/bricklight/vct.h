@@ -328,7 +328,8 @@ struct TraceDesc {
     bricklight::gbuffer::Inputs gbuffer;       // depth, normals, roughness, motion
     glm::vec3 cameraPosition{0.0f};
     // RGBA16_FLOAT, display size, Storage. Diffuse: rgb irradiance / π (before albedo), a ambient (1 open);
-    // specular (optional): rgb prefiltered radiance along the mirror direction.
+    // specular (optional; refused on a clip-map without emittance, which has no light): rgb prefiltered radiance along
+    // the mirror direction.
     rhi::TextureHandle outputDiffuse, outputSpecular;
     ConeTraceParams params;
     bool resetHistory = false;  // a camera cut: forget the reprojected history

@@ -119,10 +119,11 @@ void refusesBadDescriptions(const std::string& backend) {
 }
 
 // A clip-map of kLevels × kResolution³ (six directions) for the cone tracer's refusals.
-std::unique_ptr<vct::Clipmap> smallClipmap(TestDevice& td) {
+std::unique_ptr<vct::Clipmap> smallClipmap(TestDevice& td, vct::EmittanceMode emittance = vct::ClipmapDesc{}.emittance) {
     vct::ClipmapDesc desc;
     desc.levels = kLevels;
     desc.resolution = kResolution;
+    desc.emittance = emittance;
     Error error;
     auto clipmap = vct::Clipmap::create(*td.device, desc, &error);
     INFO(error.message);
@@ -161,8 +162,41 @@ void coneTracerRefusesTooLargeARefinement(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
+// A clip-map without emittance (voxel AO) holds no light for a specular cone: a specular output is refused with the
+// output named (a black image would be silently wrong), and such a tracer allocates no specular history.
+void coneTracerRefusesSpecularWithoutEmittance(const std::string& backend) {
+    TestDevice td = makeDevice(backend);
+    REQUIRE(td.device);
+    auto clipmap = smallClipmap(td, vct::EmittanceMode::None);
+    Error error;
+    auto tracer = vct::ConeTracer::create(*td.device, *clipmap, {16, 16}, &error);
+    INFO(error.message);
+    REQUIRE(tracer);
+    for (const MemoryUse::Resource& r : tracer->memoryUse().resources) CHECK(r.name.find("specular") == std::string::npos);
+    rhi::TextureDesc desc;
+    desc.width = desc.height = 16;
+    desc.usage = rhi::TextureUsage::Sampled;
+    desc.format = rhi::Format::R32_FLOAT;
+    const rhi::TextureHandle depth = td.device->createTexture(desc);
+    desc.format = rhi::Format::RGBA16_FLOAT;
+    const rhi::TextureHandle normals = td.device->createTexture(desc);
+    desc.usage = rhi::TextureUsage::Sampled | rhi::TextureUsage::Storage;
+    const rhi::TextureHandle diffuse = td.device->createTexture(desc), specular = td.device->createTexture(desc);
+    vct::TraceDesc d;
+    d.gbuffer.depth = depth;
+    d.gbuffer.normals = d.gbuffer.roughness = normals;
+    d.outputDiffuse = diffuse;
+    d.outputSpecular = specular;
+    CHECK_FALSE(tracer->dispatch(d, &error));
+    CHECK(error.message.find("outputSpecular needs a clip-map with emittance") != std::string::npos);
+    CHECK(error.code == ErrorCode::Unsupported);
+    for (rhi::TextureHandle t : {depth, normals, diffuse, specular}) td.device->destroy(t);
+    REQUIRE_NO_MESSAGES(td);
+}
+
 }  // namespace
 
+BACKEND_TEST("the cone tracer refuses a specular output from a clip-map without emittance", "[vct]", coneTracerRefusesSpecularWithoutEmittance)
 BACKEND_TEST("the cone tracer's sample record refuses requests before any trace", "[vct]", coneSamplesRefuseBadRequests)
 BACKEND_TEST("the cone tracer refuses a refinement room past 2^24 entries", "[vct]", coneTracerRefusesTooLargeARefinement)
 BACKEND_TEST("clip-map clears exactly the voxels that entered its levels", "[vct]", clearsWhatEntered)
