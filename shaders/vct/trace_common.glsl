@@ -34,11 +34,13 @@ const uint FLAG_RESET = 1u, FLAG_MOTION = 2u;
 
 bool isSky(float depth) { return !(depth < 1.0); }
 
-vec3 worldPosition(ivec2 pixel, float depth) {
+// The world point at a pixel's centre and device depth, through a frame's inverse view-projection.
+vec3 unprojectPixel(mat4 inverseViewProjection, ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(trace.size.xy) * 2.0 - 1.0;
-    vec4 p = trace.inverseViewProjection * vec4(ndc, depth, 1.0);
+    vec4 p = inverseViewProjection * vec4(ndc, depth, 1.0);
     return p.xyz / p.w;
 }
+vec3 worldPosition(ivec2 pixel, float depth) { return unprojectPixel(trace.inverseViewProjection, pixel, depth); }
 
 vec3 surfaceNormal(ivec2 pixel) {
     vec3 n = texelFetch(gNormals, pixel, 0).xyz * trace.normalUnpackScale.xyz + trace.normalUnpackOffset.xyz;
@@ -73,16 +75,13 @@ bool unpackGuide(uvec4 g, out vec3 position, out vec3 normal) {
 uvec2 packPixelGuide(float depth, vec3 normal) { return uvec2(floatBitsToUint(depth), packOctahedral(normal)); }
 const uvec2 NO_PIXEL_GUIDE = uvec2(0x7FC00000u, 0u);  // a NaN depth: nothing there
 bool unpackPreviousPixelGuide(uvec2 g, ivec2 previous, out vec3 position, out vec3 normal) {
-    vec2 ndc = (vec2(previous) + 0.5) / vec2(trace.size.xy) * 2.0 - 1.0;
-    vec4 p = trace.previousInverseViewProjection * vec4(ndc, uintBitsToFloat(g.x), 1.0);
-    position = p.xyz / p.w;
+    position = unprojectPixel(trace.previousInverseViewProjection, previous, uintBitsToFloat(g.x));
     normal = unpackOctahedral(g.y);
     return g.x != NO_PIXEL_GUIDE.x;
 }
 
-// The surface a pixel's reprojected history saw last frame is this one: within half a voxel (`voxel` world units,
-// the level's at the surface) and facing the same way.
-// `guide` is last frame's pixel guide at `previous`.
+// The surface a pixel's reprojected history saw last frame (`guide`, last frame's pixel guide at `previous`) is this
+// one: within half a voxel (`voxel` world units, the level's at the surface) and facing the same way.
 bool sameSurfaceLastFrame(uvec2 guide, ivec2 previous, vec3 position, vec3 normal, float voxel) {
     vec3 p, n;
     return unpackPreviousPixelGuide(guide, previous, p, n) && distance(p, position) < 0.5 * voxel && dot(n, normal) > 0.9;
