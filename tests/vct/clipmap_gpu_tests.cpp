@@ -118,7 +118,7 @@ void refusesBadDescriptions(const std::string& backend) {
     REQUIRE_NO_MESSAGES(td);
 }
 
-// A clip-map of kLevels × kResolution³ (six directions) for the cone tracer's refusals.
+// A clip-map of kLevels × kResolution³ (six-direction emittance unless told) for the cone tracer's refusals.
 std::unique_ptr<vct::Clipmap> smallClipmap(TestDevice& td, vct::EmittanceMode emittance = vct::ClipmapDesc{}.emittance) {
     vct::ClipmapDesc desc;
     desc.levels = kLevels;
