@@ -67,6 +67,7 @@ enum RelightFlags : uint32_t {
     RelightLitHoldsEmission = 16u,  // DispatchDesc::previousLitIncludesEmission: probe rays' unseen hits add the field's
     RelightDirectOnly = 32u,  // !DispatchDesc::relightBounces: surfaces GI lights itself take the lights and emission only
     RelightUnseenHits = 64u,  // DispatchDesc::lightUnseenSurfaces: probe rays light the surfaces no view has lit
+    RelightEnvironmentInDirect = 128u,  // DispatchDesc::environmentInDirectLight: only surfaces GI lights itself take the environment
 };
 
 // One light in the lights buffer (std430, 4 × vec4; shaders/gi/gi_lights.glsl reads it).

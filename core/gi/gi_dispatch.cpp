@@ -116,7 +116,8 @@ void GiContextImpl::fillConstants(const DispatchDesc& d) {
                         (d.emittersInLights ? uint32_t(RelightEmittersInLights) : 0u) |
                         (d.previousLitIncludesEmission ? uint32_t(RelightLitHoldsEmission) : 0u) |
                         (d.relightBounces ? 0u : uint32_t(RelightDirectOnly)) |
-                        (d.lightUnseenSurfaces ? uint32_t(RelightUnseenHits) : 0u);
+                        (d.lightUnseenSurfaces ? uint32_t(RelightUnseenHits) : 0u) |
+                        (d.environmentInDirectLight ? uint32_t(RelightEnvironmentInDirect) : 0u);
     frame_.probes[0] = probeTile_;
     frame_.cache[0] = cacheSlots_ / 4;  // inject_radiance.comp: the last quarter goes to bricks that receive light
     writeChangedRegions();

@@ -154,7 +154,7 @@ RasterRenderer::~RasterRenderer() {
     clipmap_.reset();
     for (rhi::ShaderHandle s : {vctVertex_, vctEmittance_, glassFragment_, alphaPassVertex_, alphaPassFragment_})
         if (s) device_.destroy(s);
-    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, debugView_,
+    for (rhi::TextureHandle t : {albedo_, normal_, emission_, motion_, position_, depth_, lit_, giDiffuse_, giSpecular_, giSky_, debugView_,
                                  glassRadiance_, glassDepth_, specularAlbedo_})
         if (t) device_.destroy(t);
     for (rhi::ShaderHandle s : {vertex_, fragment_, lighting_, composite_, display_})

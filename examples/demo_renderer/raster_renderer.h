@@ -109,6 +109,10 @@ struct RasterOptions {
     // With the SDF GI (giTechnique Sdf): a clip-map with emittance is voxelized each frame, and GI's probe rays
     // that hit surfaces the camera never saw read its light (gi::DispatchDesc::unseenLight).
     bool giUnseenFromVct = false;
+    // With the SDF GI: probe rays light the surfaces no view has lit (gi::DispatchDesc::lightUnseenSurfaces) in every
+    // scene, with a sky too (GI is given it as its environment, environmentInDirectLight). Without it they do so only
+    // where the lights hold all of the direct light (no sky), and elsewhere take the stand-in (docs/gi.md).
+    bool giUnseenPath = false;
     // Voxel ambient occlusion (an opacity-only clip-map) when GI does not already trace cones: the AO image is
     // readAmbientOcclusion(); it does not change the lit image (direct lighting already shadows the sky).
     bool vxao = false;
@@ -138,7 +142,8 @@ struct GBufferView {
 struct GiLights {
     std::vector<gi::Light> lights;
     bool emittersInLights = false;
-    bool allDirectLight = false;  // the lights hold all the direct light: the emitters, and no sky (which GI is not given)
+    bool allDirectLight = false;  // the lights hold all the direct light: the emitters, and no sky (GI's environment)
+    glm::vec3 sky{0.0f};          // the sky's radiance: GI's environment, which the direct lighting holds
 };
 
 class RasterRenderer {
@@ -307,6 +312,8 @@ private:
     rhi::ShaderHandle vertex_, fragment_, lighting_, composite_;
     rhi::TextureHandle albedo_, normal_, emission_, motion_, position_, depth_;
     rhi::TextureHandle lit_, giDiffuse_, giSpecular_;
+    rhi::TextureHandle giSky_;  // 1×1 equirectangular: the sky as GI's environment (DispatchDesc::environmentInDirectLight)
+    glm::vec3 giSkyUploaded_{-1.0f};
     rhi::SamplerHandle point_;
     rhi::ShaderHandle display_;      // render/display.comp, created at the first drawView
     rhi::TextureHandle debugView_;   // RGBA8 scratch for the SDF and GI debug views, likewise

@@ -50,7 +50,7 @@ bool appendEmitters(const scenes::SceneGeometry& scene, size_t room, std::vector
 }  // namespace
 
 // The scene's sun, point/spot lights and emitting surfaces, for GI's relighting of what the camera does not see.
-// (The sky is not among them: the renderer's direct lighting already holds it, so GI is given no environment.)
+// (The sky is not among them: it is GI's environment, which the renderer's direct lighting holds — dispatchGi.)
 GiLights giLightsOf(const scenes::SceneGeometry& scene) {
     GiLights out;
     std::vector<gi::Light>& lights = out.lights;
@@ -79,6 +79,7 @@ GiLights giLightsOf(const scenes::SceneGeometry& scene) {
     // More emitting triangles than lights left: relight rays take the emission where they hit instead.
     out.emittersInLights = appendEmitters(scene, gi::kMaxLights - lights.size(), lights);
     const glm::vec3 sky = env.skyRadiance;
+    out.sky = glm::max(sky, glm::vec3(0.0f));
     out.allDirectLight = out.emittersInLights && sky.x <= 0.0f && sky.y <= 0.0f && sky.z <= 0.0f;
     return out;
 }
@@ -104,6 +105,16 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
         if (error) *error = "raster renderer: " + why.message;
         return false;
     }
+    rhi::TextureDesc sky;
+    sky.format = rhi::Format::RGBA32_FLOAT;
+    sky.width = sky.height = 1;
+    sky.usage = rhi::TextureUsage::Sampled;
+    sky.debugName = "gi sky";
+    giSky_ = device_.createTexture(sky);
+    if (!giSky_) {
+        if (error) *error = "raster renderer: the device could not create GI's sky texture (see its messages)";
+        return false;
+    }
     return !alphaAwareFoliage() || createAlphaPass(error);
 }
 
@@ -123,8 +134,19 @@ void RasterRenderer::dispatchGi(bool cut) {
         g.lights = giLights_.lights.data();
         g.lightCount = uint32_t(giLights_.lights.size());
         g.emittersInLights = giLights_.emittersInLights;
-        g.lightUnseenSurfaces = giLights_.allDirectLight;
+        g.lightUnseenSurfaces = giLights_.allDirectLight || options_.giUnseenPath;
         g.relightBounces = options_.giFeedback;  // --single-bounce: one bounce everywhere, not only on screen
+    }
+    // The sky lights the renderer's pixels in its direct lighting (BRDF-sampled, diffuse and glossy): GI takes it only
+    // where it lights surfaces in the screen's place (re-lit texels off screen); rays for pixels take none of it.
+    if (giLights_.sky != giSkyUploaded_) {
+        const float texel[4] = {giLights_.sky.x, giLights_.sky.y, giLights_.sky.z, 1.0f};
+        if (device_.writeTexture(giSky_, {}, texel)) giSkyUploaded_ = giLights_.sky;
+    }
+    if (giSkyUploaded_ == giLights_.sky && (giLights_.sky.x > 0.0f || giLights_.sky.y > 0.0f || giLights_.sky.z > 0.0f)) {
+        g.environmentKind = gi::EnvironmentKind::Equirectangular;
+        g.environmentMap = giSky_;
+        g.environmentInDirectLight = true;
     }
     g.outputDiffuse = giDiffuse_;
     g.outputSpecular = giSpecular_;

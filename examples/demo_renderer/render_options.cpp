@@ -95,11 +95,12 @@ OptionParse parseSharedOption(int argc, char** argv, int& i, RenderOptions& o, s
     if (a == "--gi-unseen") {
         if (!value()) return OptionParse::Error;
         const std::string s = v;
-        if (s != "vxgi" && s != "none") {
-            *error = "--gi-unseen must be vxgi or none (got '" + s + "')";
+        if (s != "vxgi" && s != "path" && s != "none") {
+            *error = "--gi-unseen must be vxgi, path or none (got '" + s + "')";
             return OptionParse::Error;
         }
         o.giUnseenFromVct = s == "vxgi";
+        o.giUnseenPath = s == "path";
         return OptionParse::Consumed;
     }
     if (a == "--vct-occlusion") {
@@ -264,7 +265,7 @@ bool checkSharedOptions(const RenderOptions& o, std::string* error) {
 const char* sharedOptionsUsage() {
     return "  [--scene NAME|FILE] [--backend vulkan|gl] [--width W] [--height H] [--frames N]\n"
            "  [--camera EX,EY,EZ,AX,AY,AZ] [--exposure E] [--gi sdf|vxgi|none] [--ao vxao|none]\n"
-           "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--vct-voxel SIZE] [--gi-unseen vxgi|none]\n"
+           "  [--gi-scale 100|75|50|25] [--vct-occlusion voxels|sdf] [--vct-voxel SIZE] [--gi-unseen vxgi|path|none]\n"
            "  [--shadows bvh|shadowmap|hybrid] [--shadow-resolution 64..4096] [--shadow-lambda 0..1] [--shadow-pcf 0..3]\n"
            "  [--sun-angle DEGREES]\n"
            "  [--reflections gi|hybrid] [--foliage alpha-aware|opaque|left-out] [--single-bounce] [--validate]\n"
@@ -296,6 +297,7 @@ RasterOptions rasterOptionsOf(const RenderOptions& o) {
     ro.vxao = o.vxao;
     ro.vctSdfOcclusion = o.vctSdfOcclusion;
     ro.giUnseenFromVct = o.giUnseenFromVct;
+    ro.giUnseenPath = o.giUnseenPath;
     ro.vctFinestVoxel = o.vctVoxel;
     ro.giResolution = o.giScale;
     ro.giFeedback = !o.singleBounce;

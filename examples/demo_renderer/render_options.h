@@ -27,6 +27,7 @@ struct RenderOptions {
     bool vxao = false;                            // --ao vxao
     bool vctSdfOcclusion = false;                 // --vct-occlusion sdf (RasterOptions::vctSdfOcclusion)
     bool giUnseenFromVct = false;                 // --gi-unseen vxgi (RasterOptions::giUnseenFromVct)
+    bool giUnseenPath = false;                    // --gi-unseen path (RasterOptions::giUnseenPath)
     float vctVoxel = 0.0f;                        // --vct-voxel (RasterOptions::vctFinestVoxel; 0: the scene's)
     gi::InternalResolution giScale = gi::InternalResolution::Native;
     ShadowMode shadows = ShadowMode::Bvh;         // --shadows bvh|shadowmap|hybrid (RasterOptions::shadows)

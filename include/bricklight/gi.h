@@ -154,6 +154,14 @@ struct DispatchDesc {
     EnvironmentKind environmentKind = EnvironmentKind::None;
     rhi::TextureHandle environmentMap;    // cube, or 2D equirectangular (docs/gi.md gives the mapping)
     float environmentIntensity = 1.0f;
+    // The environment is part of the application's direct lighting (a sky its direct pass lights pixels with, as
+    // light from a direction that reaches them unblocked): the screen's light then already holds it, so rays GI traces
+    // for pixels (probe rays, specular and reflection rays) take nothing where they leave the scene — it would count
+    // twice — while GI takes it where it lights surfaces itself, in place of the screen: re-lit texels off screen
+    // (relighting) and, with lightUnseenSurfaces, the surfaces no view has lit. Without it (false) every ray that
+    // leaves the scene takes the environment, and re-lit texels lose a sky the direct lighting gave them once they
+    // are out of view (docs/gi.md, "Relighting").
+    bool environmentInDirectLight = false;
 
     // Off-screen relighting (docs/gi.md, "Relighting"): with the surfaces' diffuse albedo (linear RGB,
     // display size) the cache learns each brick's albedo (and, with `emission`, its emitted radiance) where

@@ -97,7 +97,10 @@ vec3 giProbeIrradiance(uint probeIndex, vec3 normal) {
 bool giUnseenHitRadiance(vec3 q, vec3 normal, uint brick, uint probeIndex, inout uint rng, out vec3 radiance) {
     vec3 albedo, p, r;
     if (!giUnseenHitDirect(q, normal, brick, rng, radiance, albedo, p)) return false;
-    if ((giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) != 0u) return giFinite(radiance);
+    // One bounce only (GI_RELIGHT_DIRECT_ONLY): no path, unless the environment is direct light here
+    // (GI_RELIGHT_ENVIRONMENT_IN_DIRECT): then one ray asks whether the surface sees it.
+    bool directOnly = (giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) != 0u;
+    if (directOnly && (giFrame.relight.y & GI_RELIGHT_ENVIRONMENT_IN_DIRECT) == 0u) return giFinite(radiance);
     vec3 throughput = albedo;
     for (uint level = 1u; level <= GI_UNSEEN_PATH; ++level) {
         if (level == GI_UNSEEN_PATH) {
@@ -111,13 +114,14 @@ bool giUnseenHitRadiance(vec3 q, vec3 normal, uint brick, uint probeIndex, inout
         vec3 d = normalize(tangent * (sr * cos(phi)) + bitangent * (sr * sin(phi)) + normal * sqrt(max(1.0 - u1, 0.0)));
         BlSdfHit hit = giTraceThroughAlpha(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE), rng);
         if (hit.gaveUp) {
-            radiance += throughput * giProbeIrradiance(probeIndex, normal);
+            if (!directOnly) radiance += throughput * giProbeIrradiance(probeIndex, normal);
             break;
         }
         if (!hit.hit) {
             radiance += throughput * giEnvironment(d);
             break;
         }
+        if (directOnly) break;
         q = p + d * hit.t;
         if (giRadianceAtSide(q, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0), r)) {
             radiance += throughput * r;
@@ -160,7 +164,7 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
         return;
     }
     if (!hit.hit) {
-        radiance = giEnvironment(d);
+        radiance = giMissRadiance(d);
         kind = GI_TEXEL_MISS;
     } else if (!giRadianceAtSide(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0),
                                  radiance)) {

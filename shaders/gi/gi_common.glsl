@@ -57,6 +57,7 @@ bool giInChangedRegion(vec3 lo, vec3 hi, float frames) {
 #define GI_RELIGHT_LIT_HOLDS_EMISSION 16u  // the lit image (so the cache) holds the emission: unseen hits add the field's
 #define GI_RELIGHT_DIRECT_ONLY 32u  // re-lit texels and unseen hits take the lights and emission only (one bounce)
 #define GI_RELIGHT_UNSEEN_HITS 64u  // the lights hold all direct light: probe rays light the surfaces no view has lit
+#define GI_RELIGHT_ENVIRONMENT_IN_DIRECT 128u  // the direct lighting holds the environment: pixels' rays take none of it
 // Per-brick material (GI_MATERIAL_WORDS uints per brick): albedo RGBA8 (a = 1 once learnt), emission
 // RGB9E5 (0: none), the frame index + 1 at which the camera last saw the brick (0: never).
 #define GI_MATERIAL_WORDS 3u

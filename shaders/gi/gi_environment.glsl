@@ -19,4 +19,12 @@ vec3 giEnvironment(vec3 d) {
     return giFinite(c) ? max(c, vec3(0.0)) : vec3(0.0);
 }
 
+// What a ray traced for the screen's pixels (a probe's, a specular or a reflection ray) brings where it leaves the
+// scene: the environment, or nothing where the application's direct lighting already lit the pixels with it
+// (DispatchDesc::environmentInDirectLight; it would count twice). Surfaces GI lights itself (re-lit texels, unseen
+// hits' paths) take giEnvironment: they stand in for the screen's light, which holds it.
+vec3 giMissRadiance(vec3 d) {
+    return (giFrame.relight.y & GI_RELIGHT_ENVIRONMENT_IN_DIRECT) != 0u ? vec3(0.0) : giEnvironment(d);
+}
+
 #endif

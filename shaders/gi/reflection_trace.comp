@@ -51,7 +51,7 @@ void main() {
         if (hit.gaveUp) {
             result = vec4(0.0);  // no answer: the composite keeps the GI's specular here
         } else if (!hit.hit) {
-            result = vec4(giEnvironment(d), 1.0);
+            result = vec4(giMissRadiance(d), 1.0);
         } else if (giRadianceAt(ray.origin + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, radiance)) {
             result = vec4(radiance, 1.0);
         }

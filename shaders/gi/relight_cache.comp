@@ -116,13 +116,18 @@ void main() {
         float u1 = giRandom(rng), phi = 2.0 * GI_PI * giRandom(rng);
         float sr = sqrt(u1);
         vec3 d = normalize(tangent * (sr * cos(phi)) + bitangent * (sr * sin(phi)) + n * sqrt(max(1.0 - u1, 0.0)));
-        // No answer, or a surface of unknown radiance: no vote. One bounce only (GI_RELIGHT_DIRECT_ONLY): no ray.
+        // No answer, or a surface of unknown radiance: no vote. One bounce only (GI_RELIGHT_DIRECT_ONLY): no ray,
+        // unless the direct lighting holds the environment (GI_RELIGHT_ENVIRONMENT_IN_DIRECT): the environment is
+        // then direct light, which the texel stands in for, and the ray asks only whether it is seen (a hit votes 0).
+        bool directOnly = (giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) != 0u;
+        bool environmentIsDirect = (giFrame.relight.y & GI_RELIGHT_ENVIRONMENT_IN_DIRECT) != 0u;
         BlSdfHit hit;
         hit.gaveUp = true;
-        if ((giFrame.relight.y & GI_RELIGHT_DIRECT_ONLY) == 0u) hit = giTraceThroughAlpha(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE), rng);
+        if (!directOnly || environmentIsDirect) hit = giTraceThroughAlpha(giMakeRay(p, d, giFrame.trace.w, GI_RAY_DIFFUSE), rng);
         vec3 radiance;
         if (!hit.gaveUp) {
             if (!hit.hit) bounce = vec4(giEnvironment(d), 1.0);
+            else if (directOnly) bounce = vec4(0.0, 0.0, 0.0, 1.0);
             else if (giRadianceAtSide(p + d * hit.t, hit.brickId, hit.brickUvw, hit.cascade, hit.alphaTested ? hit.normal : vec3(0.0), radiance)) {
                 uint e = brickMaterial[hit.brickId * GI_MATERIAL_WORDS + 1u];
                 bounce = vec4(radiance + (emissionInRays && e != 0u ? blDecodeRgb9e5(e) : vec3(0.0)), 1.0);

@@ -37,7 +37,7 @@ void main() {
         vec3 d = giSpecularDirection(n, toEye, giSurfaceRoughness(surface), vec2(giRandom(rng), giRandom(rng)));
         vec3 o = p + n * giPushOff(p, giFrame.trace.y);
         if (brick == GI_PRETRACE_MISS) {
-            result = vec4(giEnvironment(d), 1.0);
+            result = vec4(giMissRadiance(d), 1.0);
         } else {
             uint cascade;
             ivec3 voxel = giOwnerVoxel(brickOwners[brick], cascade);

@@ -39,7 +39,7 @@ expect_failure "--aov ao needs --reference" --aov ao --out "$out/x.png"
 expect_failure "--vct-occlusion must be voxels or sdf" --vct-occlusion rays
 expect_failure "--vct-voxel expects the finest voxel's size" --vct-voxel 0
 expect_failure "--vct-voxel expects the finest voxel's size" --vct-voxel 0.1x
-expect_failure "--gi-unseen must be vxgi or none" --gi-unseen sdf
+expect_failure "--gi-unseen must be vxgi, path or none" --gi-unseen sdf
 # Two outputs on one file (the recording would replace the image), also through another spelling of the path.
 expect_failure "--out and --record name the same file" "${common[@]}" --out "$out/same.png" --record "$out/same.png"
 expect_failure "--out and --record name the same file" "${common[@]}" --out "$out/same.png" --record "$out/./same.png"
