@@ -23,13 +23,7 @@ namespace {
 constexpr uint32_t kSize = 48;
 
 std::unique_ptr<render::RasterRenderer> renderer(TestDevice& td, const scenes::SceneGeometry& scene) {
-    render::RasterOptions o;
-    o.width = o.height = kSize;
-    o.gi = true;
-    std::string error;
-    auto r = render::RasterRenderer::create(*td.device, scene, o, &error);
-    INFO(error);
-    REQUIRE(r);
+    auto r = sdfGiRenderer(td, scene, kSize);
     r->render();
     td.device->endFrame();
     return r;

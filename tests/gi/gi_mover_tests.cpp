@@ -92,13 +92,8 @@ void giFollowsMover(const std::string& backend) {
     const GreenSides refB = sides(tracedB.read(render::Aov::IndirectDiffuse), tracedB);
     auto sideA = [](const GreenSides& g) { return g.a; };
     auto sideB = [](const GreenSides& g) { return g.b; };
-    render::RasterOptions o;
-    o.width = o.height = kSize;
-    o.gi = true;
+    auto r = sdfGiRenderer(td, atA, kSize);
     std::string error;
-    auto r = render::RasterRenderer::create(*td.device, atA, o, &error);
-    INFO(error);
-    REQUIRE(r);
     frames(td, *r, 48);
     const GreenSides before = sides(r->read(render::Aov::IndirectDiffuse), tracedA);
     REQUIRE(r->setScene(atB, &error));
@@ -110,8 +105,7 @@ void giFollowsMover(const std::string& backend) {
         track << " " << f << ": " << sideA(after) / sideB(refB) << ", " << sideB(after) / sideB(refB) << ";";
     }
     // A renderer that saw the box at B only, as many frames: what the moving one should show.
-    auto still = render::RasterRenderer::create(*td.device, atB, o, &error);
-    REQUIRE(still);
+    auto still = sdfGiRenderer(td, atB, kSize);
     frames(td, *still, kFramesAfterMove);
     const GreenSides fresh = sides(still->read(render::Aov::IndirectDiffuse), tracedB);
     frames(td, *still, 48);

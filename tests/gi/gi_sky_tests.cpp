@@ -44,14 +44,9 @@ void skyInRelitTexels(const std::string& backend) {
     TestDevice td = makeDevice(backend);
     REQUIRE(td.device);
     scenes::SceneGeometry scene = floorAndWall();
-    render::RasterOptions o;
-    o.width = o.height = kSize;
-    o.gi = true;
-    std::string error;
-    auto r = render::RasterRenderer::create(*td.device, scene, o, &error);
-    INFO(error);
-    REQUIRE(r);
+    auto r = sdfGiRenderer(td, scene, kSize);
     frames(td, *r, 32);
+    std::string error;
     REQUIRE(r->setCamera(kWallOnly, &error));
     r->cameraCut();
     frames(td, *r, 48);

@@ -144,6 +144,18 @@ inline scenes::SceneGeometry emittingSphere(float rho, float emission, uint32_t 
     return s;
 }
 
+// A fast-path renderer of `scene` at size² with the SDF GI, its other options the defaults.
+inline std::unique_ptr<render::RasterRenderer> sdfGiRenderer(TestDevice& td, const scenes::SceneGeometry& scene, uint32_t size) {
+    render::RasterOptions o;
+    o.width = o.height = size;
+    o.gi = true;
+    std::string error;
+    auto r = render::RasterRenderer::create(*td.device, scene, o, &error);
+    INFO(error);
+    REQUIRE(r);
+    return r;
+}
+
 // The mean indirect-diffuse light of a fast-path renderer of `scene` with options `o` after `frameCount` frames, every
 // pixel finite: the closed-form tests' measure (emittingSphere).
 inline double indirectMeanAfter(TestDevice& td, const scenes::SceneGeometry& scene, const render::RasterOptions& o, uint32_t frameCount) {
