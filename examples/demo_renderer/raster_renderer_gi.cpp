@@ -2,6 +2,8 @@
 // the G-buffer each frame, and what the tools read back.
 #include "raster_renderer.h"
 
+#include <glm/gtc/packing.hpp>
+
 #include "bricklight/half.h"
 
 namespace bricklight::render {
@@ -106,7 +108,7 @@ bool RasterRenderer::createGi(const scenes::SceneGeometry& scene, std::string* e
         return false;
     }
     rhi::TextureDesc sky;
-    sky.format = rhi::Format::RGBA32_FLOAT;
+    sky.format = rhi::Format::RGBA16_FLOAT;  // linear filtering of 32-bit floats is optional in Vulkan
     sky.width = sky.height = 1;
     sky.usage = rhi::TextureUsage::Sampled;
     sky.debugName = "gi sky";
@@ -140,8 +142,8 @@ void RasterRenderer::dispatchGi(bool cut) {
     // The sky lights the renderer's pixels in its direct lighting (BRDF-sampled, diffuse and glossy): GI takes it only
     // where it lights surfaces in the screen's place (re-lit texels off screen); rays for pixels take none of it.
     if (giLights_.sky != giSkyUploaded_) {
-        const float texel[4] = {giLights_.sky.x, giLights_.sky.y, giLights_.sky.z, 1.0f};
-        if (device_.writeTexture(giSky_, {}, texel)) giSkyUploaded_ = giLights_.sky;
+        const uint64_t texel = glm::packHalf4x16(glm::vec4(glm::min(giLights_.sky, glm::vec3(65504.0f)), 1.0f));
+        if (device_.writeTexture(giSky_, {}, &texel)) giSkyUploaded_ = giLights_.sky;
     }
     if (giSkyUploaded_ == giLights_.sky && (giLights_.sky.x > 0.0f || giLights_.sky.y > 0.0f || giLights_.sky.z > 0.0f)) {
         g.environmentKind = gi::EnvironmentKind::Equirectangular;
