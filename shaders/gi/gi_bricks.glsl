@@ -94,17 +94,11 @@ vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) { return giSa
 // other cascade with data there. Finer cascades come first: a ray that coarsened (giMakeRay) hits in a
 // coarse cascade, whose bricks the screen injects only every 2^k-th pixel, while the finer bricks around
 // the same surface may hold fresher light (or be the only ones with a cache slot when the pool is full).
-// Coarser cascades only where the frame does not light unseen hits itself (GI_RELIGHT_UNSEEN_HITS): a coarser
-// texel spans more than the hit's, and where the hit's own cascade has no light (a surface no view has lit) it
-// holds other surfaces' light — the seen floor's shade for a sunlit floor behind the camera, which kept the
-// atrium's shaded pillars at 0.35–0.7 of the path tracer's one bounce. Lit where it was met (fill_probes_body.glsl)
-// is better than a neighbour's light; without that, a neighbour's is better than the probe's mean fill.
 bool giRadianceAtSide(vec3 p, uint brick, vec3 uvw, uint cascade, vec3 side, out vec3 radiance) {
     float w;
     radiance = giSampleRadianceCacheSide(brick, uvw, side, w);
     if (w > 0.0) return true;
-    uint last = (giFrame.relight.y & GI_RELIGHT_UNSEEN_HITS) != 0u ? cascade : giFrame.cascades.y + 1u;
-    for (uint c = giFrame.cascades.x; c < last; ++c) {
+    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
         if (c == cascade) continue;
         uint b;
         vec3 u;
