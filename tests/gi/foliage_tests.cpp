@@ -143,8 +143,12 @@ void giFoliageVariants(const std::string& backend) {
             // Converged grass does not flicker: the continued rays' draws are averaged by the GI's history.
             CHECK(f[0].flicker < 0.05);
         } else {
+            // The whole image against the solid cards keeps 5 % rather than 10 %: the alpha-aware figure varies from run
+            // to run (0.0155-0.0177 on one build, GI's passes race; docs/gi.md, "Races") while the solid cards' stay
+            // at 0.0183-0.0193, so a 10 % margin failed on a run of an unchanged build (0.0177 against 0.9 x 0.0191).
+            // The defect still fails it: with the alpha cache ignored the ratio is 1.
             for (int naive = 1; naive < 3; ++naive) {
-                CHECK(f[0].whole.relMse < 0.9 * f[naive].whole.relMse);
+                CHECK(f[0].whole.relMse < (naive == 1 ? 0.95 : 0.9) * f[naive].whole.relMse);
                 CHECK(f[0].grass.relMse < 0.9 * f[naive].grass.relMse);
                 CHECK(meanError(f[0].whole) < meanError(f[naive].whole));
             }
