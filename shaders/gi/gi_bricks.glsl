@@ -94,11 +94,19 @@ vec3 giSampleRadianceCache(uint brick, vec3 uvw, out float weight) { return giSa
 // other cascade with data there. Finer cascades come first: a ray that coarsened (giMakeRay) hits in a
 // coarse cascade, whose bricks the screen injects only every 2^k-th pixel, while the finer bricks around
 // the same surface may hold fresher light (or be the only ones with a cache slot when the pool is full).
+// Coarser cascades are not read for a hit in the first traced cascade (a ray that has not coarsened yet) where the
+// frame lights unseen hits itself (GI_RELIGHT_UNSEEN_HITS): a coarser texel spans more than the hit's, and where the
+// hit's own cascade has no light (a surface no view has lit) it holds other surfaces' light — the seen floor's shade
+// for a sunlit floor behind the camera, which kept the atrium's shaded pillars at 0.35–0.7 of the path tracer's one
+// bounce; lit where it was met (fill_probes_body.glsl) is better. Farther hits keep the fallback: lighting all of
+// them where they were met made the probes' fill several times dearer (docs/notes/gi-quality.md).
 bool giRadianceAtSide(vec3 p, uint brick, vec3 uvw, uint cascade, vec3 side, out vec3 radiance) {
     float w;
     radiance = giSampleRadianceCacheSide(brick, uvw, side, w);
     if (w > 0.0) return true;
-    for (uint c = giFrame.cascades.x; c <= giFrame.cascades.y; ++c) {
+    bool nearUnseenLit = (giFrame.relight.y & GI_RELIGHT_UNSEEN_HITS) != 0u && cascade == giFrame.cascades.x;
+    uint last = nearUnseenLit ? cascade : giFrame.cascades.y + 1u;
+    for (uint c = giFrame.cascades.x; c < last; ++c) {
         if (c == cascade) continue;
         uint b;
         vec3 u;
