@@ -189,62 +189,18 @@ void giFillTexel(uvec2 tile, uint probeIndex, uvec4 info, uvec2 local, bool repr
     imageStore(probes, texel, value);
 }
 
-#ifdef GI_PROBE_PARALLAX
-// The group's rays this frame (probe slot << 6 | texel): the first 64 one texel of each 2×2 block in turn
-// (GI_FILL_NONE where the probe is invalid), then the texels the reprojection marked; and how many.
-#define GI_FILL_NONE 0xFFFFFFFFu
-shared uint fillList[256];
-shared uint fillCount;
-
-// 16 threads per probe (4 probes per group), one per 2×2 block of texels. Every probe, new or reprojected, traces
-// one texel of each block a frame (rotating, all four within four frames); a reprojected probe also the texels its
-// reprojection marked (negative alpha: their hit may lie in another direction from here; carrying them, or filling
-// them from neighbouring directions, thinned the near hits, whose parallax is largest; docs/notes/gi-quality.md).
-// A new probe's other texels stay empty until their turn; the projection scales the traced ones up to the whole
-// hemisphere. The group lists its rays and deals them out in order, so that the marked texels' rays fill whole SIMD
-// groups instead of holding every group one of whose lanes had one. (New probes tracing all 64 texels at once made
-// their SIMD groups trace four rays in series, and those groups set the pass's time.)
-void main() {
-    uint t = gl_LocalInvocationIndex;
-    uint first = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u;  // the group's first probe
-    uint probeIndex = first + t / 16u;
-    bool exists = probeIndex < giFrame.tiles.x * giFrame.tiles.y;  // no early return: barriers follow
-    uvec4 info = exists ? probeInfo[probeIndex] : uvec4(0u);
-    uvec2 tile = uvec2(probeIndex % giFrame.tiles.x, probeIndex / giFrame.tiles.x);
-    uvec2 base = uvec2(t % 4u, (t % 16u) / 4u) * 2u;
-    bool valid = (info.w & GI_PROBE_VALID) != 0u;
-    bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
-    uint turn = giFrameIndex() & 3u;
-    if (t == 0u) fillCount = 64u;
-    barrier();
-    fillList[t] = GI_FILL_NONE;
-    for (uint k = 0u; k < 4u; ++k) {
-        uvec2 local = base + uvec2(k & 1u, k >> 1);
-        ivec2 texel = ivec2(tile * 8u + local);
-        uint entry = (t / 16u) << 6 | (local.y * 8u + local.x);
-        if (!exists) continue;
-        if (!valid || (k != turn && !reprojected)) imageStore(probes, texel, vec4(0.0));  // GI_TEXEL_EMPTY
-        else if (k == turn) fillList[t] = entry;
-        else if (imageLoad(probes, texel).a < 0.0) fillList[atomicAdd(fillCount, 1u)] = entry;
-    }
-    barrier();
-    uint count = fillCount;
-    for (uint i = t; i < count; i += 64u) {
-        uint entry = fillList[i];
-        if (entry == GI_FILL_NONE) continue;
-        uint index = first + (entry >> 6);
-        uvec4 probe = probeInfo[index];
-        uvec2 at = uvec2(index % giFrame.tiles.x, index / giFrame.tiles.x);
-        uvec2 local = uvec2(entry & 7u, (entry >> 3) & 7u);
-        bool carried = (probe.w & GI_PROBE_REPROJECTED) != 0u;
-        vec4 old = carried ? imageLoad(probes, ivec2(at * 8u + local)) : vec4(0.0);
-        giFillTexel(at, index, probe, local, carried, vec4(old.rgb, abs(old.a)));
-    }
-}
-#else
-// Without the parallax test (ContextFlags::NoProbeParallax) no texel is marked: one ray per thread and frame, the
-// turns alone. A variant of its own, since the marked texels' list and second round slow the turns' rays even when
-// nothing is marked (docs/notes/gi-quality.md).
+// 16 threads per probe (4 probes per group), one per 2×2 block of texels, one ray each. Every probe, new or
+// reprojected, traces one texel of each block a frame (rotating, all four within four frames); a reprojected probe keeps
+// the others. A new probe's other texels stay empty until their turn; the projection scales the traced ones up to the
+// whole hemisphere. (New probes tracing all 64 texels at once made their SIMD groups trace four rays in series, and
+// those groups set the pass's time.)
+// With the parallax test (GI_PROBE_PARALLAX) a block where the reprojection marked texels (negative alpha: their hit
+// may lie in another direction from here) traces its first marked texel from its turn on instead of its turn, and
+// leaves its other marked texels empty, as a new probe's untraced ones: carried by their direction, their light came
+// from the wrong places, and the corridor's drifted lower over frames (78 % of the path tracer's at 480 frames against
+// 81 % emptied). Tracing every marked texel besides the turns, listed within each group or in a dispatch of their own,
+// added about a quarter to the pass's rays and more than half to its time (docs/notes/gi-quality.md); one ray per
+// block keeps the pass's cost at the turns'.
 void main() {
     uint probeIndex = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * 4u + gl_LocalInvocationIndex / 16u;
     if (probeIndex >= giFrame.tiles.x * giFrame.tiles.y) return;
@@ -255,14 +211,29 @@ void main() {
     bool valid = (info.w & GI_PROBE_VALID) != 0u;
     bool reprojected = (info.w & GI_PROBE_REPROJECTED) != 0u;
     uint turn = giFrameIndex() & 3u;
-    for (uint k = 0u; k < 4u; ++k) {
-        uvec2 local = base + uvec2(k & 1u, k >> 1);
-        ivec2 texel = ivec2(tile * 8u + local);
-        if (!valid || (k != turn && !reprojected)) imageStore(probes, texel, vec4(0.0));  // GI_TEXEL_EMPTY
+    uint traced = turn;
+    bool found = false;  // a marked texel to trace
+    for (uint i = 0u; i < 4u; ++i) {
+        uint k = (turn + i) & 3u;
+        ivec2 texel = ivec2(tile * 8u + base + uvec2(k & 1u, k >> 1));
+        if (!valid || (k != turn && !reprojected)) {
+            imageStore(probes, texel, vec4(0.0));  // GI_TEXEL_EMPTY
+            continue;
+        }
+#ifdef GI_PROBE_PARALLAX
+        if (!reprojected) continue;
+        vec4 v = imageLoad(probes, texel);
+        if (v.a >= 0.0) continue;
+        if (!found) {
+            traced = k;
+            found = true;
+        } else {
+            imageStore(probes, texel, vec4(0.0));  // GI_TEXEL_EMPTY
+        }
+#endif
     }
     if (!valid) return;
-    uvec2 local = base + uvec2(turn & 1u, turn >> 1);
+    uvec2 local = base + uvec2(traced & 1u, traced >> 1);
     vec4 old = reprojected ? imageLoad(probes, ivec2(tile * 8u + local)) : vec4(0.0);
-    giFillTexel(tile, probeIndex, info, local, reprojected, old);
+    giFillTexel(tile, probeIndex, info, local, reprojected, vec4(old.rgb, abs(old.a)));
 }
-#endif

@@ -219,7 +219,7 @@ vec2 giHammersley(uint i, uint n) {
 #define GI_TEXEL_HIT 1.0          // the radiance cache at the hit
 // A hit's texel holds GI_TEXEL_HIT + the hit's distance (world units) in its alpha, for the reprojection's parallax
 // test (reproject_probes.comp). A negative alpha marks a texel the reprojection carried over whose hit may lie in
-// another direction from the new probe: fill_probes traces it again that frame.
+// another direction from the new probe: fill_probes traces it that frame or empties it.
 uvec2 giProbePixel(uvec4 info) { return uvec2(info.x & 0xFFFFu, info.x >> 16); }
 vec3 giProbeNormal(uvec4 info) { return giOctDecode(unpackSnorm2x16(info.z)); }
 

@@ -190,8 +190,9 @@ void main() {
                 value.a = GI_TEXEL_HIT + min(length(q + giProbeDirection(m, (vec2(from % 8u, from / 8u) + 0.5) / 8.0) * (value.a - GI_TEXEL_HIT) - p), 60000.0);
         } else if (covered) {
             // No old hit landed here: the old probe's texel of the same direction, as without the test, unless a hit
-            // near that direction lies off it from here by more than about a texel's angular radius (then marked:
-            // traced this frame, blended with the old value).
+            // near that direction lies off it from here by more than about a texel's angular radius (then marked: the
+            // fill traces one marked texel of each 2×2 block this frame instead of the block's turn, and empties the
+            // others).
             value = texelFetch(previousProbes, square + same, 0);
             float nearest = giNearestHit(square + same);
             if (nearest < 1e30 && giParallax(q + d * nearest - p, d) > GI_REPROJECT_PARALLAX) value.a = -value.a;
