@@ -113,11 +113,10 @@ void corridorAgainstReference(const std::string& backend) {
     // Issue 36's thin walls: the built-in corridor, an L of single-sided walls (no thickness) lit by one lamp around
     // the corner from the camera, so nearly all the light on screen has bounced among surfaces the camera never saw
     // (the path tracer's one bounce is a tenth of it). 96 × 64, 120 frames, against 1024 spp. Measured: indirect mean
-    // 95.8 % (llvmpipe 100.3 %), relMSE 0.037 (0.044) since the probes' reprojection traces again the texels whose
-    // light lies in another direction from the new probe (reproject_probes.comp; 95.4 %, relMSE 0.037 on lavapipe since
-    // it moves their hits instead); 89.5 % before, 26 % before probe
-    // rays followed a path through the never-seen surfaces. Not converged at 120 frames: 81 % at 480 (docs/gi.md,
-    // Known limitations). Bounds: mean ratio in [0.85, 1.15], relMSE below 0.06 (the reference's own noise is
+    // 98.5 % (llvmpipe 103.4 %), relMSE 0.041 (0.052) since the probes' reprojection moves carried hits and marks the
+    // texels whose light may lie in another direction from the new probe (reproject_probes.comp), traced in their
+    // block's turn or emptied (fill_probes_body.glsl); 89.5 % before the marks, 26 % before probe rays followed a path
+    // through the never-seen surfaces. Not converged at 120 frames: 81 % at 480 (docs/gi.md, Known limitations). Bounds: mean ratio in [0.85, 1.15], relMSE below 0.06 (the reference's own noise is
     // ~0.012 of it). With ContextFlags::NoProbeParallax (texels carried without the test) the old bounds: mean ratio
     // in [0.75, 1.15], relMSE below 0.07 (measured 89.5 %, relMSE 0.038).
     TestDevice td = makeDevice(backend);
