@@ -1,5 +1,5 @@
-// The depth pyramid's passes: a copy of the depth into mip 0, then one reduction per mip
-// (shaders/gbuffer/depth_pyramid_*.comp). docs/gbuffer.md.
+// The depth pyramid's passes: mip 0 and the next five mips from the depth texture in one dispatch, then five more
+// mips a dispatch from the last one written (shaders/gbuffer/depth_pyramid_{first,next}.comp). docs/gbuffer.md.
 #include "bricklight/gbuffer/depth_pyramid.h"
 
 #include <algorithm>
@@ -13,8 +13,10 @@ namespace bricklight::gbuffer {
 namespace {
 
 struct Size {
-    uint32_t v[4];  // uvec4 size in both passes
+    uint32_t v[4];  // uvec4 size: mip s's extent, the mips written after it
 };
+
+constexpr uint32_t kMipsPerDispatch = 5;  // depth_pyramid_tiles_body.glsl: 32 × 32 texels of mip s a group
 
 }  // namespace
 
@@ -40,7 +42,7 @@ std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, const D
     p->width_ = width;
     p->height_ = height;
     p->mipCount_ = depthPyramidMipCount(width, height);
-    detail::createShaders(device, shaders::link_bricklight_gbuffer, {{"gbuffer/depth_pyramid_copy.comp", &p->copy_}, {"gbuffer/depth_pyramid_reduce.comp", &p->reduce_}});
+    detail::createShaders(device, shaders::link_bricklight_gbuffer, {{"gbuffer/depth_pyramid_first.comp", &p->first_}, {"gbuffer/depth_pyramid_next.comp", &p->next_}});
     rhi::TextureDesc td;
     td.format = rhi::Format::RG32_FLOAT;
     td.width = width;
@@ -49,19 +51,27 @@ std::unique_ptr<DepthPyramid> DepthPyramid::create(rhi::IDevice& device, const D
     td.usage = rhi::TextureUsage::Storage | rhi::TextureUsage::Sampled;
     td.debugName = "depth pyramid";
     p->texture_ = device.createTexture(td);
+    // What a dispatch's unused mip slots bind past the end of the chain (never written): one mip per slot, so that
+    // no two write bindings share a subresource.
+    td.width = td.height = 32;
+    td.mipLevels = kMipsPerDispatch + 1;
+    td.usage = rhi::TextureUsage::Storage;
+    td.debugName = "depth pyramid unused mip slots";
+    p->unusedMips_ = device.createTexture(td);
     rhi::SamplerDesc sd;
     sd.minFilter = sd.magFilter = sd.mipFilter = rhi::Filter::Nearest;
     sd.debugName = "depth pyramid point";
     p->point_ = device.createSampler(sd);
-    if (!p->copy_ || !p->reduce_ || !p->texture_ || !p->point_)
+    if (!p->first_ || !p->next_ || !p->texture_ || !p->unusedMips_ || !p->point_)
         return fail("the device could not create the pyramid's texture, sampler or shaders (see its messages)", ErrorCode::DeviceFailure);
     return p;
 }
 
 DepthPyramid::~DepthPyramid() {
-    if (texture_) device_.destroy(texture_);
+    for (rhi::TextureHandle t : {texture_, unusedMips_})
+        if (t) device_.destroy(t);
     if (point_) device_.destroy(point_);
-    for (rhi::ShaderHandle s : {copy_, reduce_})
+    for (rhi::ShaderHandle s : {first_, next_})
         if (s) device_.destroy(s);
 }
 
@@ -79,32 +89,32 @@ bool DepthPyramid::build(rhi::TextureHandle depth, Error* error) {
         return fail(name + " is " + std::to_string(d->width) + "x" + std::to_string(d->height) + ", the pyramid " +
                     std::to_string(width_) + "x" + std::to_string(height_));
     device_.beginMarker("depth pyramid");
-    {
-        const Size size{{width_, height_, 0, 0}};
+    for (uint32_t from = 0;;) {
+        const uint32_t mips = std::min(kMipsPerDispatch, mipCount_ - 1 - from);
+        const uint32_t w = rhi::mipExtent(width_, from), h = rhi::mipExtent(height_, from);
         rhi::DispatchState s;
-        s.shader = copy_;
-        s.label = "depth pyramid copy";
+        s.shader = from == 0 ? first_ : next_;
+        s.label = from == 0 ? "depth pyramid mips 0-5" : "depth pyramid next 5 mips";
+        const Size size{{w, h, mips, 0}};
         s.bindings.constants.push(rhi::constants(0, size));
-        rhi::TextureView source = rhi::textureMip(depth, 0);
-        s.bindings.textures.push({0, source, point_});
-        s.bindings.storageImages.push(rhi::storageImage(0, texture_, rhi::Access::Write, 0));
-        device_.dispatch(s, (width_ + 7) / 8, (height_ + 7) / 8, 1);
-    }
-    for (uint32_t m = 1; m < mipCount_; ++m) {
-        const Size size{{rhi::mipExtent(width_, m - 1), rhi::mipExtent(height_, m - 1), rhi::mipExtent(width_, m),
-                         rhi::mipExtent(height_, m)}};
-        rhi::DispatchState s;
-        s.shader = reduce_;
-        s.label = "depth pyramid reduce";
-        s.bindings.constants.push(rhi::constants(0, size));
-        s.bindings.storageImages.push(rhi::storageImage(0, texture_, rhi::Access::Read, uint8_t(m - 1)));
-        s.bindings.storageImages.push(rhi::storageImage(1, texture_, rhi::Access::Write, uint8_t(m)));
-        device_.dispatch(s, (size.v[2] + 7) / 8, (size.v[3] + 7) / 8, 1);
+        if (from == 0) {
+            s.bindings.textures.push({0, rhi::textureMip(depth, 0), point_});
+            s.bindings.storageImages.push(rhi::storageImage(0, texture_, rhi::Access::Write, 0));
+        } else {
+            s.bindings.storageImages.push(rhi::storageImage(0, texture_, rhi::Access::Read, uint8_t(from)));
+        }
+        for (uint32_t j = 1; j <= kMipsPerDispatch; ++j)
+            s.bindings.storageImages.push(j <= mips ? rhi::storageImage(j, texture_, rhi::Access::Write, uint8_t(from + j))
+                                                    : rhi::storageImage(j, unusedMips_, rhi::Access::Write, uint8_t(j)));
+        // A group per 32 × 32 texels of mip `from`; the last in a row (column) takes the remainder.
+        device_.dispatch(s, std::max(w >> 5, 1u), std::max(h >> 5, 1u), 1);
+        from += mips;
+        if (mips == 0 || from + 1 >= mipCount_) break;
     }
     device_.endMarker();
     return true;
 }
 
-MemoryUse DepthPyramid::memoryUse() const { return detail::MemoryTally(device_).add(texture_).use(); }
+MemoryUse DepthPyramid::memoryUse() const { return detail::MemoryTally(device_).add(texture_).add(unusedMips_).use(); }
 
 }  // namespace bricklight::gbuffer

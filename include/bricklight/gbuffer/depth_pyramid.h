@@ -32,7 +32,7 @@ public:
     ~DepthPyramid();
     DepthPyramid(const DepthPyramid&) = delete;
     DepthPyramid& operator=(const DepthPyramid&) = delete;
-    // Records the passes (one dispatch per mip) that rebuild the whole pyramid from `depth` (D32_FLOAT or
+    // Records the passes (one dispatch per five mips) that rebuild the whole pyramid from `depth` (D32_FLOAT or
     // R32_FLOAT, sampled, 2D, of the pyramid's size; mip 0 is read). False with *error, recording nothing, for a
     // dead handle or a texture of another size, format or kind.
     bool build(rhi::TextureHandle depth, Error* error = nullptr);
@@ -47,7 +47,8 @@ private:
     explicit DepthPyramid(rhi::IDevice& device) : device_(device) {}
     rhi::IDevice& device_;
     rhi::TextureHandle texture_;
-    rhi::ShaderHandle copy_, reduce_;
+    rhi::TextureHandle unusedMips_;  // bound to the mip slots a dispatch leaves unused (never written)
+    rhi::ShaderHandle first_, next_;
     rhi::SamplerHandle point_;
     uint32_t width_ = 0, height_ = 0, mipCount_ = 0;
 };
