@@ -94,7 +94,7 @@ bool DepthPyramid::build(rhi::TextureHandle depth, Error* error) {
         const uint32_t w = rhi::mipExtent(width_, from), h = rhi::mipExtent(height_, from);
         rhi::DispatchState s;
         s.shader = from == 0 ? first_ : next_;
-        s.label = from == 0 ? "depth pyramid mips 0-5" : "depth pyramid next 5 mips";
+        s.label = from == 0 ? "depth pyramid mips 0-5" : "depth pyramid next mips";
         const Size size{{w, h, mips, 0}};
         s.bindings.constants.push(rhi::constants(0, size));
         if (from == 0) {
