@@ -195,7 +195,7 @@ bool ShadowClassifier::classify(const ShadowClassifyDesc& d, Error* error) {
     s.bindings.storageBuffers.push(rhi::StorageBufferBinding{2, counts_[countIndex_], {}, rhi::Access::Write});
     s.bindings.storageImages.push(rhi::storageImage(0, hitMask_, rhi::Access::Write));
     s.bindings.storageImages.push(rhi::storageImage(1, sureMask_, rhi::Access::Write));
-    if (!device_.dispatch(s, (tilesX() + 1) / 2, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);  // 2 × 4 tiles a group
+    if (!device_.dispatch(s, (tilesX() + 3) / 4, (tilesY() + 3) / 4, 1)) return fail("the device refused the classification (see its messages)", ErrorCode::DeviceFailure);  // 4 × 4 tiles a group
     countIndex_ = counting;
     depth_ = d.gbuffer.depth;
     normals_ = d.gbuffer.normals;

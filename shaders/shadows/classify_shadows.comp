@@ -1,13 +1,13 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bricklight/bindings.glsl"
-// The shadow classifier (shadows::ShadowClassifier): one 32-thread warp-sized slice per 8×4 tile, eight tiles (2 × 4,
-// 16 × 16 pixels) per 256-thread group — a group per tile left the GPU launching groups rather than working.
+// The shadow classifier (shadows::ShadowClassifier): 16 threads per 8×4 tile, two pixels a thread, sixteen tiles (4 × 4,
+// 32 × 16 pixels) per 256-thread group — a group per tile left the GPU launching groups rather than working.
 // Per pixel: off screen, sky or facing away from the sun needs no ray (facing away: shadowed); in Normals mode the
 // rest need one; in Cascades mode a blocker search in the first cascade that holds the pixel decides — every tap
 // nearer the sun than the receiver: shadowed; none (with rejectLit): lit; a mix: a ray, bounded by the nearest and
 // the farthest blocker the taps saw. The tile's masks and interval are reduced through shared memory (never
-// subgroup operations: lavapipe's subgroups are 8 wide, the tile 32), then one thread appends the tile to the list
+// subgroup operations: lavapipe's subgroups are 8 wide), then one thread appends the tile to the list
 // and writes its hit-mask texel.
 layout(local_size_x = 256, local_size_y = 1, local_size_z = 1) in;
 
@@ -26,10 +26,10 @@ BL_IMAGE(0, r32ui) uniform writeonly uimage2D hitMask;
 BL_IMAGE(1, r32ui) uniform writeonly uimage2D sureMask;  // bit set: the answer is sure (no ray, or a sure ray later)
 
 const float kNoEnd = 3.0e38;  // a ray interval without an end
-shared uint rayMask[8], answerMask[8], activeMask[8], minT[8], maxT[8];
+shared uint rayMask[16], answerMask[16], activeMask[16], minT[16], maxT[16];
 // The group's sums: its tiles go to the list and the counts with one global atomic per word and group, not per tile
 // (same-address atomics from every tile bounded the pass).
-shared uint listIndex[8], groupListed, groupBase, groupRays, groupCutTiles, groupCutPixels, groupActive;
+shared uint listIndex[16], groupListed, groupBase, groupRays, groupCutTiles, groupCutPixels, groupActive;
 
 // The blocker search's sunflower spiral over the unit disc: tap k at angle k · 2.39996323 (the golden angle) and
 // radius sqrt((k + 0.5) / taps). The directions and sqrt(k + 0.5) are tabled rather than computed per tap and pixel:
@@ -57,30 +57,12 @@ const float kSpiralRoot[32] = float[32](
     4.062019202, 4.183300133, 4.301162634, 4.415880433, 4.527692569, 4.636809248, 4.743416490, 4.847679857,
     4.949747468, 5.049752469, 5.147815070, 5.244044241, 5.338539126, 5.431390246, 5.522680509, 5.612486080);
 
-void main() {
-    uint slot = gl_LocalInvocationID.x >> 5u, lane = gl_LocalInvocationID.x & 31u;
-    uvec2 tile = uvec2(gl_WorkGroupID.xy) * uvec2(2u, 4u) + uvec2(slot & 1u, slot >> 1u);
-    bool tileOnScreen = all(lessThan(tile, (params.size.xy + uvec2(7u, 3u)) / uvec2(8u, 4u)));
-    ivec2 pixel = ivec2(tile * uvec2(8u, 4u) + uvec2(lane & 7u, lane >> 3u));
-    uint bit = 1u << lane;  // y · 8 + x
-    if (lane == 0u) {
-        rayMask[slot] = 0u;
-        answerMask[slot] = 0u;
-        activeMask[slot] = 0u;
-        minT[slot] = floatBitsToUint(kNoEnd);
-        maxT[slot] = 0u;
-    }
-    if (gl_LocalInvocationID.x == 0u) {
-        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u)
-            for (uint i = 0u; i < 8u; ++i) nextCount.counts[i] = (i == 1u || i == 2u) ? 1u : 0u;  // indirect y, z: 1
-        groupListed = 0u;
-        groupRays = 0u;
-        groupCutTiles = 0u;
-        groupCutPixels = 0u;
-        groupActive = 0u;
-    }
-    barrier();
-
+// One pixel's class: whether it needs a ray (and the ray's interval), the answer without one, whether it faces the sun.
+struct PixelClass {
+    bool needsRay, answer, isActive;
+    float t0, t1;
+};
+PixelClass classifyPixel(ivec2 pixel) {
     bool onScreen = all(lessThan(uvec2(pixel), params.size.xy));
     float depth = onScreen ? texelFetch(depthTexture, min(pixel, ivec2(params.size.xy) - 1), 0).r : 1.0;
     bool reversed = params.options2.y != 0u;
@@ -142,25 +124,60 @@ void main() {
             }
         }
     }
-    if (needsRay) {
-        atomicOr(rayMask[slot], bit);
-        atomicMin(minT[slot], floatBitsToUint(max(t0, 0.0)));  // non-negative floats order as their bits
-        atomicMax(maxT[slot], floatBitsToUint(max(t1, 0.0)));
+    return PixelClass(needsRay, answer, isActive, t0, t1);
+}
+
+void main() {
+    uint slot = gl_LocalInvocationID.x >> 4u, lane = gl_LocalInvocationID.x & 15u;
+    uvec2 tile = uvec2(gl_WorkGroupID.xy) * uvec2(4u, 4u) + uvec2(slot & 3u, slot >> 2u);
+    bool tileOnScreen = all(lessThan(tile, (params.size.xy + uvec2(7u, 3u)) / uvec2(8u, 4u)));
+    // Two horizontally adjacent pixels a thread: twice the reads in flight per thread, half the shared atomics.
+    uvec2 inTile = uvec2((lane & 3u) * 2u, lane >> 2u);
+    ivec2 pixel = ivec2(tile * uvec2(8u, 4u) + inTile);
+    uint bit = 1u << (inTile.y * 8u + inTile.x);  // y · 8 + x; the second pixel's is bit << 1
+    if (lane == 0u) {
+        rayMask[slot] = 0u;
+        answerMask[slot] = 0u;
+        activeMask[slot] = 0u;
+        minT[slot] = floatBitsToUint(kNoEnd);
+        maxT[slot] = 0u;
     }
-    if (answer) atomicOr(answerMask[slot], bit);
-    if (isActive) atomicOr(activeMask[slot], bit);
+    if (gl_LocalInvocationID.x == 0u) {
+        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u)
+            for (uint i = 0u; i < 8u; ++i) nextCount.counts[i] = (i == 1u || i == 2u) ? 1u : 0u;  // indirect y, z: 1
+        groupListed = 0u;
+        groupRays = 0u;
+        groupCutTiles = 0u;
+        groupCutPixels = 0u;
+        groupActive = 0u;
+    }
     barrier();
 
-    uint rays = bitCount(rayMask[slot]);
+    PixelClass a = classifyPixel(pixel), b = classifyPixel(pixel + ivec2(1, 0));
+    uint rays = (a.needsRay ? bit : 0u) | (b.needsRay ? bit << 1u : 0u);
+    if (rays != 0u) {
+        atomicOr(rayMask[slot], rays);
+        // Non-negative floats order as their bits.
+        float lo = min(a.needsRay ? max(a.t0, 0.0) : kNoEnd, b.needsRay ? max(b.t0, 0.0) : kNoEnd);
+        float hi = max(a.needsRay ? max(a.t1, 0.0) : 0.0, b.needsRay ? max(b.t1, 0.0) : 0.0);
+        atomicMin(minT[slot], floatBitsToUint(lo));
+        atomicMax(maxT[slot], floatBitsToUint(hi));
+    }
+    uint answers = (a.answer ? bit : 0u) | (b.answer ? bit << 1u : 0u);
+    if (answers != 0u) atomicOr(answerMask[slot], answers);
+    uint facingSun = (a.isActive ? bit : 0u) | (b.isActive ? bit << 1u : 0u);
+    if (facingSun != 0u) atomicOr(activeMask[slot], facingSun);
+    barrier();
+    uint tileRays = bitCount(rayMask[slot]);
     bool tileLead = lane == 0u && tileOnScreen;
-    bool listTile = tileLead && rays > params.options2.x;
+    bool listTile = tileLead && tileRays > params.options2.x;
     if (tileLead) {
         if (listTile) {
             listIndex[slot] = atomicAdd(groupListed, 1u);
-            atomicAdd(groupRays, rays);
-        } else if (rays > 0u) {
+            atomicAdd(groupRays, tileRays);
+        } else if (tileRays > 0u) {
             atomicAdd(groupCutTiles, 1u);
-            atomicAdd(groupCutPixels, rays);
+            atomicAdd(groupCutPixels, tileRays);
         }
         atomicAdd(groupActive, bitCount(activeMask[slot]));
         imageStore(hitMask, ivec2(tile), uvec4(answerMask[slot]));
